@@ -1,0 +1,52 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+namespace facectl {
+
+// The time of the tick that calls into the hardware (ros2_control's read/write(time, period)).
+struct TickTime {
+  std::int64_t now_ns = 0;  // CLOCK_MONOTONIC, or simulated time offline
+  double dt_s = 0.0;        // measured duration since the previous tick
+};
+
+struct BusStatus {
+  bool fault = false;
+  // Static string naming the fault (e.g. "bus-off", "board 3 not answering").
+  const char* reason = "";
+  std::uint64_t frames_sent = 0;
+  std::uint64_t errors = 0;
+};
+
+// Hardware seam for one actuator bus. The controller owns a contiguous slice of
+// actuators per bus, in the rig's bus order. Every method is called from the
+// real-time tick: it must not allocate, lock or block. Backends that need
+// blocking I/O (Modbus) hand data to their own I/O thread.
+class ActuatorBus {
+ public:
+  virtual ~ActuatorBus() = default;
+
+  virtual std::string_view name() const = 0;
+  // Latest measured positions (SI), one per actuator of this bus.
+  virtual void read(const TickTime& time, std::span<double> positions) = 0;
+  // Commanded positions (SI); only called while outputs are enabled.
+  virtual void write(const TickTime& time, std::span<const double> positions) = 0;
+  // Enables or disables the actuators' outputs (drive enable, torque on/off).
+  virtual void set_enabled(bool enabled) = 0;
+  virtual BusStatus status() const = 0;
+};
+
+// Hardware seam for the safety I/O: an e-stop input and a power-enable output.
+class SafetyIo {
+ public:
+  virtual ~SafetyIo() = default;
+  // True while the e-stop is pressed (already debounced).
+  virtual bool estop_active() = 0;
+  virtual void set_power_enable(bool on) = 0;
+  // True if the I/O itself failed (e.g. the GPIO line vanished).
+  virtual bool fault() const = 0;
+};
+
+}  // namespace facectl

@@ -1,0 +1,28 @@
+#pragma once
+
+#include <cstdint>
+
+namespace facectl {
+
+// One actuator's limits, SI units of the actuator (rad or m, and per second).
+struct ActuatorLimits {
+  double position_min = 0.0;  // hardware range
+  double position_max = 0.0;
+  double soft_min = 0.0;  // operating range, inside the hardware range
+  double soft_max = 0.0;
+  double max_velocity = 0.0;
+  double max_acceleration = 0.0;
+  double max_jerk = 0.0;  // 0 = not limited
+};
+
+// Which limit shaped an actuator's command on a tick (bit set, telemetry).
+enum LimitFlag : std::uint8_t {
+  kLimitPosition = 1 << 0,      // target outside the soft range: clamped
+  kLimitVelocity = 1 << 1,      // max velocity capped the motion
+  kLimitAcceleration = 1 << 2,  // max acceleration capped the motion
+  kLimitJerk = 1 << 3,          // max jerk capped the motion
+  kLimitApproach = 1 << 4,      // braking curve toward a soft limit capped the motion
+  kLimitBreach = 1 << 5,        // the final backstop had to act (should never fire)
+};
+
+}  // namespace facectl

@@ -1,0 +1,226 @@
+#include "control/controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace facectl {
+
+Controller::Controller(const ControllerModel& model, std::span<ActuatorBus* const> buses,
+                       SafetyIo& io, ControllerChannels channels)
+    : model_(model),
+      io_(io),
+      channels_(channels),
+      sanitizer_(model.layout),
+      shaper_(model.layout, model.shaping, model.neutral),
+      envelope_(model.layout, model.envelope, model.admissible),
+      safety_(model.safety) {
+  if (buses.size() != model.buses.size() || buses.size() > kMaxBuses) {
+    throw std::invalid_argument("controller: one backend per configured bus is required");
+  }
+  if (channels.commands == nullptr) throw std::invalid_argument("controller: no command mailbox");
+  bus_count_ = buses.size();
+  std::copy(buses.begin(), buses.end(), buses_.begin());
+  sanitizer_.reset(model.neutral);
+  face_ = model.neutral;
+  for (std::size_t i = 0; i < model.actuators.size(); ++i) {
+    command_[i] = model.actuators[i].rest;
+    measured_[i] = model.actuators[i].rest;
+  }
+}
+
+void Controller::read_inputs(const TickTiming& timing) {
+  // Step 1: the latest face command, if a new one arrived.
+  fresh_ = channels_.commands->consume(command_in_) &&
+           (!ever_received_ || command_in_.sequence != last_sequence_);
+  if (fresh_) {
+    last_sequence_ = command_in_.sequence;
+    ever_received_ = true;
+    last_fresh_ns_ = timing.now_ns;
+  }
+  input_stale_ = !ever_received_ || static_cast<double>(timing.now_ns - last_fresh_ns_) * 1e-9 >
+                                        model_.safety.input_timeout_s;
+  if (input_stale_) ++counters_.stale_ticks;
+
+  // Measured positions for bumpless enable and telemetry.
+  const TickTime time{timing.now_ns, timing.dt_s};
+  for (std::size_t b = 0; b < bus_count_; ++b) {
+    const BusModel& bus = model_.buses[b];
+    buses_[b]->read(time, std::span<double>(measured_.data() + bus.first, bus.count));
+  }
+}
+
+void Controller::limit_actuators(double dt, std::uint8_t* flags) {
+  const SafetyState state = safety_.state();
+  const double blend = safety_.enable_blend();
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    const ActuatorModel& act = model_.actuators[i];
+    double target = mapped_[i];
+    if (state == SafetyState::kEnabling) {
+      target = enable_start_[i] + blend * (mapped_[i] - enable_start_[i]);
+    } else if (state == SafetyState::kStopping) {
+      target = act.rest;
+    }
+    target_[i] = target;
+    flags[i] = limit_step(act.limits, limiter_[i], target, dt);
+    command_[i] = limiter_[i].position;
+    // Independent check of the result against the hardware range.
+    if (command_[i] < act.limits.position_min || command_[i] > act.limits.position_max) {
+      flags[i] |= kLimitBreach;
+    }
+    for (int bit = 0; bit < 6; ++bit) {
+      if ((flags[i] & (1u << bit)) != 0) ++counters_.limit_hits[i][static_cast<std::size_t>(bit)];
+    }
+    if ((flags[i] & kLimitBreach) != 0) ++counters_.limit_breaches;
+  }
+}
+
+bool Controller::at_rest() const {
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    const ActuatorLimits& l = model_.actuators[i].limits;
+    const double tol = model_.rest_tolerance_fraction * (l.soft_max - l.soft_min);
+    if (std::fabs(limiter_[i].position - model_.actuators[i].rest) > tol ||
+        std::fabs(limiter_[i].velocity) > 0.01 * l.max_velocity) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void Controller::enter_state(SafetyState state, const TickTime& time) {
+  (void)time;
+  const bool outputs = state == SafetyState::kEnabling || state == SafetyState::kRunning ||
+                       state == SafetyState::kStopping;
+  if (state == SafetyState::kEnabling) {
+    // Bumpless: the commanded trajectory starts where the actuators are.
+    for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+      const ActuatorLimits& l = model_.actuators[i].limits;
+      enable_start_[i] = std::clamp(measured_[i], l.soft_min, l.soft_max);
+      limiter_[i] = {measured_[i], 0.0, 0.0};
+      command_[i] = measured_[i];
+    }
+  }
+  if (!outputs) {
+    for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
+    io_.set_power_enable(false);
+  } else if (state == SafetyState::kEnabling) {
+    io_.set_power_enable(true);
+    for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(true);
+  }
+  if (state == SafetyState::kFault || state == SafetyState::kEstop) {
+    faults_seen_.fetch_add(1, std::memory_order_relaxed);
+  }
+  state_mirror_.store(state, std::memory_order_relaxed);
+}
+
+void Controller::write_outputs(const TickTime& time) {
+  if (!safety_.outputs_enabled()) return;  // nothing is transmitted in IDLE, FAULT or ESTOP
+  for (std::size_t b = 0; b < bus_count_; ++b) {
+    const BusModel& bus = model_.buses[b];
+    buses_[b]->write(time, std::span<const double>(command_.data() + bus.first, bus.count));
+  }
+}
+
+void Controller::log_transition(const TickTiming& timing, SafetyState from,
+                                TransitionReason reason) {
+  if (channels_.events == nullptr) return;
+  TransitionEvent* ev = channels_.events->begin_push();
+  if (ev == nullptr) return;  // counted by the ring as a drop
+  ev->tick = timing.tick;
+  ev->time_s = timing.time_s;
+  ev->from = from;
+  ev->to = safety_.state();
+  ev->reason = reason;
+  ev->detail[0] = '\0';
+  if (reason == TransitionReason::kBusFault) {
+    std::snprintf(ev->detail, sizeof ev->detail, "%s", bus_fault_reason_);
+  } else if (reason == TransitionReason::kOverrunStorm) {
+    std::snprintf(ev->detail, sizeof ev->detail, "%d in a row", timing.consecutive_overruns);
+  }
+  channels_.events->commit_push();
+}
+
+void Controller::publish_telemetry(const TickTiming& timing, TransitionReason transition,
+                                   std::uint32_t rejected, std::uint8_t envelope_flags,
+                                   const std::uint8_t* flags) {
+  if (channels_.telemetry == nullptr) return;
+  TelemetryRecord* rec = channels_.telemetry->begin_push();
+  if (rec == nullptr) return;  // the ring counts the drop; the writer reports it
+  rec->tick = timing.tick;
+  rec->time_s = timing.time_s;
+  rec->dt_s = timing.dt_s;
+  rec->wake_latency_s = timing.wake_latency_s;
+  rec->compute_s = timing.compute_s;
+  rec->state = safety_.state();
+  rec->transition = transition;
+  rec->input_stale = input_stale_;
+  rec->envelope_flags = envelope_flags;
+  rec->rejected_values = rejected;
+  rec->overruns = static_cast<std::uint32_t>(timing.consecutive_overruns);
+  rec->signal_count = static_cast<std::uint16_t>(model_.layout.size());
+  rec->actuator_count = static_cast<std::uint16_t>(model_.actuators.size());
+  std::copy_n(face_.begin(), model_.layout.size(), rec->face.begin());
+  const std::size_t n = model_.actuators.size();
+  std::copy_n(command_.begin(), n, rec->command.begin());
+  std::copy_n(measured_.begin(), n, rec->feedback.begin());
+  std::copy_n(flags, n, rec->limits.begin());
+  channels_.telemetry->commit_push();
+}
+
+void Controller::tick(const TickTiming& timing) {
+  const double dt = timing.dt_s;
+  ++counters_.ticks;
+
+  // 1. Read the face command (and the measured positions).
+  read_inputs(timing);
+  // 2. Sanitise: bad values are rejected, the last good value held.
+  std::uint32_t rejected = 0;
+  if (fresh_) rejected = sanitizer_.apply(command_in_);
+  // 3. Shape: neutral blend on stale input, activation dynamics, smoothing.
+  face_ = shaper_.apply(sanitizer_.values(), input_stale_, dt);
+  // 4. Face envelope: mandible limits and admissible rigid ranges.
+  const std::uint8_t envelope_flags = envelope_.apply(face_);
+  if (envelope_flags != 0) ++counters_.envelope_clamps;
+  // 5. Reduced face model: no control-point sources in the linear mapping yet.
+  // 6. Map to actuators.
+  model_.mapping.apply(face_, mapped_);
+  // 7. Actuator limits, only while outputs are live.
+  std::array<std::uint8_t, kMaxActuators> flags{};
+  if (safety_.outputs_enabled()) limit_actuators(dt, flags.data());
+
+  // 8. Safety state machine.
+  SafetyInputs in;
+  in.estop = io_.estop_active();
+  in.io_fault = io_.fault();
+  for (std::size_t b = 0; b < bus_count_; ++b) {
+    const BusStatus st = buses_[b]->status();
+    if (st.fault && !in.bus_fault) {
+      in.bus_fault = true;
+      bus_fault_reason_ = st.reason;
+    }
+  }
+  in.consecutive_overruns = timing.consecutive_overruns;
+  in.enable_request = enable_request_.exchange(false, std::memory_order_relaxed);
+  in.shutdown_request = shutdown_request_.load(std::memory_order_relaxed);
+  in.reset_request = reset_request_.exchange(false, std::memory_order_relaxed);
+  in.at_rest = safety_.state() == SafetyState::kStopping && at_rest();
+  const SafetyState before = safety_.state();
+  const TransitionReason transition = safety_.step(in, dt);
+  const TickTime time{timing.now_ns, dt};
+  if (transition != TransitionReason::kNone) {
+    enter_state(safety_.state(), time);
+    log_transition(timing, before, transition);
+  }
+  if (!safety_.outputs_enabled()) {
+    // Telemetry shows where the hardware is while nothing is commanded.
+    std::copy_n(measured_.begin(), model_.actuators.size(), command_.begin());
+  }
+
+  // 9-10. Encode and write through the drivers (encoding lives in each backend).
+  write_outputs(time);
+  // 11. Telemetry.
+  publish_telemetry(timing, transition, rejected, envelope_flags, flags.data());
+}
+
+}  // namespace facectl

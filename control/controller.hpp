@@ -1,0 +1,124 @@
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <span>
+
+#include "control/actuator_bus.hpp"
+#include "control/command_sanitizer.hpp"
+#include "control/command_shaper.hpp"
+#include "control/controller_model.hpp"
+#include "control/face_command.hpp"
+#include "control/latest_value_mailbox.hpp"
+#include "control/mandible_envelope.hpp"
+#include "control/safety_state_machine.hpp"
+#include "control/spsc_ring.hpp"
+#include "control/telemetry_record.hpp"
+#include "control/trajectory_limiter.hpp"
+
+namespace facectl {
+
+// Lock-free channels between the tick and the non-real-time threads.
+struct ControllerChannels {
+  LatestValueMailbox<FaceCommand>* commands = nullptr;  // in: latest face command
+  SpscRing<TelemetryRecord>* telemetry = nullptr;       // out: one record per tick (optional)
+  SpscRing<TransitionEvent>* events = nullptr;          // out: state transitions (optional)
+};
+
+// Timing of one tick, measured by the loop (or simulated offline).
+struct TickTiming {
+  std::uint64_t tick = 0;
+  std::int64_t now_ns = 0;
+  double time_s = 0.0;
+  double dt_s = 0.0;
+  double wake_latency_s = 0.0;
+  double compute_s = 0.0;  // previous tick
+  int consecutive_overruns = 0;
+};
+
+// Counts kept by the tick; read by other threads only after the loop stopped,
+// except the atomics.
+struct ControllerCounters {
+  std::uint64_t ticks = 0;
+  std::uint64_t stale_ticks = 0;
+  std::uint64_t envelope_clamps = 0;
+  std::uint64_t limit_breaches = 0;
+  std::array<std::array<std::uint64_t, 6>, kMaxActuators> limit_hits{};  // per LimitFlag bit
+};
+
+// The real-time core: one call of tick() runs the steps of DESIGN.md "One
+// tick" over the const model and this object's preallocated state. tick()
+// allocates nothing, takes no lock and makes no blocking call; whatever the
+// backends do in read/write must honour the same rules.
+class Controller {
+ public:
+  Controller(const ControllerModel& model, std::span<ActuatorBus* const> buses, SafetyIo& io,
+             ControllerChannels channels);
+
+  void tick(const TickTiming& timing);
+
+  // Requests from other threads (signal handlers included): lock-free flags.
+  void request_enable() { enable_request_.store(true, std::memory_order_relaxed); }
+  void request_shutdown() { shutdown_request_.store(true, std::memory_order_relaxed); }
+  void request_reset() { reset_request_.store(true, std::memory_order_relaxed); }
+
+  SafetyState state() const { return state_mirror_.load(std::memory_order_relaxed); }
+  std::uint64_t faults_seen() const { return faults_seen_.load(std::memory_order_relaxed); }
+
+  const ControllerModel& model() const { return model_; }
+  const ControllerCounters& counters() const { return counters_; }
+  const CommandSanitizer& sanitizer() const { return sanitizer_; }
+  const std::array<double, kMaxFaceSignals>& face() const { return face_; }
+  const std::array<double, kMaxActuators>& commands() const { return command_; }
+  const std::array<double, kMaxActuators>& measured() const { return measured_; }
+  const LimiterState& limiter(std::size_t actuator) const { return limiter_[actuator]; }
+  bool input_stale() const { return input_stale_; }
+
+ private:
+  void read_inputs(const TickTiming& timing);
+  void limit_actuators(double dt, std::uint8_t* flags);
+  bool at_rest() const;
+  void enter_state(SafetyState state, const TickTime& time);
+  void write_outputs(const TickTime& time);
+  void publish_telemetry(const TickTiming& timing, TransitionReason transition,
+                         std::uint32_t rejected, std::uint8_t envelope_flags,
+                         const std::uint8_t* flags);
+  void log_transition(const TickTiming& timing, SafetyState from, TransitionReason reason);
+
+  const ControllerModel& model_;
+  std::array<ActuatorBus*, kMaxBuses> buses_{};
+  std::size_t bus_count_ = 0;
+  SafetyIo& io_;
+  ControllerChannels channels_;
+
+  CommandSanitizer sanitizer_;
+  CommandShaper shaper_;
+  FaceEnvelope envelope_;
+  SafetyStateMachine safety_;
+
+  FaceCommand command_in_{};
+  std::uint64_t last_sequence_ = 0;
+  bool ever_received_ = false;
+  bool fresh_ = false;
+  std::int64_t last_fresh_ns_ = 0;
+  bool input_stale_ = true;
+
+  std::array<double, kMaxFaceSignals> face_{};
+  std::array<double, kMaxActuators> mapped_{};
+  std::array<double, kMaxActuators> target_{};
+  std::array<double, kMaxActuators> command_{};
+  std::array<double, kMaxActuators> measured_{};
+  std::array<double, kMaxActuators> enable_start_{};
+  std::array<LimiterState, kMaxActuators> limiter_{};
+
+  ControllerCounters counters_;
+  std::atomic<bool> enable_request_{false};
+  std::atomic<bool> shutdown_request_{false};
+  std::atomic<bool> reset_request_{false};
+  std::atomic<SafetyState> state_mirror_{SafetyState::kIdle};
+  std::atomic<std::uint64_t> faults_seen_{0};
+  const char* bus_fault_reason_ = "";
+};
+
+}  // namespace facectl

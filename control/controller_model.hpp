@@ -1,0 +1,54 @@
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "control/actuator_limits.hpp"
+#include "control/capacity.hpp"
+#include "control/command_shaper.hpp"
+#include "control/face_layout.hpp"
+#include "control/linear_mapping.hpp"
+#include "control/mandible_envelope.hpp"
+#include "control/safety_state_machine.hpp"
+
+namespace facectl {
+
+enum class ActuatorKind { kRotary, kLinear };
+
+struct ActuatorModel {
+  std::string name;
+  ActuatorKind kind = ActuatorKind::kRotary;
+  std::string bus;
+  int address = 0;
+  ActuatorLimits limits;
+  double rest = 0.0;  // SI
+};
+
+// A bus owns a contiguous slice of the actuators.
+struct BusModel {
+  std::string name;
+  std::string type;  // "can", "modbus_rtu", "modbus_tcp"
+  std::size_t first = 0;
+  std::size_t count = 0;
+};
+
+// Everything the tick needs that never changes while it runs (MuJoCo's mjModel
+// role): built and validated once from the configuration.
+struct ControllerModel {
+  FaceLayout layout{{}};
+  std::array<double, kMaxFaceSignals> neutral{};
+  std::array<Range, kMaxFaceSignals> admissible{};
+  MandibleEnvelope envelope = MandibleEnvelope::design_default();
+  bool envelope_widened = false;  // set only through the explicit override
+  ShapingParams shaping;
+  SafetyParams safety;
+  LinearMapping mapping;
+  std::vector<ActuatorModel> actuators;  // ordered by bus
+  std::vector<BusModel> buses;
+  double rate_hz = 1000.0;
+  // Fraction of an actuator's soft range within which it counts as at rest.
+  double rest_tolerance_fraction = 0.002;
+};
+
+}  // namespace facectl

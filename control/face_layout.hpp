@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace facectl {
+
+// What a face signal measures, which fixes its SI unit and its YAML unit.
+enum class SignalKind {
+  kContraction,  // muscle contraction, 1 (0..1)
+  kFraction,     // eyelid closure, 1 (0..1)
+  kAngle,        // rad in code, deg in YAML
+  kLength,       // m in code, mm in YAML
+};
+
+struct SignalInfo {
+  std::string name;
+  SignalKind kind = SignalKind::kContraction;
+  // Domain: values outside it are malformed and rejected by the sanitiser.
+  double domain_min = 0.0;
+  double domain_max = 1.0;
+};
+
+// Factor from the YAML unit of a kind to SI (deg -> rad, mm -> m, else 1).
+double yaml_to_si(SignalKind kind);
+// The YAML unit suffix of a kind: "deg", "mm" or "" for dimensionless.
+std::string_view yaml_unit(SignalKind kind);
+
+// The named signals of a face command, in a fixed order: the head's muscles
+// first, then the mandible, then the rigid degrees of freedom. Built once from
+// the head config; the tick only uses indices.
+class FaceLayout {
+ public:
+  // Fixed names of the non-muscle signals.
+  static constexpr std::string_view kJawPitch = "jaw_pitch";
+  static constexpr std::string_view kJawYaw = "jaw_yaw";
+  static constexpr std::string_view kJawProtrusion = "jaw_protrusion";
+
+  explicit FaceLayout(const std::vector<std::string>& muscle_names);
+
+  std::size_t size() const { return signals_.size(); }
+  std::size_t muscle_count() const { return muscle_count_; }
+  const SignalInfo& signal(std::size_t i) const { return signals_[i]; }
+  std::optional<std::size_t> find(std::string_view name) const;
+
+  std::size_t jaw_pitch() const { return muscle_count_; }
+  std::size_t jaw_yaw() const { return muscle_count_ + 1; }
+  std::size_t jaw_protrusion() const { return muscle_count_ + 2; }
+
+ private:
+  std::vector<SignalInfo> signals_;
+  std::size_t muscle_count_;
+};
+
+}  // namespace facectl

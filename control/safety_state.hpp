@@ -1,0 +1,44 @@
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+namespace facectl {
+
+enum class SafetyState : std::uint8_t {
+  kIdle,      // outputs disabled, power-enable off
+  kEnabling,  // bumpless ramp from measured positions to the live target
+  kRunning,
+  kStopping,  // easing to the rest pose before disabling (shutdown)
+  kFault,     // outputs disabled at once; leaves to IDLE on reset
+  kEstop,     // nothing transmitted, power-enable off; leaves to IDLE on release + reset
+};
+
+enum class TransitionReason : std::uint8_t {
+  kNone,
+  kEnableRequested,
+  kEnableRampDone,
+  kShutdownRequested,
+  kRestReached,
+  kStopTimeout,
+  kEstopInput,
+  kBusFault,
+  kOverrunStorm,
+  kSafetyIoFault,
+  kFaultReset,
+};
+
+std::string_view to_string(SafetyState state);
+std::string_view to_string(TransitionReason reason);
+
+// A state change, as logged and written to telemetry.
+struct TransitionEvent {
+  std::uint64_t tick = 0;
+  double time_s = 0.0;
+  SafetyState from = SafetyState::kIdle;
+  SafetyState to = SafetyState::kIdle;
+  TransitionReason reason = TransitionReason::kNone;
+  char detail[64] = {};  // e.g. the bus and its fault; fixed size for the RT ring
+};
+
+}  // namespace facectl

@@ -1,0 +1,105 @@
+#include "control/trajectory_limiter.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facectl {
+namespace {
+
+// Relative tolerance for deciding that a bound "fired", so that floating
+// rounding on an exactly tracked trajectory is not reported as a limit.
+constexpr double kFireTolerance = 1e-12;
+
+}  // namespace
+
+double braking_speed(double distance, double max_acceleration, double dt) {
+  if (distance <= 0.0) return 0.0;
+  // Positive root of v²/(2A) + v·dt = d.
+  const double a = max_acceleration;
+  return a * (std::sqrt(dt * dt + 2.0 * distance / a) - dt);
+}
+
+std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target, double dt,
+                        double velocity_scale) {
+  std::uint8_t flags = 0;
+  const double a_max = limits.max_acceleration;
+  const double v_max = limits.max_velocity * velocity_scale;
+  const double x = state.position;
+  const double v = state.velocity;
+
+  const double r = std::clamp(target, limits.soft_min, limits.soft_max);
+  if (r != target) flags |= kLimitPosition;
+
+  // Goal velocity: the fastest approach to the target that can still stop on it.
+  const double error = r - x;
+  double distance = std::fabs(error);
+  if (limits.max_jerk > 0.0 && v * error > 0.0) {
+    // Under a jerk limit, deceleration ramps in over A/J: start braking earlier.
+    distance = std::max(0.0, distance - std::fabs(v) * a_max / limits.max_jerk);
+  }
+  const double goal_speed = braking_speed(distance, a_max, dt);
+  double v_goal = std::copysign(std::min(goal_speed, v_max), error);
+  if (goal_speed > v_max * (1.0 + kFireTolerance) && std::fabs(error) > 0.0) {
+    flags |= kLimitVelocity;
+  }
+
+  // Never head into a soft limit faster than one can stop before it.
+  const double v_hi = braking_speed(limits.soft_max - x, a_max, dt);
+  const double v_lo = -braking_speed(x - limits.soft_min, a_max, dt);
+  if (v_goal > v_hi || v_goal < v_lo) {
+    v_goal = std::clamp(v_goal, v_lo, v_hi);
+    flags |= kLimitApproach;
+  }
+
+  // Acceleration bound.
+  double v_new = std::clamp(v_goal, v - a_max * dt, v + a_max * dt);
+  if (v_new != v_goal &&
+      std::fabs(v_new - v_goal) > kFireTolerance * std::max(1.0, std::fabs(v_goal))) {
+    flags |= kLimitAcceleration;
+  }
+
+  // Optional jerk bound: track the goal velocity with an acceleration that can
+  // ramp down in time (a = sqrt(2·J·|Δv|)), then bound its change per tick.
+  // It yields to the velocity, acceleration and position bounds above.
+  if (limits.max_jerk > 0.0) {
+    const double j_max = limits.max_jerk;
+    const double dv = v_goal - v;
+    const double a_want = std::copysign(
+        std::min({a_max, std::sqrt(2.0 * j_max * std::fabs(dv)), std::fabs(dv) / dt}), dv);
+    const double a_jerk =
+        std::clamp(a_want, state.acceleration - j_max * dt, state.acceleration + j_max * dt);
+    const double v_jerk = v + a_jerk * dt;
+    if (v_jerk <= v_hi && v_jerk >= v_lo && std::fabs(v_jerk) <= std::max(v_max, std::fabs(v)) &&
+        std::fabs(a_jerk) <= a_max) {
+      if (a_jerk != a_want) flags |= kLimitJerk;
+      v_new = v_jerk;
+    } else {
+      flags |= kLimitApproach;  // a hard bound overrode the jerk limit
+    }
+  }
+
+  // Backstop: only rounding or a broken invariant can get here.
+  if (v_new > v_hi || v_new < v_lo) {
+    v_new = std::clamp(v_new, v_lo, v_hi);
+    if (std::fabs(v_new - v) > a_max * dt * (1.0 + 1e-9)) flags |= kLimitBreach;
+  }
+
+  double x_new = x + v_new * dt;
+  if (x_new > limits.soft_max || x_new < limits.soft_min) {
+    // Reachable only through rounding when x was inside; pin to the range.
+    const bool was_inside = x <= limits.soft_max && x >= limits.soft_min;
+    if (was_inside) {
+      const double pinned = std::clamp(x_new, limits.soft_min, limits.soft_max);
+      if (std::fabs(pinned - x_new) > 1e-12) flags |= kLimitBreach;
+      x_new = pinned;
+      v_new = (x_new - x) / dt;
+    }
+  }
+
+  state.acceleration = (v_new - v) / dt;
+  state.velocity = v_new;
+  state.position = x_new;
+  return flags;
+}
+
+}  // namespace facectl

@@ -1,0 +1,33 @@
+#pragma once
+
+#include <cstdint>
+
+#include "control/actuator_limits.hpp"
+
+namespace facectl {
+
+// The commanded trajectory of one actuator (SI units of the actuator).
+struct LimiterState {
+  double position = 0.0;
+  double velocity = 0.0;
+  double acceleration = 0.0;
+};
+
+// Advances `state` one tick of real duration `dt` toward `target`, so that the
+// commanded trajectory never leaves the soft range and never exceeds the
+// velocity (scaled by `velocity_scale`) or acceleration bounds. Returns the
+// LimitFlag bits of the limits that shaped the motion.
+//
+// Integration is semi-implicit Euler: x' = x + v'·dt, so the finite
+// differences of the commanded positions are exactly the limited velocity and
+// acceleration. The braking bound v'²/(2A) + v'·dt ≤ d toward every boundary is
+// solved with this tick's dt; decelerating at A always satisfies it on the next
+// tick whatever that tick's dt is, so late and early ticks stay inside the
+// range (docs/SAFETY.md derives this).
+std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target, double dt,
+                        double velocity_scale = 1.0);
+
+// Highest speed v' that can still stop within `distance` after moving v'·dt.
+double braking_speed(double distance, double max_acceleration, double dt);
+
+}  // namespace facectl

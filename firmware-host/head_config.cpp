@@ -1,0 +1,95 @@
+#include "firmware-host/head_config.hpp"
+
+#include <numbers>
+#include <set>
+
+#include "firmware-host/face_pose.hpp"
+
+namespace facectl {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Range parse_range(const ConfigNode& node, double scale) {
+  node.expect_keys({"min", "max"});
+  Range r{node["min"].number() * scale, node["max"].number() * scale};
+  if (!(r.min <= r.max)) node.fail("min <= max", "min > max");
+  return r;
+}
+
+}  // namespace
+
+EnvelopeSpec parse_envelope(const ConfigNode& node) {
+  node.expect_keys({"pitch_deg", "yaw_deg", "protrusion_mm", "widen_override"});
+  EnvelopeSpec spec;
+  spec.where = node.where();
+  spec.envelope = MandibleEnvelope::design_default();
+  if (auto n = node.get("pitch_deg")) spec.envelope.pitch = parse_range(*n, kDeg);
+  if (auto n = node.get("yaw_deg")) spec.envelope.yaw = parse_range(*n, kDeg);
+  if (auto n = node.get("protrusion_mm")) spec.envelope.protrusion = parse_range(*n, 1e-3);
+  if (auto n = node.get("widen_override")) spec.widen_override = n->boolean();
+  if (!spec.envelope.within(MandibleEnvelope::design_default()) && !spec.widen_override) {
+    node.fail(
+        "an envelope inside pitch -4..18 deg, yaw -5..5 deg, protrusion 0..8 mm "
+        "(widening needs `widen_override: true`)",
+        "a wider envelope");
+  }
+  return spec;
+}
+
+HeadConfig load_head_config(const std::string& path) {
+  const ConfigNode root = ConfigNode::load_file(path, "");
+  root.expect_keys({"head"});
+  const ConfigNode head = root["head"];
+  head.expect_keys({"name", "muscles", "passive_muscles", "rigid", "mandible_envelope", "neutral"});
+
+  HeadConfig cfg;
+  cfg.file = path;
+  cfg.name = head["name"].string();
+  std::set<std::string> seen;
+  for (const ConfigNode& m : head["muscles"].items()) {
+    std::string name;
+    if (m.is_map()) {
+      m.expect_keys({"name", "facs"});
+      name = m["name"].string();
+      if (auto facs = m.get("facs")) {
+        for (const auto& au : facs->items()) (void)au.integer();
+      }
+    } else {
+      name = m.string();
+    }
+    if (name.empty()) m.fail("a muscle name", "an empty name");
+    if (!seen.insert(name).second) m.fail("a unique muscle name", "duplicate '" + name + "'");
+    cfg.muscles.push_back(name);
+  }
+  if (cfg.muscles.empty()) head["muscles"].fail("at least one muscle", "an empty list");
+  if (auto p = head.get("passive_muscles")) cfg.passive_muscles = p->string_list();
+
+  if (auto rigid = head.get("rigid")) {
+    // Each range applies to both sides where the signal has them.
+    const std::vector<std::pair<std::string, std::vector<std::string>>> known = {
+        {"eye_yaw_deg", {"eye_yaw_l", "eye_yaw_r"}},
+        {"eye_pitch_deg", {"eye_pitch_l", "eye_pitch_r"}},
+        {"eyelid_closure", {"eyelid_closure_l", "eyelid_closure_r"}},
+        {"neck_pan_deg", {"neck_pan"}},
+        {"neck_tilt_deg", {"neck_tilt"}},
+        {"neck_roll_deg", {"neck_roll"}},
+    };
+    std::vector<std::string> allowed;
+    for (const auto& k : known) allowed.push_back(k.first);
+    rigid->expect_keys(allowed);
+    for (const auto& [key, signals] : known) {
+      if (auto n = rigid->get(key)) {
+        const double scale = key.ends_with("_deg") ? kDeg : 1.0;
+        const Range r = parse_range(*n, scale);
+        for (const auto& s : signals) cfg.rigid_ranges[s] = r;
+      }
+    }
+  }
+  if (auto env = head.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);
+  cfg.layout = FaceLayout(cfg.muscles);
+  if (auto neutral = head.get("neutral")) parse_pose(*neutral, cfg.layout).apply_to(cfg.neutral);
+  return cfg;
+}
+
+}  // namespace facectl

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control/face_layout.hpp"
+#include "control/mandible_envelope.hpp"
+#include "firmware-host/config_node.hpp"
+
+namespace facectl {
+
+// An envelope as a head or rig file states it, with where it was stated.
+struct EnvelopeSpec {
+  MandibleEnvelope envelope;
+  bool widen_override = false;
+  std::string where;  // file:line:column of the block
+};
+
+struct HeadConfig {
+  std::string file;
+  std::string name;
+  std::vector<std::string> muscles;
+  std::vector<std::string> passive_muscles;
+  std::map<std::string, Range> rigid_ranges;  // SI, keyed by rigid signal name
+  std::optional<EnvelopeSpec> envelope;
+  FaceLayout layout{{}};
+  std::array<double, kMaxFaceSignals> neutral{};  // SI, full pose
+};
+
+HeadConfig load_head_config(const std::string& path);
+
+// Parses a `mandible_envelope:` block (head or rig).
+EnvelopeSpec parse_envelope(const ConfigNode& node);
+
+}  // namespace facectl

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "firmware-host/expression_library.hpp"
+#include "firmware-host/head_config.hpp"
+#include "firmware-host/model_builder.hpp"
+#include "firmware-host/rig_config.hpp"
+#include "firmware-host/runtime_config.hpp"
+#include "firmware-host/show.hpp"
+
+namespace facectl {
+
+// Everything `facectl` reads before it may enable anything, validated as a whole.
+struct LoadedConfig {
+  RuntimeConfig runtime;
+  HeadConfig head;
+  RigConfig rig;
+  ExpressionLibrary expressions;
+  std::optional<Show> show;
+  BuiltModel built;
+};
+
+struct ConfigOverrides {
+  std::optional<std::string> show_path;
+  std::optional<double> rate_hz;
+};
+
+// The shipped default: config/facectl.yaml of the source tree, or $FACECTL_CONFIG.
+std::string default_config_path();
+
+// Loads and validates the runtime file and everything it names. Throws ConfigError.
+LoadedConfig load_config(const std::string& runtime_path, const ConfigOverrides& overrides = {});
+
+}  // namespace facectl

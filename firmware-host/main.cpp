@@ -1,0 +1,45 @@
+// facectl: real-time controller for animatronic faces. Command-line entry point.
+#include <CLI/CLI.hpp>
+
+#include "firmware-host/bench_command.hpp"
+#include "firmware-host/run_command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"facectl: real-time controller for animatronic robot faces"};
+  app.require_subcommand(1);
+  int exit_code = 0;
+
+  facectl::RunOptions run;
+  CLI::App* run_cmd = app.add_subcommand(
+      "run", "Drive the head (simulated hardware) from a show, with the real-time loop");
+  run_cmd->add_option("--config", run.config,
+                      "Runtime config (default: the shipped config/facectl.yaml)");
+  run_cmd->add_option("--show", run.show, "Show file to play (overrides the config's show)");
+  run_cmd->add_option("--duration", run.duration_s, "Run this many seconds, looping the show");
+  run_cmd->add_option("--rate", run.rate_hz, "Loop rate in Hz (default from config: 1000)");
+  run_cmd->add_option("--record", run.record, "Write per-tick telemetry CSV to this file");
+  run_cmd->add_option(
+      "--inject", run.inject,
+      "Rehearse a fault: estop@S, bus_fault:BUS@S, input_loss@S, overrun_storm:MS@S");
+  run_cmd->add_flag("--quiet", run.quiet, "No live status line");
+  run_cmd->callback([&] { exit_code = facectl::run_command(run); });
+
+  facectl::BenchLoopOptions bench;
+  CLI::App* bench_cmd = app.add_subcommand("bench", "Benchmarks");
+  bench_cmd->require_subcommand(1);
+  CLI::App* bench_loop = bench_cmd->add_subcommand(
+      "loop", "Full pipeline at the loop rate beside a bare clock_nanosleep loop");
+  bench_loop->add_option("--config", bench.config, "Runtime config");
+  bench_loop->add_option("--duration", bench.duration_s, "Seconds per variant (default 10)");
+  bench_loop->add_option("--chunk", bench.chunk_s, "Interleave chunk in seconds (default 1)");
+  bench_loop->add_option("--rate", bench.rate_hz, "Loop rate in Hz");
+  bench_loop->callback([&] { exit_code = facectl::bench_loop_command(bench); });
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;  // usage errors are exit code 2
+  }
+  return exit_code;
+}

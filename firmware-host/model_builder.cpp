@@ -1,0 +1,93 @@
+#include "firmware-host/model_builder.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <numbers>
+
+#include "firmware-host/config_node.hpp"
+
+namespace facectl {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Range intersect(const Range& a, const Range& b) {
+  return {std::max(a.min, b.min), std::min(a.max, b.max)};
+}
+
+std::string describe(const MandibleEnvelope& e) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf,
+                "pitch %.2f..%.2f deg, yaw %.2f..%.2f deg, protrusion %.2f..%.2f mm",
+                e.pitch.min / kDeg, e.pitch.max / kDeg, e.yaw.min / kDeg, e.yaw.max / kDeg,
+                e.protrusion.min * 1e3, e.protrusion.max * 1e3);
+  return buf;
+}
+
+}  // namespace
+
+BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const RuntimeConfig& runtime) {
+  BuiltModel out;
+  ControllerModel& m = out.model;
+  m.layout = head.layout;
+  m.neutral = head.neutral;
+  m.rate_hz = runtime.rate_hz;
+  m.safety = runtime.safety;
+  m.shaping = runtime.shaping;
+
+  for (std::size_t i = 0; i < m.layout.size(); ++i) {
+    const SignalInfo& info = m.layout.signal(i);
+    m.admissible[i] = {info.domain_min, info.domain_max};
+    if (auto it = head.rigid_ranges.find(info.name); it != head.rigid_ranges.end()) {
+      m.admissible[i] = it->second;
+    }
+  }
+
+  // Envelope: the head's (or the default), narrowed by the rig. A widened one
+  // is allowed only through its explicit override, and is announced loudly.
+  const MandibleEnvelope design = MandibleEnvelope::design_default();
+  MandibleEnvelope env = head.envelope ? head.envelope->envelope : design;
+  if (rig.envelope) {
+    const MandibleEnvelope& r = rig.envelope->envelope;
+    if (rig.envelope->widen_override) {
+      env = r;
+    } else {
+      env = {intersect(env.pitch, r.pitch), intersect(env.yaw, r.yaw),
+             intersect(env.protrusion, r.protrusion)};
+    }
+  }
+  m.envelope = env;
+  m.envelope_widened = !env.within(design);
+  if (m.envelope_widened) {
+    const std::string where =
+        rig.envelope && rig.envelope->widen_override ? rig.envelope->where : head.envelope->where;
+    out.warnings.push_back("WARNING: mandible envelope WIDENED beyond the design default by " +
+                           where + ": " + describe(env) + " (default: " + describe(design) + ")");
+  }
+
+  // Actuators grouped by bus, in bus order then file order.
+  m.mapping = LinearMapping(rig.actuators.size(), m.layout.size());
+  std::vector<const ActuatorConfig*> ordered;
+  for (const BusConfig& bus : rig.buses) {
+    BusModel bm{bus.name, bus.type, ordered.size(), 0};
+    for (const ActuatorConfig& a : rig.actuators) {
+      if (a.model.bus == bus.name) ordered.push_back(&a);
+    }
+    bm.count = ordered.size() - bm.first;
+    m.buses.push_back(bm);
+  }
+  for (std::size_t i = 0; i < ordered.size(); ++i) {
+    const ActuatorConfig& a = *ordered[i];
+    m.actuators.push_back(a.model);
+    m.mapping.set_offset(i, a.map_offset_si);
+    for (const MappingTerm& t : a.terms) m.mapping.set_gain(i, t.signal, t.gain_si);
+    if (!m.mapping.drives(i)) {
+      throw ConfigError(a.where + ": rig.actuators '" + a.model.name +
+                        "': expected at least one non-zero mapping term, found none "
+                        "(an actuator that nothing drives)");
+    }
+  }
+  return out;
+}
+
+}  // namespace facectl

@@ -1,0 +1,167 @@
+#include "firmware-host/rig_config.hpp"
+
+#include <numbers>
+#include <set>
+
+namespace facectl {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+struct Units {
+  std::string suffix;  // "deg" or "mm"
+  double to_si;
+};
+
+Units units_of(ActuatorKind kind) {
+  return kind == ActuatorKind::kRotary ? Units{"deg", kDeg} : Units{"mm", 1e-3};
+}
+
+BusConfig parse_bus(const ConfigNode& node) {
+  node.expect_keys({"name", "type", "interface", "device", "host", "bitrate", "baud"});
+  BusConfig bus;
+  bus.where = node.where();
+  bus.name = node["name"].string();
+  bus.type = node["type"].string();
+  if (bus.type == "can") {
+    bus.endpoint = node["interface"].string();
+    bus.bitrate = node["bitrate"].integer();
+    if (bus.bitrate <= 0 || bus.bitrate > 1'000'000) {
+      node["bitrate"].fail("a CAN bitrate in (0, 1000000] bit/s");
+    }
+  } else if (bus.type == "modbus_rtu") {
+    bus.endpoint = node["device"].string();
+    bus.bitrate = node["baud"].integer();
+    if (bus.bitrate <= 0) node["baud"].fail("a baud rate > 0");
+  } else if (bus.type == "modbus_tcp") {
+    bus.endpoint = node["host"].string();
+  } else {
+    node["type"].fail("one of: can, modbus_rtu, modbus_tcp");
+  }
+  return bus;
+}
+
+Range parse_limit_range(const ConfigNode& node, double to_si) {
+  node.expect_keys({"min", "max"});
+  Range r{node["min"].number() * to_si, node["max"].number() * to_si};
+  if (!(r.min < r.max)) node.fail("min < max", "min >= max");
+  return r;
+}
+
+ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
+                              const std::set<std::string>& bus_names) {
+  ActuatorConfig cfg;
+  cfg.where = node.where();
+  ActuatorModel& m = cfg.model;
+  m.name = node["name"].string();
+  const std::string kind = node["kind"].string();
+  if (kind == "rotary") {
+    m.kind = ActuatorKind::kRotary;
+  } else if (kind == "linear") {
+    m.kind = ActuatorKind::kLinear;
+  } else {
+    node["kind"].fail("rotary or linear");
+  }
+  const Units u = units_of(m.kind);
+  const std::string s = "_" + u.suffix;
+  node.expect_keys({"name", "kind", "bus", "address", "position" + s, "soft_position" + s,
+                    "max_velocity" + s + "_s", "max_acceleration" + s + "_s2",
+                    "max_jerk" + s + "_s3", "rest" + s, "plant", "map"});
+
+  m.bus = node["bus"].string();
+  if (bus_names.count(m.bus) == 0) node["bus"].fail("the name of a bus of this rig");
+  m.address = static_cast<int>(node["address"].integer());
+
+  ActuatorLimits& l = m.limits;
+  const Range hard = parse_limit_range(node["position" + s], u.to_si);
+  l.position_min = hard.min;
+  l.position_max = hard.max;
+  Range soft = hard;
+  if (auto n = node.get("soft_position" + s)) {
+    soft = parse_limit_range(*n, u.to_si);
+    if (!hard.contains(soft)) n->fail("a soft range inside position" + s, "a wider range");
+  }
+  l.soft_min = soft.min;
+  l.soft_max = soft.max;
+  l.max_velocity = node["max_velocity" + s + "_s"].positive() * u.to_si;
+  l.max_acceleration = node["max_acceleration" + s + "_s2"].positive() * u.to_si;
+  if (auto n = node.get("max_jerk" + s + "_s3")) l.max_jerk = n->non_negative() * u.to_si;
+
+  const ConfigNode rest = node["rest" + s];
+  m.rest = rest.number() * u.to_si;
+  if (m.rest < soft.min || m.rest > soft.max) rest.fail("a rest position inside the soft range");
+
+  if (auto plant = node.get("plant")) {
+    plant->expect_keys({"time_constant_ms", "latency_ms", "noise" + s, "max_velocity" + s + "_s"});
+    if (auto n = plant->get("time_constant_ms"))
+      cfg.plant.time_constant_s = n->non_negative() * 1e-3;
+    if (auto n = plant->get("latency_ms")) cfg.plant.latency_s = n->number_in(0.0, 50.0) * 1e-3;
+    if (auto n = plant->get("noise" + s)) cfg.plant.noise_stddev = n->non_negative() * u.to_si;
+    cfg.plant.max_velocity = 1.5 * l.max_velocity;
+    if (auto n = plant->get("max_velocity" + s + "_s"))
+      cfg.plant.max_velocity = n->positive() * u.to_si;
+  } else {
+    cfg.plant.max_velocity = 1.5 * l.max_velocity;
+  }
+
+  const ConfigNode map = node["map"];
+  map.expect_keys({"offset" + s, "terms"});
+  if (auto n = map.get("offset" + s)) cfg.map_offset_si = n->number() * u.to_si;
+  for (const auto& [signal_key, gain] : map["terms"].entries()) {
+    // Terms name the signal with its YAML unit: zygomaticus_major_l, jaw_pitch_deg,
+    // jaw_protrusion_mm.
+    std::optional<std::size_t> index;
+    for (std::size_t i = 0; i < layout.size() && !index; ++i) {
+      const SignalInfo& info = layout.signal(i);
+      const std::string_view unit = yaml_unit(info.kind);
+      const std::string key = unit.empty() ? info.name : info.name + "_" + std::string(unit);
+      if (key == signal_key) index = i;
+    }
+    if (!index) {
+      gain.fail("a face signal of the head (muscle name, jaw_pitch_deg, jaw_protrusion_mm, ...)",
+                "unknown signal '" + signal_key + "'");
+    }
+    const SignalInfo& info = layout.signal(*index);
+    // Gain is in actuator YAML units per signal YAML unit.
+    cfg.terms.push_back({*index, gain.number() * u.to_si / yaml_to_si(info.kind)});
+  }
+  return cfg;
+}
+
+}  // namespace
+
+RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
+  const ConfigNode root = ConfigNode::load_file(path, "");
+  root.expect_keys({"rig"});
+  const ConfigNode rig = root["rig"];
+  rig.expect_keys({"name", "buses", "actuators", "mandible_envelope"});
+
+  RigConfig cfg;
+  cfg.file = path;
+  cfg.name = rig["name"].string();
+  std::set<std::string> bus_names;
+  for (const ConfigNode& b : rig["buses"].items()) {
+    BusConfig bus = parse_bus(b);
+    if (!bus_names.insert(bus.name).second) b["name"].fail("a unique bus name");
+    cfg.buses.push_back(std::move(bus));
+  }
+  if (cfg.buses.empty()) rig["buses"].fail("at least one bus", "an empty list");
+  if (cfg.buses.size() > kMaxBuses)
+    rig["buses"].fail("at most " + std::to_string(kMaxBuses) + " buses");
+
+  std::set<std::string> names;
+  const auto items = rig["actuators"].items();
+  if (items.empty()) rig["actuators"].fail("at least one actuator", "an empty list");
+  if (items.size() > kMaxActuators) {
+    rig["actuators"].fail("at most " + std::to_string(kMaxActuators) + " actuators");
+  }
+  for (const ConfigNode& a : items) {
+    ActuatorConfig act = parse_actuator(a, layout, bus_names);
+    if (!names.insert(act.model.name).second) a["name"].fail("a unique actuator name");
+    cfg.actuators.push_back(std::move(act));
+  }
+  if (auto env = rig.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);
+  return cfg;
+}
+
+}  // namespace facectl

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "control/controller_model.hpp"
+#include "firmware-host/config_node.hpp"
+#include "firmware-host/head_config.hpp"
+#include "sim/plant/servo_plant.hpp"
+
+namespace facectl {
+
+struct BusConfig {
+  std::string name;
+  std::string type;      // can | modbus_rtu | modbus_tcp
+  std::string endpoint;  // interface, device or host:port
+  long bitrate = 0;      // CAN bitrate or serial baud (0 for TCP)
+  std::string where;
+};
+
+// One mapping term: gain from a face signal to the actuator, SI per SI.
+struct MappingTerm {
+  std::size_t signal = 0;
+  double gain_si = 0.0;
+};
+
+struct ActuatorConfig {
+  ActuatorModel model;
+  double map_offset_si = 0.0;
+  std::vector<MappingTerm> terms;
+  sim::ServoPlantParams plant;  // the simulated twin
+  std::string where;
+};
+
+struct RigConfig {
+  std::string file;
+  std::string name;
+  std::vector<BusConfig> buses;
+  std::vector<ActuatorConfig> actuators;  // in file order
+  std::optional<EnvelopeSpec> envelope;
+};
+
+// Loads a rig against the head's face layout (mapping terms name its signals).
+RigConfig load_rig_config(const std::string& path, const FaceLayout& layout);
+
+}  // namespace facectl

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <string>
+
+#include "control/controller.hpp"
+#include "firmware-host/realtime_loop.hpp"
+#include "firmware-host/realtime_thread.hpp"
+#include "firmware-host/telemetry_writer.hpp"
+
+namespace facectl {
+
+struct RunSummaryInput {
+  const ControllerModel& model;
+  const Controller& controller;
+  const LoopStats& stats;
+  const RealtimeReport& realtime;
+  const TelemetryWriter* writer;  // may be null
+  std::string rig_name;
+  std::string head_name;
+};
+
+// Prints the end-of-run summary to stdout and returns the exit code
+// (run_command.hpp documents them).
+int print_run_summary(const RunSummaryInput& in);
+
+}  // namespace facectl

@@ -1,0 +1,34 @@
+#include "firmware-host/sim_hardware.hpp"
+
+namespace facectl {
+
+SimActuatorBus* SimHardware::find(std::string_view name) {
+  for (auto& b : buses) {
+    if (b->name() == name) return b.get();
+  }
+  return nullptr;
+}
+
+std::unique_ptr<SimHardware> make_sim_hardware(const ControllerModel& model, const RigConfig& rig) {
+  auto hw = std::make_unique<SimHardware>();
+  std::uint64_t seed = 1;
+  for (const BusModel& bus : model.buses) {
+    std::vector<sim::ServoPlantParams> plants;
+    std::vector<double> initial;
+    for (std::size_t i = bus.first; i < bus.first + bus.count; ++i) {
+      const ActuatorModel& act = model.actuators[i];
+      for (const ActuatorConfig& a : rig.actuators) {
+        if (a.model.name != act.name) continue;
+        sim::ServoPlantParams p = a.plant;
+        p.seed = seed++;  // distinct, deterministic noise per actuator
+        plants.push_back(p);
+        initial.push_back(act.rest);
+      }
+    }
+    hw->buses.push_back(std::make_unique<SimActuatorBus>(bus.name, plants, initial));
+    hw->seams.push_back(hw->buses.back().get());
+  }
+  return hw;
+}
+
+}  // namespace facectl

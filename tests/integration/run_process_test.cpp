@@ -1,0 +1,201 @@
+// `facectl run` as a user runs it: a child process on the default head, on
+// simulated hardware. SIGTERM and rehearsed faults end in their documented
+// safe state, and the telemetry file holds every tick up to the end.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/support/temp_file.hpp"
+
+namespace {
+
+struct Child {
+  pid_t pid = -1;
+  std::string out_path;
+};
+
+Child spawn(const std::vector<std::string>& args) {
+  Child c;
+  c.out_path = "/tmp/facectl-test-out-" + std::to_string(getpid()) + "-" +
+               std::to_string(std::rand()) + ".txt";
+  c.pid = fork();
+  if (c.pid == 0) {
+    FILE* f = std::freopen(c.out_path.c_str(), "w", stdout);
+    (void)f;
+    dup2(fileno(stdout), STDERR_FILENO);
+    std::vector<char*> argv;
+    std::string bin = FACECTL_BINARY;
+    argv.push_back(bin.data());
+    std::vector<std::string> copy = args;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(bin.c_str(), argv.data());
+    _exit(127);
+  }
+  return c;
+}
+
+int wait_exit(const Child& c) {
+  int status = 0;
+  waitpid(c.pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Telemetry {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::size_t column(const std::string& name) const {
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      if (header[i] == name) return i;
+    }
+    return static_cast<std::size_t>(-1);
+  }
+};
+
+Telemetry read_csv(const std::string& path) {
+  Telemetry t;
+  std::ifstream in(path);
+  std::string line;
+  auto split = [](const std::string& l) {
+    std::vector<std::string> out;
+    std::stringstream ss(l);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) out.push_back(cell);
+    if (!l.empty() && l.back() == ',') out.emplace_back();
+    return out;
+  };
+  if (std::getline(in, line)) t.header = split(line);
+  while (std::getline(in, line)) t.rows.push_back(split(line));
+  return t;
+}
+
+// Every tick from 0 to the last is there, once, in order.
+void expect_every_tick(const Telemetry& t) {
+  ASSERT_FALSE(t.rows.empty());
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    ASSERT_EQ(t.rows[i][0], std::to_string(i)) << "row " << i;
+    ASSERT_EQ(t.rows[i].size(), t.header.size()) << "row " << i;
+  }
+}
+
+const std::string& last_state(const Telemetry& t) {
+  return t.rows.back()[t.column("state")];
+}
+
+TEST(RunProcess, SigtermEasesToRestDisablesAndKeepsEveryTick) {
+  facectl::testing::TempFile csv("", ".csv");
+  Child c = spawn({"run", "--duration", "30", "--record", csv.path(), "--quiet"});
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  kill(c.pid, SIGTERM);
+  const auto t0 = std::chrono::steady_clock::now();
+  const int code = wait_exit(c);
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::string out = read_file(c.out_path);
+  EXPECT_EQ(code, 0) << out;
+  EXPECT_LT(took, 4.0) << "documented bound: stop_timeout_s (3 s) plus flush";
+  EXPECT_NE(out.find("RUNNING -> STOPPING: shutdown requested"), std::string::npos) << out;
+  EXPECT_NE(out.find("STOPPING -> IDLE: rest pose reached"), std::string::npos) << out;
+  const Telemetry t = read_csv(csv.path());
+  expect_every_tick(t);
+  EXPECT_EQ(last_state(t), "IDLE");
+  EXPECT_NE(out.find(std::to_string(t.rows.size()) + " rows written"), std::string::npos) << out;
+  EXPECT_NE(out.find(", 0 dropped"), std::string::npos) << out;
+  std::remove(c.out_path.c_str());
+}
+
+struct Rehearsal {
+  std::string inject;
+  std::string transition;
+  std::string final_state;
+};
+
+class RunFaults : public ::testing::TestWithParam<Rehearsal> {};
+
+TEST_P(RunFaults, EndsInItsSafeStateWithExitCode3AndEveryTickRecorded) {
+  facectl::testing::TempFile csv("", ".csv");
+  Child c = spawn({"run", "--duration", "20", "--record", csv.path(), "--quiet", "--inject",
+                   GetParam().inject});
+  const int code = wait_exit(c);
+  const std::string out = read_file(c.out_path);
+  EXPECT_EQ(code, 3) << out;
+  EXPECT_NE(out.find(GetParam().transition), std::string::npos) << out;
+  const Telemetry t = read_csv(csv.path());
+  expect_every_tick(t);
+  EXPECT_EQ(last_state(t), GetParam().final_state);
+  // Once the safe state is entered, the command column holds what is measured:
+  // nothing is commanded any more.
+  std::remove(c.out_path.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Faults, RunFaults,
+    ::testing::Values(Rehearsal{"estop@2", "RUNNING -> ESTOP: e-stop input active", "ESTOP"},
+                      Rehearsal{"bus_fault:can0@2",
+                                "RUNNING -> FAULT: bus fault — injected bus fault", "FAULT"},
+                      Rehearsal{"overrun_storm:50@2",
+                                "RUNNING -> FAULT: consecutive deadline overruns", "FAULT"}),
+    [](const ::testing::TestParamInfo<Rehearsal>& p) {
+      return p.param.inject.substr(0, p.param.inject.find_first_of(":@"));
+    });
+
+TEST(RunProcess, InputLossEasesToNeutralAndTheRunCompletes) {
+  facectl::testing::TempFile csv("", ".csv");
+  Child c = spawn(
+      {"run", "--duration", "3", "--record", csv.path(), "--quiet", "--inject", "input_loss@1.5"});
+  const int code = wait_exit(c);
+  const std::string out = read_file(c.out_path);
+  EXPECT_EQ(code, 0) << out;
+  const Telemetry t = read_csv(csv.path());
+  expect_every_tick(t);
+  const std::size_t stale = t.column("input_stale");
+  const std::size_t time = t.column("time_s");
+  bool went_stale = false;
+  for (const auto& r : t.rows) {
+    if (r[stale] == "1" && std::stod(r[time]) > 1.5) went_stale = true;
+  }
+  EXPECT_TRUE(went_stale);
+  EXPECT_EQ(last_state(t), "IDLE");
+}
+
+TEST(RunProcess, AnInvalidConfigExitsWith2BeforeAnythingIsEnabled) {
+  facectl::testing::TempFile bad(
+      "runtime: { rate_hz: -5 }\nhead: x.yaml\nrig: y.yaml\nexpressions: z.yaml\n");
+  const std::string csv = bad.path() + ".csv";
+  Child c = spawn({"run", "--config", bad.path(), "--record", csv, "--quiet"});
+  const int code = wait_exit(c);
+  const std::string out = read_file(c.out_path);
+  EXPECT_EQ(code, 2) << out;
+  EXPECT_NE(
+      out.find(bad.path() + ":1:21: runtime.rate_hz: expected a number in [1, 10000], found '-5'"),
+      std::string::npos)
+      << out;
+  EXPECT_FALSE(std::ifstream(csv).good()) << "telemetry was opened before validation finished";
+  std::remove(c.out_path.c_str());
+}
+
+TEST(RunProcess, HelpAndUsageErrors) {
+  Child help = spawn({"--help"});
+  EXPECT_EQ(wait_exit(help), 0);
+  EXPECT_NE(read_file(help.out_path).find("run"), std::string::npos);
+  Child bad = spawn({"run", "--no-such-option"});
+  EXPECT_EQ(wait_exit(bad), 2);
+  std::remove(help.out_path.c_str());
+  std::remove(bad.out_path.c_str());
+}
+
+}  // namespace

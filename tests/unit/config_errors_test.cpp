@@ -1,0 +1,160 @@
+// Every bad configuration gets an error naming file:line:column, the key,
+// what was expected and what was found.
+#include <gtest/gtest.h>
+
+#include "firmware-host/head_config.hpp"
+#include "firmware-host/loaded_config.hpp"
+#include "firmware-host/model_builder.hpp"
+#include "firmware-host/rig_config.hpp"
+#include "tests/support/temp_file.hpp"
+
+namespace facectl {
+namespace {
+
+using testing::TempFile;
+
+const HeadConfig& head() {
+  static const HeadConfig h =
+      load_head_config(std::string(FACECTL_SOURCE_DIR) + "/config/heads/default/head.yaml");
+  return h;
+}
+
+// A one-actuator rig with `actuator_extra` lines spliced into the actuator.
+std::string rig(const std::string& actuator_lines) {
+  return "rig:\n"
+         "  name: t\n"
+         "  buses:\n"
+         "    - { name: can0, type: can, interface: can0, bitrate: 1000000 }\n"
+         "  actuators:\n"
+         "    - name: jaw\n"
+         "      kind: rotary\n"
+         "      bus: can0\n"
+         "      address: 1\n" +
+         actuator_lines;
+}
+
+const std::string kGoodActuator =
+    "      position_deg: { min: -6, max: 20 }\n"
+    "      max_velocity_deg_s: 100\n"
+    "      max_acceleration_deg_s2: 1000\n"
+    "      rest_deg: 0\n"
+    "      map: { terms: { jaw_pitch_deg: 1 } }\n";
+
+// The error for a rig text, with the temp path replaced by RIG.
+std::string rig_error(const std::string& text) {
+  TempFile f(text);
+  try {
+    const RigConfig r = load_rig_config(f.path(), head().layout);
+    RuntimeConfig rt;
+    build_model(head(), r, rt);
+  } catch (const ConfigError& e) {
+    std::string msg = e.what();
+    const auto at = msg.find(f.path());
+    if (at != std::string::npos) msg.replace(at, f.path().size(), "RIG");
+    return msg;
+  }
+  return "no error";
+}
+
+TEST(ConfigErrors, AGoodRigLoads) {
+  EXPECT_EQ(rig_error(rig(kGoodActuator)), "no error");
+}
+
+TEST(ConfigErrors, YamlSyntaxErrorsNameTheirPosition) {
+  EXPECT_EQ(rig_error("rig:\n  name: [unclosed\n"),
+            "RIG:3:1: YAML syntax error: end of sequence flow not found");
+}
+
+TEST(ConfigErrors, AMissingFileIsNamed) {
+  try {
+    load_rig_config("/nonexistent/rig.yaml", head().layout);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(),
+                 "/nonexistent/rig.yaml: cannot open file (expected a readable YAML file)");
+  }
+}
+
+TEST(ConfigErrors, ANegativeVelocityNamesKeyExpectedAndFound) {
+  std::string a = kGoodActuator;
+  a.replace(a.find("100"), 3, "-3");
+  EXPECT_EQ(rig_error(rig(a)),
+            "RIG:11:27: rig.actuators[0].max_velocity_deg_s: expected a number > 0, found '-3'");
+}
+
+TEST(ConfigErrors, ATypoIsAnUnknownKeyNotASilentDefault) {
+  std::string a = kGoodActuator;
+  a.replace(a.find("max_velocity"), 12, "max_velocty");
+  const std::string e = rig_error(rig(a));
+  EXPECT_NE(e.find("RIG:11:7: rig.actuators[0].max_velocty_deg_s: expected one of:"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("found unknown key 'max_velocty_deg_s'"), std::string::npos) << e;
+}
+
+TEST(ConfigErrors, UnitsMustMatchTheActuatorKind) {
+  std::string a = kGoodActuator;
+  a.replace(a.find("rest_deg"), 8, "rest_mm");
+  const std::string e = rig_error(rig(a));
+  EXPECT_NE(e.find("found unknown key 'rest_mm'"), std::string::npos) << e;
+}
+
+TEST(ConfigErrors, ASoftRangeOutsideTheHardwareRangeIsRefused) {
+  const std::string e =
+      rig_error(rig(kGoodActuator + "      soft_position_deg: { min: -8, max: 18 }\n"));
+  EXPECT_EQ(e,
+            "RIG:15:26: rig.actuators[0].soft_position_deg: expected a soft range inside "
+            "position_deg, found a wider range");
+}
+
+TEST(ConfigErrors, AnUnknownBusOrSignalIsNamed) {
+  std::string a = kGoodActuator;
+  EXPECT_EQ(rig_error(rig(a).replace(rig(a).find("bus: can0"), 9, "bus: can9")),
+            "RIG:8:12: rig.actuators[0].bus: expected the name of a bus of this rig, found 'can9'");
+  a.replace(a.find("jaw_pitch_deg"), 13, "jaw_pitch");
+  const std::string e = rig_error(rig(a));
+  EXPECT_NE(e.find("RIG:14:34: rig.actuators[0].map.terms.jaw_pitch: expected a face signal"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("found unknown signal 'jaw_pitch'"), std::string::npos) << e;
+}
+
+TEST(ConfigErrors, NonFiniteNumbersAreRefused) {
+  std::string a = kGoodActuator;
+  a.replace(a.find("1000"), 4, ".nan");
+  EXPECT_EQ(rig_error(rig(a)),
+            "RIG:12:32: rig.actuators[0].max_acceleration_deg_s2: expected a finite number, found "
+            "'.nan'");
+}
+
+TEST(ConfigErrors, AnActuatorThatNothingDrivesIsRefused) {
+  std::string a = kGoodActuator;
+  a.replace(a.find("jaw_pitch_deg: 1"), 16, "jaw_pitch_deg: 0");
+  const std::string e = rig_error(rig(a));
+  EXPECT_NE(e.find("RIG:6:7: rig.actuators 'jaw': expected at least one non-zero mapping term"),
+            std::string::npos)
+      << e;
+}
+
+TEST(ConfigErrors, DuplicateMusclesInAHeadAreRefused) {
+  TempFile f("head:\n  name: h\n  muscles: [a_l, b_l, a_l]\n");
+  try {
+    load_head_config(f.path());
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), f.path() +
+                                         ":3:23: head.muscles[2]: expected a unique muscle "
+                                         "name, found duplicate 'a_l'");
+  }
+}
+
+TEST(ConfigErrors, TheShippedConfigurationLoads) {
+  const LoadedConfig cfg = load_config(default_config_path());
+  EXPECT_EQ(cfg.built.model.actuators.size(), 26u);
+  EXPECT_EQ(cfg.built.model.buses.size(), 2u);
+  EXPECT_FALSE(cfg.built.model.envelope_widened);
+  EXPECT_TRUE(cfg.show.has_value());
+}
+
+}  // namespace
+}  // namespace facectl

@@ -1,0 +1,172 @@
+// Fault scenarios on the default head in simulated time. Each ends in the
+// safe state docs/SAFETY.md documents, within the time it documents.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tests/support/sim_head.hpp"
+
+namespace facectl {
+namespace {
+
+using testing::SimHead;
+
+class ControllerFaults : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    pose_ = head_.model().neutral;
+    for (const auto& [name, value] :
+         {std::pair{"zygomaticus_major_l", 0.8}, std::pair{"zygomaticus_major_r", 0.8},
+          std::pair{"frontalis_inner_l", 0.6}}) {
+      pose_[*head_.model().layout.find(name)] = value;
+    }
+    pose_[head_.model().layout.jaw_pitch()] = 0.15;
+    head_.controller().request_enable();
+    run_sending(2.0);
+    ASSERT_EQ(head_.controller().state(), SafetyState::kRunning);
+  }
+
+  void run_sending(double seconds) {
+    const long n = std::lround(seconds / head_.period());
+    for (long i = 0; i < n; ++i) {
+      head_.send(pose_);
+      head_.step(head_.period());
+    }
+  }
+
+  std::uint64_t frames_sent() {
+    std::uint64_t n = 0;
+    for (auto* bus : head_.hardware().seams) n += bus->status().frames_sent;
+    return n;
+  }
+
+  TransitionEvent last_event() {
+    TransitionEvent ev;
+    while (const TransitionEvent* e = head_.events().front()) {
+      ev = *e;
+      head_.events().pop();
+    }
+    return ev;
+  }
+
+  SimHead head_;
+  std::array<double, kMaxFaceSignals> pose_{};
+};
+
+TEST_F(ControllerFaults, InputTimeoutEasesToNeutralWithinTheDocumentedTime) {
+  const ControllerModel& m = head_.model();
+  std::array<double, kMaxActuators> neutral_targets{};
+  m.mapping.apply(m.neutral, neutral_targets);
+  // The input stops. Documented bound: timeout + neutral ease + 0.5 s to settle.
+  const double bound = m.safety.input_timeout_s + m.shaping.neutral_ease_time_s + 0.5;
+  double stale_at = -1.0;
+  const double t0 = head_.time();
+  while (head_.time() - t0 < bound) {
+    head_.step(head_.period());
+    if (stale_at < 0 && head_.controller().input_stale()) stale_at = head_.time() - t0;
+  }
+  EXPECT_NEAR(stale_at, m.safety.input_timeout_s, 2 * head_.period());
+  EXPECT_EQ(head_.controller().state(), SafetyState::kRunning);
+  for (std::size_t a = 0; a < m.actuators.size(); ++a) {
+    EXPECT_NEAR(head_.controller().commands()[a], neutral_targets[a], 1e-3) << m.actuators[a].name;
+  }
+  // Input comes back: the face follows it again.
+  run_sending(1.0);
+  EXPECT_FALSE(head_.controller().input_stale());
+  EXPECT_NEAR(head_.controller().face()[m.layout.jaw_pitch()], 0.15, 1e-3);
+}
+
+TEST_F(ControllerFaults, EstopEdgeStopsTransmissionOnTheTickItIsRead) {
+  head_.hardware().io.press_estop();
+  const std::uint64_t before = frames_sent();
+  head_.send(pose_);
+  head_.step(head_.period());  // the tick that reads the edge
+  EXPECT_EQ(head_.controller().state(), SafetyState::kEstop);
+  EXPECT_FALSE(head_.hardware().io.power_enabled());
+  for (auto& bus : head_.hardware().buses) EXPECT_FALSE(bus->enabled());
+  run_sending(0.5);
+  EXPECT_EQ(frames_sent(), before) << "a command was transmitted in ESTOP";
+  for (auto& bus : head_.hardware().buses) EXPECT_EQ(bus->writes_while_disabled(), 0u);
+  EXPECT_EQ(last_event().reason, TransitionReason::kEstopInput);
+  // Released but not reset: still ESTOP.
+  head_.hardware().io.release_estop();
+  run_sending(0.1);
+  EXPECT_EQ(head_.controller().state(), SafetyState::kEstop);
+  head_.controller().request_reset();
+  run_sending(0.01);
+  EXPECT_EQ(head_.controller().state(), SafetyState::kIdle);
+}
+
+TEST_F(ControllerFaults, BusFaultDisablesEveryBusOnTheNextTickWithItsReason) {
+  head_.hardware().find("modbus0")->inject_fault("board 3 not answering");
+  head_.step(head_.period());
+  EXPECT_EQ(head_.controller().state(), SafetyState::kFault);
+  EXPECT_FALSE(head_.hardware().io.power_enabled());
+  for (auto& bus : head_.hardware().buses) EXPECT_FALSE(bus->enabled());
+  const TransitionEvent ev = last_event();
+  EXPECT_EQ(ev.reason, TransitionReason::kBusFault);
+  EXPECT_STREQ(ev.detail, "board 3 not answering");
+  const std::uint64_t before = frames_sent();
+  run_sending(0.2);
+  EXPECT_EQ(frames_sent(), before);
+}
+
+TEST_F(ControllerFaults, OverrunStormFaultsAfterTheConfiguredCount) {
+  const int n = head_.model().safety.overrun_fault_count;
+  for (int i = 1; i < n; ++i) {
+    head_.step(head_.period(), i);
+    ASSERT_EQ(head_.controller().state(), SafetyState::kRunning) << i;
+  }
+  head_.step(head_.period(), n);
+  EXPECT_EQ(head_.controller().state(), SafetyState::kFault);
+  EXPECT_EQ(last_event().reason, TransitionReason::kOverrunStorm);
+}
+
+TEST_F(ControllerFaults, ShutdownEasesToRestThenDisables) {
+  const ControllerModel& m = head_.model();
+  head_.controller().request_shutdown();
+  double t = 0.0;
+  while (head_.controller().state() != SafetyState::kIdle && t < m.safety.stop_timeout_s + 0.1) {
+    head_.send(pose_);
+    head_.step(head_.period());
+    t += head_.period();
+  }
+  EXPECT_EQ(head_.controller().state(), SafetyState::kIdle);
+  EXPECT_LT(t, m.safety.stop_timeout_s) << "rest was not reached before the timeout";
+  EXPECT_EQ(last_event().reason, TransitionReason::kRestReached);
+  for (std::size_t a = 0; a < m.actuators.size(); ++a) {
+    EXPECT_NEAR(head_.controller().limiter(a).position, m.actuators[a].rest,
+                m.rest_tolerance_fraction *
+                        (m.actuators[a].limits.soft_max - m.actuators[a].limits.soft_min) +
+                    1e-12);
+  }
+  EXPECT_FALSE(head_.hardware().io.power_enabled());
+}
+
+TEST_F(ControllerFaults, ReEnableIsBumplessFromWhereTheActuatorsStopped) {
+  const ControllerModel& m = head_.model();
+  head_.hardware().io.press_estop();
+  run_sending(0.2);
+  head_.hardware().io.release_estop();
+  head_.controller().request_reset();
+  run_sending(0.01);
+  ASSERT_EQ(head_.controller().state(), SafetyState::kIdle);
+  // The plants hold the joy pose; the controller's rest pose is elsewhere.
+  const auto measured = head_.controller().measured();
+  head_.controller().request_enable();
+  head_.send(pose_);
+  head_.step(head_.period());
+  ASSERT_EQ(head_.controller().state(), SafetyState::kEnabling);
+  head_.send(pose_);
+  head_.step(head_.period());
+  for (std::size_t a = 0; a < m.actuators.size(); ++a) {
+    const ActuatorLimits& l = m.actuators[a].limits;
+    // First commanded step from the measured position is within one tick of motion.
+    EXPECT_LE(std::fabs(head_.controller().commands()[a] - measured[a]),
+              l.max_acceleration * head_.period() * head_.period() + 4 * 0.05 * 3.1416 / 180 + 1e-9)
+        << m.actuators[a].name;
+  }
+}
+
+}  // namespace
+}  // namespace facectl
