@@ -17,9 +17,9 @@ std::string position(const std::string& file, const YAML::Mark& mark) {
 
 }  // namespace
 
-ConfigNode::ConfigNode(YAML::Node node, std::shared_ptr<const std::string> file, std::string path,
-                       YAML::Mark mark)
-    : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)), mark_(mark) {}
+ConfigNode::ConfigNode(const YAML::Node& node, std::shared_ptr<const std::string> file,
+                       std::string path, YAML::Mark mark)
+    : node_(node), file_(std::move(file)), path_(std::move(path)), mark_(mark) {}
 
 ConfigNode ConfigNode::load_file(const std::string& path, std::string root_name) {
   auto file = std::make_shared<const std::string>(path);

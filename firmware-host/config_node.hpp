@@ -55,7 +55,7 @@ class ConfigNode {
   std::string found() const;  // a short description of what is here
 
  private:
-  ConfigNode(YAML::Node node, std::shared_ptr<const std::string> file, std::string path,
+  ConfigNode(const YAML::Node& node, std::shared_ptr<const std::string> file, std::string path,
              YAML::Mark mark);
   ConfigNode child(const YAML::Node& node, std::string path) const;
 

@@ -76,6 +76,7 @@ HeadConfig load_head_config(const std::string& path) {
         {"neck_roll_deg", {"neck_roll"}},
     };
     std::vector<std::string> allowed;
+    allowed.reserve(known.size());
     for (const auto& k : known) allowed.push_back(k.first);
     rigid->expect_keys(allowed);
     for (const auto& [key, signals] : known) {

@@ -1,5 +1,6 @@
 // facectl: real-time controller for animatronic faces. Command-line entry point.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 
 #include "firmware-host/bench_command.hpp"
 #include "firmware-host/run_command.hpp"
@@ -40,6 +41,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;  // usage errors are exit code 2
+  } catch (const std::exception& e) {
+    // Anything unforeseen (e.g. a thread that cannot start): say so, never abort silently.
+    std::fprintf(stderr, "facectl: %s\n", e.what());
+    return 2;
   }
   return exit_code;
 }

@@ -15,7 +15,7 @@ namespace {
 
 // Touches stack pages now so the tick never page-faults on them later.
 void prefault_stack() {
-  constexpr std::size_t kBytes = 256 * 1024;
+  constexpr std::size_t kBytes = std::size_t{256} * 1024;
   unsigned char buffer[kBytes];
   volatile unsigned char* touch = buffer;
   for (std::size_t i = 0; i < kBytes; i += 4096) touch[i] = 0;

@@ -30,7 +30,7 @@ extern "C" void on_signal(int sig) {
 }
 
 // How long the loop keeps ticking (and recording) after FAULT or ESTOP.
-constexpr double kFaultLinger_s = 0.5;
+constexpr double kFaultLingerSeconds = 0.5;
 
 void print_event(const TransitionEvent& ev) {
   std::fprintf(stderr, "[%9.3f s, tick %llu] %s -> %s: %s%s%s\n", ev.time_s,
@@ -157,7 +157,7 @@ int run_command(const RunOptions& options) {
       }
     }
     if ((state == SafetyState::kFault || state == SafetyState::kEstop) && !fault_at) fault_at = t;
-    if (fault_at && t - *fault_at >= kFaultLinger_s) break;
+    if (fault_at && t - *fault_at >= kFaultLingerSeconds) break;
     if (shutdown && state == SafetyState::kIdle) break;
     if (tty && monotonic_ns() - last_status > 100'000'000) {
       last_status = monotonic_ns();
