@@ -50,6 +50,8 @@ int bench_loop_command(const BenchLoopOptions& options) {
     return 2;
   }
   const ControllerModel& model = cfg->built.model;
+  RealtimeReport report;
+  keep_off_realtime_cpu(cfg->runtime.realtime, report);
   auto hw = make_sim_hardware(model, cfg->rig);
   LatestValueMailbox<FaceCommand> mailbox;
   SpscRing<TelemetryRecord> telemetry(cfg->runtime.telemetry_ring);
@@ -70,7 +72,6 @@ int bench_loop_command(const BenchLoopOptions& options) {
 
   LoopStats bare;
   LoopStats full;
-  RealtimeReport report;
   const RealtimeSettings& rt = cfg->runtime.realtime;
   double done = 0.0;
   while (done < options.duration_s) {

@@ -42,6 +42,20 @@ bool hold_cpu_dma_latency(int microseconds, std::string& error) {
 
 }  // namespace
 
+void keep_off_realtime_cpu(const RealtimeSettings& settings, RealtimeReport& report) {
+  if (settings.cpu < 0) return;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return;
+  CPU_CLR(static_cast<unsigned>(settings.cpu), &set);
+  if (CPU_COUNT(&set) == 0) {
+    report.warnings.push_back("only CPU " + std::to_string(settings.cpu) +
+                              " is available: other threads share it with the loop");
+    return;
+  }
+  pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+}
+
 std::thread start_realtime_thread(const RealtimeSettings& settings, std::function<void()> body,
                                   RealtimeReport& report) {
   if (settings.lock_memory) {

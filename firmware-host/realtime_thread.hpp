@@ -18,6 +18,11 @@ struct RealtimeReport {
   std::vector<std::string> warnings;
 };
 
+// Moves the calling thread (and so every thread it starts later) off the CPU
+// the real-time thread will be pinned to, so that their system calls cannot
+// delay its wake-up on a kernel without full preemption. No-op without `cpu`.
+void keep_off_realtime_cpu(const RealtimeSettings& settings, RealtimeReport& report);
+
 // Locks memory (process-wide), holds the /dev/cpu_dma_latency request for the
 // rest of the process, then starts `body` on a thread with SCHED_FIFO
 // and CPU affinity where permitted, its stack prefaulted. Waits until the

@@ -71,6 +71,10 @@ int run_command(const RunOptions& options) {
   const ControllerModel& model = cfg->built.model;
   for (const auto& w : cfg->built.warnings) std::fprintf(stderr, "%s\n", w.c_str());
 
+  // Threads started from here on stay off the loop's CPU.
+  RealtimeReport rt;
+  keep_off_realtime_cpu(cfg->runtime.realtime, rt);
+
   // 2. Hardware (simulated twins), channels and the controller.
   auto hw = make_sim_hardware(model, cfg->rig);
   LatestValueMailbox<FaceCommand> mailbox;
@@ -106,7 +110,6 @@ int run_command(const RunOptions& options) {
   LoopStats stats;
   RealtimeLoop loop(controller, model.rate_hz, stats);
   std::atomic<bool> stop{false};
-  RealtimeReport rt;
   std::thread rt_thread = start_realtime_thread(
       cfg->runtime.realtime, [&] { loop.run(stop); }, rt);
   for (const auto& w : rt.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
