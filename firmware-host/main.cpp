@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "firmware-host/bench_command.hpp"
+#include "firmware-host/plot_command.hpp"
 #include "firmware-host/run_command.hpp"
 
 int main(int argc, char** argv) {
@@ -35,6 +36,16 @@ int main(int argc, char** argv) {
   bench_loop->add_option("--chunk", bench.chunk_s, "Interleave chunk in seconds (default 1)");
   bench_loop->add_option("--rate", bench.rate_hz, "Loop rate in Hz");
   bench_loop->callback([&] { exit_code = facectl::bench_loop_command(bench); });
+
+  facectl::PlotOptions plot;
+  CLI::App* plot_cmd = app.add_subcommand(
+      "plot", "Plot each actuator's command and feedback against its limits from telemetry (SVG)");
+  plot_cmd->add_option("telemetry", plot.telemetry, "Telemetry CSV from `facectl run --record`")
+      ->required();
+  plot_cmd->add_option("--config", plot.config, "Runtime config naming the rig");
+  plot_cmd->add_option("--actuator", plot.actuators, "Only these actuators (repeatable)");
+  plot_cmd->add_option("--out", plot.out_dir, "Output folder (default: .)");
+  plot_cmd->callback([&] { exit_code = facectl::plot_command(plot); });
 
   try {
     app.parse(argc, argv);
