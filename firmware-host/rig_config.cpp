@@ -110,13 +110,7 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   for (const auto& [signal_key, gain] : map["terms"].entries()) {
     // Terms name the signal with its YAML unit: zygomaticus_major_l, jaw_pitch_deg,
     // jaw_protrusion_mm.
-    std::optional<std::size_t> index;
-    for (std::size_t i = 0; i < layout.size() && !index; ++i) {
-      const SignalInfo& info = layout.signal(i);
-      const std::string_view unit = yaml_unit(info.kind);
-      const std::string key = unit.empty() ? info.name : info.name + "_" + std::string(unit);
-      if (key == signal_key) index = i;
-    }
+    const std::optional<std::size_t> index = layout.find_yaml_key(signal_key);
     if (!index) {
       gain.fail("a face signal of the head (muscle name, jaw_pitch_deg, jaw_protrusion_mm, ...)",
                 "unknown signal '" + signal_key + "'");
