@@ -156,6 +156,8 @@ void Controller::publish_telemetry(const TickTiming& timing, TransitionReason tr
   rec->transition = transition;
   rec->input_stale = input_stale_;
   rec->envelope_flags = envelope_flags;
+  rec->coupled_flags = coupled_flags_;
+  rec->coupled_violation = coupled_violation_;
   rec->rejected_values = rejected;
   rec->overruns = static_cast<std::uint32_t>(timing.consecutive_overruns);
   rec->signal_count = static_cast<std::uint16_t>(model_.layout.size());
@@ -182,6 +184,14 @@ void Controller::tick(const TickTiming& timing) {
   // 4. Face envelope: mandible limits and admissible rigid ranges.
   const std::uint8_t envelope_flags = envelope_.apply(face_);
   if (envelope_flags != 0) ++counters_.envelope_clamps;
+  //    Coupled face limits: a deterministic, bounded projection.
+  coupled_flags_ = model_.face_constraints.project(face_.data(), &coupled_violation_);
+  if (coupled_flags_ != 0) {
+    ++counters_.coupled_projections;
+    for (std::size_t c = 0; c < model_.face_constraints.size(); ++c) {
+      if ((coupled_flags_ & (1u << c)) != 0) ++counters_.coupled_hits[c];
+    }
+  }
   // 5. Reduced face model: no control-point sources in the linear mapping yet.
   // 6. Map to actuators.
   model_.mapping.apply(face_, mapped_);

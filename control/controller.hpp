@@ -43,6 +43,8 @@ struct ControllerCounters {
   std::uint64_t ticks = 0;
   std::uint64_t stale_ticks = 0;
   std::uint64_t envelope_clamps = 0;
+  std::uint64_t coupled_projections = 0;
+  std::array<std::uint64_t, CoupledConstraints::kMaxConstraints> coupled_hits{};
   std::uint64_t limit_breaches = 0;
   std::array<std::array<std::uint64_t, 6>, kMaxActuators> limit_hits{};  // per LimitFlag bit
 };
@@ -84,6 +86,8 @@ class Controller {
   void publish_telemetry(const TickTiming& timing, TransitionReason transition,
                          std::uint32_t rejected, std::uint8_t envelope_flags,
                          const std::uint8_t* flags);
+  std::uint32_t coupled_flags_ = 0;
+  double coupled_violation_ = 0.0;
   void log_transition(const TickTiming& timing, SafetyState from, TransitionReason reason);
 
   const ControllerModel& model_;

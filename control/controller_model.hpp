@@ -7,6 +7,7 @@
 #include "control/actuator_limits.hpp"
 #include "control/capacity.hpp"
 #include "control/command_shaper.hpp"
+#include "control/coupled_constraints.hpp"
 #include "control/face_layout.hpp"
 #include "control/linear_mapping.hpp"
 #include "control/mandible_envelope.hpp"
@@ -41,6 +42,9 @@ struct ControllerModel {
   std::array<Range, kMaxFaceSignals> admissible{};
   MandibleEnvelope envelope = MandibleEnvelope::design_default();
   bool envelope_widened = false;  // set only through the explicit override
+  // Linear inequalities over the face signals (antagonists, jaw against lips,
+  // yaw band by pitch), projected in step 4 after the envelope.
+  CoupledConstraints face_constraints;
   ShapingParams shaping;
   SafetyParams safety;
   LinearMapping mapping;

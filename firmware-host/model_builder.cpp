@@ -65,6 +65,34 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
                            where + ": " + describe(env) + " (default: " + describe(design) + ")");
   }
 
+  // Coupled face limits: the neutral pose must satisfy them (it is where the
+  // face goes on stale input, and the projection's fallback).
+  std::array<double, kMaxFaceSignals> lo{};
+  std::array<double, kMaxFaceSignals> hi{};
+  for (std::size_t i = 0; i < m.layout.size(); ++i) {
+    Range r = m.admissible[i];
+    if (i == m.layout.jaw_pitch()) r = env.pitch;
+    if (i == m.layout.jaw_yaw()) r = env.yaw;
+    if (i == m.layout.jaw_protrusion()) r = env.protrusion;
+    lo[i] = r.min;
+    hi[i] = r.max;
+  }
+  for (const CoupledLimitConfig& c : rig.coupled_limits) {
+    try {
+      m.face_constraints.add(c.constraint);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(c.where + ": rig.coupled_limits: " + e.what());
+    }
+  }
+  try {
+    m.face_constraints.finalize(m.layout.size(), lo.data(), hi.data(), m.neutral.data());
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(rig.file +
+                      ": rig.coupled_limits: expected limits that the head's neutral "
+                      "pose satisfies, found " +
+                      std::string(e.what()));
+  }
+
   // Actuators grouped by bus, in bus order then file order.
   m.mapping = LinearMapping(rig.actuators.size(), m.layout.size());
   std::vector<const ActuatorConfig*> ordered;

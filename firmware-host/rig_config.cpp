@@ -122,13 +122,35 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   return cfg;
 }
 
+CoupledLimitConfig parse_coupled_limit(const ConfigNode& node, const FaceLayout& layout) {
+  node.expect_keys({"name", "face", "max"});
+  CoupledLimitConfig out;
+  out.where = node.where();
+  CoupledConstraints::Constraint& c = out.constraint;
+  c.name = node["name"].string();
+  for (const auto& [key, coeff] : node["face"].entries()) {
+    const auto index = layout.find_yaml_key(key);
+    if (!index) coeff.fail("a face signal of the head (with its unit suffix)", "'" + key + "'");
+    if (c.terms == CoupledConstraints::kMaxTerms) {
+      coeff.fail("at most " + std::to_string(CoupledConstraints::kMaxTerms) + " terms");
+    }
+    c.index[c.terms] = *index;
+    // Coefficient per YAML unit -> per SI unit, so the bound keeps its YAML meaning.
+    c.coeff[c.terms] = coeff.number() / yaml_to_si(layout.signal(*index).kind);
+    ++c.terms;
+  }
+  if (c.terms == 0) node["face"].fail("at least one term", "an empty mapping");
+  c.bound = node["max"].number();
+  return out;
+}
+
 }  // namespace
 
 RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
   const ConfigNode root = ConfigNode::load_file(path, "");
   root.expect_keys({"rig"});
   const ConfigNode rig = root["rig"];
-  rig.expect_keys({"name", "buses", "actuators", "mandible_envelope"});
+  rig.expect_keys({"name", "buses", "actuators", "mandible_envelope", "coupled_limits"});
 
   RigConfig cfg;
   cfg.file = path;
@@ -155,6 +177,14 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
     cfg.actuators.push_back(std::move(act));
   }
   if (auto env = rig.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);
+  if (auto limits = rig.get("coupled_limits")) {
+    const auto rows = limits->items();
+    if (rows.size() > CoupledConstraints::kMaxConstraints) {
+      limits->fail("at most " + std::to_string(CoupledConstraints::kMaxConstraints) +
+                   " coupled limits");
+    }
+    for (const ConfigNode& c : rows) cfg.coupled_limits.push_back(parse_coupled_limit(c, layout));
+  }
   return cfg;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "control/controller_model.hpp"
+#include "control/coupled_constraints.hpp"
 #include "firmware-host/config_node.hpp"
 #include "firmware-host/head_config.hpp"
 #include "sim/plant/servo_plant.hpp"
@@ -34,12 +35,19 @@ struct ActuatorConfig {
   std::string where;
 };
 
+// A coupled limit as written: Σ coeff · signal (YAML units) <= max.
+struct CoupledLimitConfig {
+  CoupledConstraints::Constraint constraint;  // SI coefficients
+  std::string where;
+};
+
 struct RigConfig {
   std::string file;
   std::string name;
   std::vector<BusConfig> buses;
   std::vector<ActuatorConfig> actuators;  // in file order
   std::optional<EnvelopeSpec> envelope;
+  std::vector<CoupledLimitConfig> coupled_limits;
 };
 
 // Loads a rig against the head's face layout (mapping terms name its signals).

@@ -42,6 +42,8 @@ int print_run_summary(const RunSummaryInput& in) {
       static_cast<unsigned long long>(hits[0]), static_cast<unsigned long long>(hits[1]),
       static_cast<unsigned long long>(hits[2]), static_cast<unsigned long long>(hits[3]),
       static_cast<unsigned long long>(hits[4]));
+  std::printf("  coupled face limits projected on %llu ticks\n",
+              static_cast<unsigned long long>(c.coupled_projections));
   std::printf("  envelope clamps %llu ticks, rejected input values %llu, stale-input ticks %llu\n",
               static_cast<unsigned long long>(c.envelope_clamps),
               static_cast<unsigned long long>(in.controller.sanitizer().rejected_total()),
