@@ -51,8 +51,12 @@ struct ControllerModel {
   std::vector<ActuatorModel> actuators;  // ordered by bus
   std::vector<BusModel> buses;
   double rate_hz = 1000.0;
-  // Fraction of an actuator's soft range within which it counts as at rest.
+  // STOPPING ends when, for every actuator, the command is within this
+  // fraction of its soft range of rest (and nearly still), the measured
+  // position within the second fraction (it carries noise), for rest_dwell_s.
   double rest_tolerance_fraction = 0.002;
+  double rest_measured_tolerance_fraction = 0.01;
+  double rest_dwell_s = 0.05;
 };
 
 }  // namespace facectl

@@ -16,6 +16,8 @@ struct SafetyInputs {
   bool estop = false;
   bool bus_fault = false;
   bool io_fault = false;
+  bool feedback_out_of_range = false;  // a measured position is outside its hardware range
+  bool limit_breach = false;           // the command backstop acted on this tick
   int consecutive_overruns = 0;
   bool enable_request = false;
   bool shutdown_request = false;

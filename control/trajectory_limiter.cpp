@@ -19,11 +19,18 @@ double braking_speed(double distance, double max_acceleration, double dt) {
   return a * (std::sqrt(dt * dt + 2.0 * distance / a) - dt);
 }
 
-std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target, double dt,
-                        double velocity_scale) {
+std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target,
+                        double dt) {
   std::uint8_t flags = 0;
+  if (!(dt > 0.0) || !std::isfinite(dt)) return kLimitInvalid;  // no time passed: no motion
+  if (!std::isfinite(target)) {
+    // A non-finite target cannot reach here through the sanitiser, but a
+    // mapping can overflow: brake to a stop where we are instead.
+    target = state.position;
+    flags |= kLimitInvalid;
+  }
   const double a_max = limits.max_acceleration;
-  const double v_max = limits.max_velocity * velocity_scale;
+  const double v_max = limits.max_velocity;
   const double x = state.position;
   const double v = state.velocity;
 
@@ -74,7 +81,7 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
       if (a_jerk != a_want) flags |= kLimitJerk;
       v_new = v_jerk;
     } else {
-      flags |= kLimitApproach;  // a hard bound overrode the jerk limit
+      flags |= kLimitJerkYielded;
     }
   }
 

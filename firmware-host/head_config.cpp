@@ -12,9 +12,11 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 Range parse_range(const ConfigNode& node, double scale) {
   node.expect_keys({"min", "max"});
-  Range r{node["min"].number() * scale, node["max"].number() * scale};
-  if (!(r.min <= r.max)) node.fail("min <= max", "min > max");
-  return r;
+  const double lo = node["min"].number();
+  const double hi = node["max"].number();
+  if (!(lo <= hi))
+    node.fail("min <= max", "min " + std::to_string(lo) + " > max " + std::to_string(hi));
+  return {lo * scale, hi * scale};
 }
 
 }  // namespace
@@ -83,7 +85,16 @@ HeadConfig load_head_config(const std::string& path) {
       if (auto n = rigid->get(key)) {
         const double scale = key.ends_with("_deg") ? kDeg : 1.0;
         const Range r = parse_range(*n, scale);
-        for (const auto& s : signals) cfg.rigid_ranges[s] = r;
+        const FaceLayout rigid_layout({});
+        for (const auto& s : signals) {
+          const SignalInfo& info = rigid_layout.signal(*rigid_layout.find(s));
+          if (r.min < info.domain_min || r.max > info.domain_max) {
+            n->fail("a range inside the signal's domain [" +
+                    std::to_string(info.domain_min / scale) + ", " +
+                    std::to_string(info.domain_max / scale) + "]");
+          }
+          cfg.rigid_ranges[s] = r;
+        }
       }
     }
   }

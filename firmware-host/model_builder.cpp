@@ -1,6 +1,7 @@
 #include "firmware-host/model_builder.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <numbers>
 
@@ -77,6 +78,16 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
     lo[i] = r.min;
     hi[i] = r.max;
   }
+  for (std::size_t i = 0; i < m.layout.size(); ++i) {
+    if (m.neutral[i] < lo[i] || m.neutral[i] > hi[i]) {
+      throw ConfigError(head.file +
+                        ": head.neutral: expected a pose inside the envelope and the "
+                        "admissible ranges, found " +
+                        m.layout.signal(i).name + " = " + std::to_string(m.neutral[i]) +
+                        " (SI) outside [" + std::to_string(lo[i]) + ", " + std::to_string(hi[i]) +
+                        "]");
+    }
+  }
   for (const CoupledLimitConfig& c : rig.coupled_limits) {
     try {
       m.face_constraints.add(c.constraint);
@@ -110,9 +121,28 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
     m.mapping.set_offset(i, a.map_offset_si);
     for (const MappingTerm& t : a.terms) m.mapping.set_gain(i, t.signal, t.gain_si);
     if (!m.mapping.drives(i)) {
-      throw ConfigError(a.where + ": rig.actuators '" + a.model.name +
-                        "': expected at least one non-zero mapping term, found none "
+      throw ConfigError(a.map_where + ": rig.actuators '" + a.model.name +
+                        "'.map.terms: expected at least one non-zero mapping term, found none "
                         "(an actuator that nothing drives)");
+    }
+    // The mapping must stay finite over every admissible input (an overflow
+    // would be a NaN command); `facectl verify` proves the tighter ranges.
+    double reach = std::fabs(a.map_offset_si);
+    for (const MappingTerm& t : a.terms) {
+      reach += std::fabs(t.gain_si) * std::max(std::fabs(lo[t.signal]), std::fabs(hi[t.signal]));
+    }
+    if (!std::isfinite(reach) || reach > 1e3) {
+      throw ConfigError(a.map_where + ": rig.actuators '" + a.model.name +
+                        "'.map: expected gains and offset that keep the command finite and "
+                        "physical (|command| <= 1000 SI units), found a reach of " +
+                        std::to_string(reach));
+    }
+    // The simulated twin's delay line holds 64 commands.
+    if (a.plant.latency_s * runtime.rate_hz >= 60.0) {
+      throw ConfigError(a.plant_where + ": rig.actuators '" + a.model.name +
+                        "'.plant.latency_ms: expected less than 60 ticks of latency at " +
+                        std::to_string(runtime.rate_hz) + " Hz, found " +
+                        std::to_string(a.plant.latency_s * 1e3) + " ms");
     }
   }
   return out;

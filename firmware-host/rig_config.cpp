@@ -43,9 +43,11 @@ BusConfig parse_bus(const ConfigNode& node) {
 
 Range parse_limit_range(const ConfigNode& node, double to_si) {
   node.expect_keys({"min", "max"});
-  Range r{node["min"].number() * to_si, node["max"].number() * to_si};
-  if (!(r.min < r.max)) node.fail("min < max", "min >= max");
-  return r;
+  const double lo = node["min"].number();
+  const double hi = node["max"].number();
+  if (!(lo < hi))
+    node.fail("min < max", "min " + std::to_string(lo) + " >= max " + std::to_string(hi));
+  return {lo * to_si, hi * to_si};
 }
 
 ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
@@ -79,7 +81,12 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   Range soft = hard;
   if (auto n = node.get("soft_position" + s)) {
     soft = parse_limit_range(*n, u.to_si);
-    if (!hard.contains(soft)) n->fail("a soft range inside position" + s, "a wider range");
+    if (!hard.contains(soft)) {
+      n->fail("a soft range inside position" + s + " [" + std::to_string(hard.min / u.to_si) +
+                  ", " + std::to_string(hard.max / u.to_si) + "]",
+              "[" + std::to_string(soft.min / u.to_si) + ", " + std::to_string(soft.max / u.to_si) +
+                  "]");
+    }
   }
   l.soft_min = soft.min;
   l.soft_max = soft.max;
@@ -104,7 +111,9 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
     cfg.plant.max_velocity = 1.5 * l.max_velocity;
   }
 
+  cfg.plant_where = node.get("plant") ? node["plant"].where() : cfg.where;
   const ConfigNode map = node["map"];
+  cfg.map_where = map["terms"].where();
   map.expect_keys({"offset" + s, "terms"});
   if (auto n = map.get("offset" + s)) cfg.map_offset_si = n->number() * u.to_si;
   for (const auto& [signal_key, gain] : map["terms"].entries()) {
@@ -166,6 +175,7 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
     rig["buses"].fail("at most " + std::to_string(kMaxBuses) + " buses");
 
   std::set<std::string> names;
+  std::set<std::pair<std::string, int>> addresses;
   const auto items = rig["actuators"].items();
   if (items.empty()) rig["actuators"].fail("at least one actuator", "an empty list");
   if (items.size() > kMaxActuators) {
@@ -174,6 +184,9 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
   for (const ConfigNode& a : items) {
     ActuatorConfig act = parse_actuator(a, layout, bus_names);
     if (!names.insert(act.model.name).second) a["name"].fail("a unique actuator name");
+    if (!addresses.insert({act.model.bus, act.model.address}).second) {
+      a["address"].fail("an address not used by another actuator on bus " + act.model.bus);
+    }
     cfg.actuators.push_back(std::move(act));
   }
   if (auto env = rig.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);

@@ -33,6 +33,8 @@ struct ActuatorConfig {
   std::vector<MappingTerm> terms;
   sim::ServoPlantParams plant;  // the simulated twin
   std::string where;
+  std::string map_where;    // position of its `map.terms`
+  std::string plant_where;  // position of its `plant` block, or of the actuator
 };
 
 // A coupled limit as written: Σ coeff · signal (YAML units) <= max.

@@ -62,8 +62,11 @@ int print_run_summary(const RunSummaryInput& in) {
   std::printf("  final state %s, faults %s\n", std::string(to_string(final_state)).c_str(),
               faulted ? "YES" : "none");
 
+  if (in.controller.stop_timed_out()) {
+    std::printf("  STOP TIMEOUT: outputs were disabled before every actuator reached rest\n");
+  }
   if (faulted) return 3;
-  if (c.limit_breaches > 0 || lost) return 1;
+  if (c.limit_breaches > 0 || lost || in.controller.stop_timed_out()) return 1;
   return 0;
 }
 

@@ -91,7 +91,7 @@ TEST(TrajectoryLimiter, JerkLimitBoundsAccelerationChangesAndStillSettles) {
   int overridden = 0;
   for (int i = 0; i < 3000; ++i) {
     const std::uint8_t f = limit_step(l, s, 0.2, 0.001);
-    if ((f & kLimitApproach) == 0) {
+    if ((f & kLimitJerkYielded) == 0) {
       ASSERT_LE(std::fabs(s.acceleration - prev_a), l.max_jerk * 0.001 * (1 + 1e-9)) << i;
     } else {
       ++overridden;
