@@ -25,17 +25,23 @@ EnvelopeSpec parse_envelope(const ConfigNode& node) {
   node.expect_keys({"pitch_deg", "yaw_deg", "protrusion_mm", "widen_override"});
   EnvelopeSpec spec;
   spec.where = node.where();
-  spec.envelope = MandibleEnvelope::design_default();
-  if (auto n = node.get("pitch_deg")) spec.envelope.pitch = parse_range(*n, kDeg);
-  if (auto n = node.get("yaw_deg")) spec.envelope.yaw = parse_range(*n, kDeg);
-  if (auto n = node.get("protrusion_mm")) spec.envelope.protrusion = parse_range(*n, 1e-3);
   if (auto n = node.get("widen_override")) spec.widen_override = n->boolean();
-  if (!spec.envelope.within(MandibleEnvelope::design_default()) && !spec.widen_override) {
-    node.fail(
-        "an envelope inside pitch -4..18 deg, yaw -5..5 deg, protrusion 0..8 mm "
-        "(widening needs `widen_override: true`)",
-        "a wider envelope");
-  }
+  const MandibleEnvelope design = MandibleEnvelope::design_default();
+  auto axis = [&](const char* key, double scale, const Range& limit, const char* text) {
+    std::optional<Range> r;
+    if (auto n = node.get(key)) {
+      r = parse_range(*n, scale);
+      if (!limit.contains(*r) && !spec.widen_override) {
+        n->fail(std::string("a range inside the design envelope ") + text +
+                    " (widening needs `widen_override: true`)",
+                "[" + std::to_string(r->min / scale) + ", " + std::to_string(r->max / scale) + "]");
+      }
+    }
+    return r;
+  };
+  spec.pitch = axis("pitch_deg", kDeg, design.pitch, "-4..18 deg");
+  spec.yaw = axis("yaw_deg", kDeg, design.yaw, "-5..5 deg");
+  spec.protrusion = axis("protrusion_mm", 1e-3, design.protrusion, "0..8 mm");
   return spec;
 }
 

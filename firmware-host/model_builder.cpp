@@ -44,26 +44,45 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
     }
   }
 
-  // Envelope: the head's (or the default), narrowed by the rig. A widened one
-  // is allowed only through its explicit override, and is announced loudly.
+  // Envelope, axis by axis: the design default, then the head's, then the
+  // rig's. A stated axis narrows (intersects) unless its block carries
+  // `widen_override`, in which case it replaces. Anything wider than the
+  // design default, or than the head's own envelope, is announced loudly.
   const MandibleEnvelope design = MandibleEnvelope::design_default();
-  MandibleEnvelope env = head.envelope ? head.envelope->envelope : design;
+  auto apply = [](Range& axis, const std::optional<Range>& stated, bool override_widen) {
+    if (stated) axis = override_widen ? *stated : intersect(axis, *stated);
+  };
+  MandibleEnvelope env = design;
+  if (head.envelope) {
+    apply(env.pitch, head.envelope->pitch, head.envelope->widen_override);
+    apply(env.yaw, head.envelope->yaw, head.envelope->widen_override);
+    apply(env.protrusion, head.envelope->protrusion, head.envelope->widen_override);
+  }
+  const MandibleEnvelope head_env = env;
   if (rig.envelope) {
-    const MandibleEnvelope& r = rig.envelope->envelope;
-    if (rig.envelope->widen_override) {
-      env = r;
-    } else {
-      env = {intersect(env.pitch, r.pitch), intersect(env.yaw, r.yaw),
-             intersect(env.protrusion, r.protrusion)};
+    apply(env.pitch, rig.envelope->pitch, rig.envelope->widen_override);
+    apply(env.yaw, rig.envelope->yaw, rig.envelope->widen_override);
+    apply(env.protrusion, rig.envelope->protrusion, rig.envelope->widen_override);
+  }
+  for (const Range* r : {&env.pitch, &env.yaw, &env.protrusion}) {
+    if (!(r->min <= r->max)) {
+      throw ConfigError((rig.envelope ? rig.envelope->where : rig.file) +
+                        ": rig.mandible_envelope: expected an envelope that overlaps the "
+                        "head's, found an empty intersection");
     }
   }
   m.envelope = env;
-  m.envelope_widened = !env.within(design);
-  if (m.envelope_widened) {
+  m.envelope_widened = !env.within(design) || !env.within(head_env);
+  if (!env.within(design)) {
     const std::string where =
         rig.envelope && rig.envelope->widen_override ? rig.envelope->where : head.envelope->where;
     out.warnings.push_back("WARNING: mandible envelope WIDENED beyond the design default by " +
                            where + ": " + describe(env) + " (default: " + describe(design) + ")");
+  }
+  if (!env.within(head_env)) {
+    out.warnings.push_back("WARNING: the rig WIDENS the head's mandible envelope at " +
+                           rig.envelope->where + ": " + describe(env) +
+                           " (head: " + describe(head_env) + ")");
   }
 
   // Coupled face limits: the neutral pose must satisfy them (it is where the
