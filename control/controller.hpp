@@ -62,7 +62,11 @@ class Controller {
   void tick(const TickTiming& timing);
 
   // Requests from other threads (signal handlers included): lock-free flags.
-  void request_enable() { enable_request_.store(true, std::memory_order_relaxed); }
+  // Enabling again after a shutdown withdraws the shutdown.
+  void request_enable() {
+    shutdown_request_.store(false, std::memory_order_relaxed);
+    enable_request_.store(true, std::memory_order_relaxed);
+  }
   void request_shutdown() { shutdown_request_.store(true, std::memory_order_relaxed); }
   void request_reset() { reset_request_.store(true, std::memory_order_relaxed); }
 
