@@ -52,10 +52,19 @@ int print_run_summary(const RunSummaryInput& in) {
 
   bool lost = false;
   if (in.writer != nullptr) {
-    lost = in.writer->dropped() > 0;
+    lost = in.writer->dropped() > 0 || in.writer->write_failed();
+    if (in.writer->write_failed()) {
+      std::printf("  TELEMETRY WRITE FAILED: %s is incomplete (disk full or I/O error)\n",
+                  in.writer->path().c_str());
+    }
     std::printf("  telemetry: %llu rows written to %s, %llu dropped\n",
                 static_cast<unsigned long long>(in.writer->written()), in.writer->path().c_str(),
                 static_cast<unsigned long long>(in.writer->dropped()));
+  }
+  if (in.events_dropped > 0) {
+    std::printf("  %llu STATE TRANSITIONS NOT LOGGED (event ring full)\n",
+                static_cast<unsigned long long>(in.events_dropped));
+    lost = true;
   }
   const SafetyState final_state = in.controller.state();
   const bool faulted = in.controller.faults_seen() > 0;

@@ -63,6 +63,7 @@ std::size_t TelemetryWriter::drain() {
     ++n;
   }
   written_.fetch_add(n, std::memory_order_relaxed);
+  if (std::ferror(file_) != 0) write_failed_.store(true, std::memory_order_relaxed);
   return n;
 }
 
@@ -77,7 +78,7 @@ void TelemetryWriter::finish() {
   if (thread_.joinable()) thread_.join();
   if (file_ == nullptr) return;
   drain();
-  std::fclose(file_);
+  if (std::fclose(file_) != 0) write_failed_.store(true, std::memory_order_relaxed);
   file_ = nullptr;
 }
 
