@@ -10,6 +10,7 @@
 #include "control/command_shaper.hpp"
 #include "control/controller_model.hpp"
 #include "control/face_command.hpp"
+#include "control/face_envelope.hpp"
 #include "control/latest_value_mailbox.hpp"
 #include "control/mandible_envelope.hpp"
 #include "control/safety_state_machine.hpp"

@@ -5,7 +5,6 @@
 namespace facectl {
 
 TransitionReason SafetyStateMachine::go(SafetyState next, TransitionReason reason) {
-  previous_ = state_;
   state_ = next;
   time_in_state_ = 0.0;
   return reason;

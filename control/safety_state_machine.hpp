@@ -35,7 +35,6 @@ class SafetyStateMachine {
   TransitionReason step(const SafetyInputs& in, double dt);
 
   SafetyState state() const { return state_; }
-  SafetyState previous() const { return previous_; }
   double time_in_state() const { return time_in_state_; }
   bool outputs_enabled() const {
     return state_ == SafetyState::kEnabling || state_ == SafetyState::kRunning ||
@@ -49,7 +48,6 @@ class SafetyStateMachine {
 
   SafetyParams params_;
   SafetyState state_ = SafetyState::kIdle;
-  SafetyState previous_ = SafetyState::kIdle;
   double time_in_state_ = 0.0;
 };
 

@@ -4,6 +4,7 @@
 
 #include <numbers>
 
+#include "control/face_envelope.hpp"
 #include "firmware-host/config_node.hpp"
 #include "firmware-host/head_config.hpp"
 #include "firmware-host/loaded_config.hpp"
