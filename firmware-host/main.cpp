@@ -6,7 +6,9 @@
 #include "firmware-host/plot_command.hpp"
 #include "firmware-host/run_command.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_cli(int argc, char** argv) {
   CLI::App app{"facectl: real-time controller for animatronic robot faces"};
   app.require_subcommand(1);
   int exit_code = 0;
@@ -52,10 +54,18 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;  // usage errors are exit code 2
+  }
+  return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_cli(argc, argv);
   } catch (const std::exception& e) {
     // Anything unforeseen (e.g. a thread that cannot start): say so, never abort silently.
     std::fprintf(stderr, "facectl: %s\n", e.what());
     return 2;
   }
-  return exit_code;
 }
