@@ -1,0 +1,49 @@
+// Surface point (thesis L1579–L1628): a triangle of some particle array plus constant
+// barycentric coordinates, so it rides on the triangle while the triangle deforms.
+// `layer` says which array: the skull (rigid bones) or the muscle particles.
+#pragma once
+
+#include <cstdint>
+
+#include "facectl/face/points.hpp"
+
+namespace facectl::face {
+
+enum class Layer : std::uint8_t { kSkull = 0, kMuscle = 1 };
+
+struct SurfacePoint {
+  Layer layer = Layer::kSkull;
+  int i0 = 0, i1 = 0, i2 = 0;
+  double t0 = 1, t1 = 0, t2 = 0;  // t0 + t1 + t2 = 1, each ≥ 0
+
+  Vec3 position(const Points& p) const {
+    return t0 * p.get(i0) + t1 * p.get(i1) + t2 * p.get(i2);
+  }
+  // Unit normal of the underlying triangle (counter-clockwise winding).
+  Vec3 normal(const Points& p) const {
+    Vec3 n = (p.get(i1) - p.get(i0)).cross(p.get(i2) - p.get(i0));
+    double l = n.norm();
+    return l > 0 ? Vec3(n / l) : Vec3(0, 0, 1);
+  }
+  // Orthonormal frame (edge, normal × edge, normal) of the triangle, as columns.
+  Mat3 frame(const Points& p) const {
+    Vec3 e = p.get(i1) - p.get(i0);
+    Vec3 n = e.cross(p.get(i2) - p.get(i0));
+    double en = e.norm(), nn = n.norm();
+    if (en == 0 || nn == 0) return Mat3::Identity();
+    e /= en;
+    n /= nn;
+    Mat3 F;
+    F.col(0) = e;
+    F.col(1) = n.cross(e);
+    F.col(2) = n;
+    return F;
+  }
+};
+
+// Ray/triangle intersection (Möller–Trumbore). Returns t along `dir` or a negative value
+// when there is no hit; writes the barycentric coordinates of the hit.
+double ray_triangle(const Vec3& origin, const Vec3& dir, const Vec3& a, const Vec3& b,
+                    const Vec3& c, double& u, double& v);
+
+}  // namespace facectl::face
