@@ -3,30 +3,67 @@
 #include <cstdio>
 #include "facectl/face/face_model.hpp"
 using namespace facectl::face;
-static void run(HeadSpec s, const char* label) {
+TEST(Probe, Muscles) {
+  HeadSpec s = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  FaceModel m = build_face_model(s);
+  FaceData d = make_face_data(m);
+  const char* lms[] = {"fdp_8_3", "fdp_8_4", "fdp_8_1", "fdp_8_2", "fdp_4_1", "fdp_4_2", "fdp_4_5", "fdp_3_1", "fdp_2_1"};
+  auto report = [&](const char* label, FaceInput in, int frames) {
+    reset_face_data(m, d);
+    Points before;
+    for (int i = 0; i < frames; ++i) { if (i == frames - 10) before = d.skin_x; step_face(m, d, in); }
+    double maxd = 0, conv = 0;
+    for (size_t i = 0; i < d.skin_x.size(); ++i) { maxd = std::max(maxd, (d.skin_x.get(i) - m.skin.v.get(i)).norm()); conv = std::max(conv, (d.skin_x.get(i) - before.get(i)).norm()); }
+    std::printf("%-40s max %5.2f conv10 %5.3f |", label, maxd * 1e3, conv * 1e3);
+    for (auto l : lms) { int k = m.landmark_index(l); Vec3 dv = (landmark_position(m, d.skin_x, k) - landmark_position(m, m.skin.v, k)) * 1e3; std::printf(" %s(%.1f,%.1f,%.1f)", l + 4, dv.x(), dv.y(), dv.z()); }
+    std::printf("\n");
+  };
+  std::vector<double> c(s.commanded.size(), 0.0);
+  FaceInput in; in.contractions = c;
+  for (size_t k = 0; k < s.commanded.size(); ++k) {
+    if (s.commanded[k].back() == 'l') continue;
+    std::fill(c.begin(), c.end(), 0.0); c[k] = 0.8;
+    report(s.commanded[k].c_str(), in, 200);
+  }
+  std::fill(c.begin(), c.end(), 0.0);
+  in.jaw.pitch_rad = 12 * M_PI / 180; report("jaw 12deg", in, 200);
+  in.jaw = {}; in.eyelid_closure[0] = in.eyelid_closure[1] = 1; report("blink", in, 100);
+}
+TEST(Probe, Anchors) {
+  HeadSpec s = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  FaceModel m = build_face_model(s);
+  for (size_t l = 0; l < m.landmark_names.size(); ++l) {
+    int v = m.landmark_vertices[l][0];
+    const SurfacePoint& sp = m.anchor_support[v];
+    std::string who = "skull";
+    if (sp.layer == Layer::kMuscle) for (auto& mu : m.muscles) if (sp.i0 >= mu.first && sp.i0 < mu.first + mu.particle_count()) who = mu.name;
+    std::printf("anchor %s v%d -> %s infl %.2f\n", m.landmark_names[l].c_str(), v, who.c_str(), m.influence[v]);
+  }
+}
+TEST(Probe, JawNoOris) {
+  HeadSpec s = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  std::erase_if(s.muscles, [](auto& m) { return m.name == "orbicularis_oris"; });
   FaceModel m = build_face_model(s);
   FaceData d = make_face_data(m);
   std::vector<double> c(s.commanded.size(), 0.0);
-  FaceInput in; in.contractions = c;
-  double maxd = 0, maxm = 0;
-  for (int i = 0; i < 100; ++i) step_face(m, d, in);
-  for (size_t i = 0; i < d.skin_x.size(); ++i) maxd = std::max(maxd, (d.skin_x.get(i) - m.skin.v.get(i)).norm());
-  for (size_t i = 0; i < d.muscles.size(); ++i) maxm = std::max(maxm, (d.muscles.get(i) - m.muscle_rest.get(i)).norm());
-  std::printf("%-20s skin drift %.4f mm muscle drift %.4f mm\n", label, maxd * 1e3, maxm * 1e3);
+  FaceInput in; in.contractions = c; in.jaw.pitch_rad = 12 * M_PI / 180;
+  for (int i = 0; i < 200; ++i) step_face(m, d, in);
+  for (auto l : {"fdp_8_3", "fdp_8_4", "fdp_8_1", "fdp_8_2", "fdp_2_2", "fdp_2_3"}) { int k = m.landmark_index(l); Vec3 dv = (landmark_position(m, d.skin_x, k) - landmark_position(m, m.skin.v, k)) * 1e3; std::printf("noOris %s (%.1f,%.1f,%.1f)\n", l, dv.x(), dv.y(), dv.z()); }
+  for (int v : {61, 291, 0, 17, 13, 14}) { auto& sp = m.anchor_support[v]; std::printf("v%d layer %d tri %d %d %d\n", v, int(sp.layer), sp.i0, sp.i1, sp.i2); }
 }
-TEST(Probe, Build) {
+TEST(Probe, Hits) {
   HeadSpec s = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
-  run(s, "all");
-  HeadSpec a = s; a.skin.volume = 0; run(a, "no skin vol");
-  a = s; a.skin.bending = 0; run(a, "no skin bend");
-  a = s; a.sheet.bend = 0; a.sphincter.bend = 0; run(a, "no muscle bend");
-  a = s; a.sheet.volume = 0; a.sphincter.volume = 0; run(a, "no muscle vol");
-  a = s; a.skin.damping = 1; run(a, "damping 1");
-}
-TEST(Probe, Bend) {
-  Points p;
-  p.push_back(Vec3(0,0,0)); p.push_back(Vec3(1,0,0)); p.push_back(Vec3(0.5,1,0)); p.push_back(Vec3(0.5,-1,0.3));
-  BendingConstraints b; b.add(0,1,2,3, 3.0, 1.0);
-  std::vector<double> w(4,1.0);
-  for (int i=0;i<5;++i){ double a = bending_angle(p,0,1,2,3); project(b,p,w); std::printf("angle %.5f -> %.5f (rest 3.0)\n", a, bending_angle(p,0,1,2,3)); }
+  FaceModel m = build_face_model(s);
+  Points n; vertex_normals(m.skin.v, m.skin.tris, n);
+  for (int v : {61, 107, 70}) {
+    Vec3 p = m.skin.v.get(v), d = -n.get(v);
+    std::printf("v%d p(%.1f %.1f %.1f)\n", v, p.x()*1e3, p.y()*1e3, p.z()*1e3);
+    for (auto& mu : m.muscles) {
+      int nb = mu.rows * mu.cols;
+      double best = 1e9; Vec3 cen = Vec3::Zero();
+      for (int i = 0; i < nb; ++i) cen += m.muscle_rest.get(mu.first + nb + i) / nb;
+      for (auto& t : mu.surface) { if (t[0] < mu.first + nb) continue; double a, b; double h = ray_triangle(p, d, m.muscle_rest.get(t[0]), m.muscle_rest.get(t[1]), m.muscle_rest.get(t[2]), a, b); if (a >= -1e-9 && h > -1 && std::abs(h) < std::abs(best)) best = h; }
+      if ((cen - p).norm() < 0.03) std::printf("  %-30s hit t=%.2f mm  top-centre dist %.1f mm\n", mu.name.c_str(), best * 1e3, (cen - p).norm() * 1e3);
+    }
+  }
 }

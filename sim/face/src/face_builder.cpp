@@ -159,7 +159,6 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     if (cast(below, p + 0.03 * n, -n, 0, 0.03 + 3 * spec.tissue_depth, sp)) return sp;
     return vertex_point(Layer::kSkull, m.skull.tris, nearest_vertex(m.skull.v, p));
   };
-  std::size_t max_line = 0;
   for (const MuscleSpec& ms : order) {
     Muscle mu;
     mu.name = ms.name;
@@ -167,7 +166,6 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     mu.layer = ms.layer;
     mu.rows = ms.rows;
     mu.cols = ms.cols;
-    mu.first = static_cast<int>(m.muscle_rest.size());
     if (ms.kind == MuscleKind::kSheet) {
       const int segs = 8;
       for (int c = 0; c < ms.cols; ++c) {
@@ -189,21 +187,10 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
         mu.lines.push_back(line);
       }
     }
-    for (const auto& l : mu.lines) max_line = std::max(max_line, l.size());
-    // Place the box: bottom grid on the rest samples, top grid one thickness outward.
-    MuscleScratch s;
-    s.line_pos.resize(max_line);
-    s.arc.resize(max_line + 1);
-    s.column.resize(mu.rows);
-    s.targets.resize(2 * mu.rows * mu.cols);
-    muscle_targets(mu, 0.0, m.skull.v, m.muscle_rest, s);
+    place_muscle(
+        mu, ms.thickness, [&](const Vec3& p) { return base_n.get(nearest_vertex(base.v, p)); },
+        m.skull.v, m.muscle_rest, ms.kind == MuscleKind::kSheet ? spec.sheet : spec.sphincter);
     const int nb = mu.rows * mu.cols;
-    for (int i = 0; i < nb; ++i) m.muscle_rest.push_back(s.targets.get(i));
-    for (int i = 0; i < nb; ++i) {
-      const Vec3 p = s.targets.get(i);
-      m.muscle_rest.push_back(p + ms.thickness * base_n.get(nearest_vertex(base.v, p)));
-    }
-    build_muscle_constraints(mu, m.muscle_rest, ms.kind == MuscleKind::kSheet ? spec.sheet : spec.sphincter);
     std::vector<Tri> top;
     for (const Tri& t : mu.surface)
       if (t[0] >= mu.first + nb && t[1] >= mu.first + nb && t[2] >= mu.first + nb) top.push_back(t);
@@ -226,13 +213,22 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
   std::vector<char> on_jaw(nbase, 0);
   for (int v : m.mandible_vertices) on_jaw[v] = 1;
   std::vector<int> seeds;
+  int max_layer = 0;
+  for (const Muscle& mu : m.muscles) max_layer = std::max(max_layer, mu.layer);
   m.anchor_local.resize(ns);
   for (int i = 0; i < ns; ++i) {
     const Vec3 p = m.skin.v.get(i), n = skin_n.get(i);
     SurfacePoint sp;
     const double reach = spec.tissue_depth;
-    if (!cast(muscle_tops, p, -n, -0.5 * reach, reach, sp) &&
-        !cast(skull_only, p, -n, -0.5 * reach, 3 * reach, sp))
+    // Muscles are tested from the most superficial layer down (L2597), then the skull.
+    bool hit = false;
+    for (int layer = max_layer; layer >= 0 && !hit; --layer) {
+      std::vector<Support> in_layer;
+      for (std::size_t k = 0; k < m.muscles.size(); ++k)
+        if (m.muscles[k].layer == layer) in_layer.push_back(muscle_tops[k]);
+      hit = cast(in_layer, p, -n, -0.5 * reach, reach, sp);
+    }
+    if (!hit && !cast(skull_only, p, -n, -0.5 * reach, 3 * reach, sp))
       sp = vertex_point(Layer::kSkull, m.skull.tris, nearest_vertex(m.skull.v, p));
     const Points& src = sp.layer == Layer::kSkull ? m.skull.v : m.muscle_rest;
     m.anchor_local.set(i, sp.frame(src).transpose() * (p - sp.position(src)));
@@ -311,11 +307,7 @@ FaceData make_face_data(const FaceModel& m) {
     for (const auto& l : mu.lines) max_line = std::max(max_line, l.size());
     max_grid = std::max<std::size_t>(max_grid, static_cast<std::size_t>(mu.rows * mu.cols));
   }
-  d.scratch.line_pos.resize(max_line);
-  d.scratch.line_pos.x.reserve(max_line);
-  d.scratch.arc.resize(max_line + 1);
-  d.scratch.column.resize(max_grid);
-  d.scratch.targets.resize(2 * max_grid);
+  d.scratch = make_muscle_scratch(max_line, max_grid);
   d.contraction.assign(m.muscles.size(), 0.0);
   d.lower_teeth = m.lower_teeth;
   d.hit_particle.assign(ns, 0);

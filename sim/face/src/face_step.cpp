@@ -30,15 +30,8 @@ void update_lid_drivers(const FaceModel& m, FaceData& d, const double closure[2]
 }
 
 void step_muscles(const FaceModel& m, FaceData& d) {
-  for (std::size_t k = 0; k < m.muscles.size(); ++k) {
-    const Muscle& mu = m.muscles[k];
-    muscle_targets(mu, d.contraction[k], d.skull, d.muscles, d.scratch);
-    // Quasi-static: one Gauss–Seidel pass directly on the positions (L2776).
-    project(mu.distances, d.muscles, m.muscle_w);
-    project(mu.bending, d.muscles, m.muscle_w);
-    project(mu.volume, d.muscles, m.muscle_w, d.grad);
-    project(mu.attach, d.muscles, m.muscle_w, d.scratch.targets);
-  }
+  for (std::size_t k = 0; k < m.muscles.size(); ++k)
+    step_muscle(m.muscles[k], d.contraction[k], d.skull, d.muscles, m.muscle_w, d.scratch, d.grad);
 }
 
 void update_anchor_targets(const FaceModel& m, FaceData& d) {

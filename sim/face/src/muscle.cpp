@@ -73,6 +73,20 @@ void build_muscle_constraints(Muscle& m, const Points& p, const MuscleStiffness&
       dist(bot(m, r, c), bot(m, r + 1, c + 1), k.low_shear);
       dist(bot(m, r, c + 1), bot(m, r + 1, c), k.low_shear);
     }
+  // Shear diagonals on the side walls too (the box surface), at the mean shear stiffness;
+  // without them the top can slide over the bottom as a parallelogram.
+  const double wall = 0.5 * (k.up_shear + k.low_shear);
+  for (int r : {0, R - 1})
+    for (int c = 0; c < ccells; ++c) {
+      dist(bot(m, r, c), top(m, r, c + 1), wall);
+      dist(bot(m, r, c + 1), top(m, r, c), wall);
+    }
+  if (!ring)
+    for (int c : {0, C - 1})
+      for (int r = 0; r + 1 < R; ++r) {
+        dist(bot(m, r, c), top(m, r + 1, c), wall);
+        dist(bot(m, r + 1, c), top(m, r, c), wall);
+      }
   if (k.bend > 0) add_bending(m.bending, p, m.surface, k.bend);
   m.volume = make_volume(p, m.surface, Vec3::Zero(), k.volume);
   for (int i = 0; i < R * C; ++i) m.attach.add(m.first + i, k.position);
@@ -81,19 +95,31 @@ void build_muscle_constraints(Muscle& m, const Points& p, const MuscleStiffness&
 void sample_polyline(const Points& poly, std::vector<double>& arc, bool closed, int n,
                      double scale, Points& out, int off) {
   const int np = static_cast<int>(poly.size());
-  const int segs = closed ? np : np - 1;
+  if (closed) {
+    // Rings are sampled at fixed positions along their polyline (material sampling):
+    // arc-length resampling of a ring stretched unevenly (the lower lip moving with the
+    // jaw) slides every sample around the ring and breaks the face's symmetry.
+    for (int i = 0; i < n; ++i) {
+      const double u = static_cast<double>(i) * np / n;
+      const int a = static_cast<int>(u);
+      const double f = u - a;
+      out.set(off + i, (1 - f) * poly.get(a % np) + f * poly.get((a + 1) % np));
+    }
+    return;
+  }
+  const int segs = np - 1;
   arc[0] = 0;
   for (int s = 0; s < segs; ++s)
     arc[s + 1] = arc[s] + (poly.get((s + 1) % np) - poly.get(s)).norm();
   const double total = arc[segs];
-  const double step = closed ? total / n : total / (n - 1);  // erratum 4: L/(N−1)
+  const double step = total / (n - 1);  // erratum 4: L/(N−1)
   int seg = 0;
   for (int i = 0; i < n; ++i) {
     const double s = std::min(i * step * scale, total);
     while (seg < segs - 1 && arc[seg + 1] < s) ++seg;
     const double len = arc[seg + 1] - arc[seg];
     const double f = len > 0 ? (s - arc[seg]) / len : 0;
-    out.set(off + i, (1 - f) * poly.get(seg) + f * poly.get((seg + 1) % np));
+    out.set(off + i, (1 - f) * poly.get(seg) + f * poly.get(seg + 1));
   }
 }
 
@@ -160,6 +186,44 @@ void muscle_targets(const Muscle& m, double c, const Points& skull, const Points
     s.targets.set(i, s1 + delta);
     s.targets.set(w + i, s3 + delta);
   }
+}
+
+}  // namespace facectl::face
+
+namespace facectl::face {
+
+MuscleScratch make_muscle_scratch(std::size_t max_line, std::size_t max_grid) {
+  MuscleScratch s;
+  s.line_pos.resize(max_line);
+  s.arc.resize(max_line + 1);
+  s.column.resize(max_grid);
+  s.targets.resize(2 * max_grid);
+  return s;
+}
+
+void place_muscle(Muscle& m, double thickness, const std::function<Vec3(const Vec3&)>& normal_at,
+                  const Points& skull, Points& pos, const MuscleStiffness& k) {
+  std::size_t max_line = 0;
+  for (const auto& l : m.lines) max_line = std::max(max_line, l.size());
+  const int nb = m.rows * m.cols;
+  MuscleScratch s = make_muscle_scratch(max_line, static_cast<std::size_t>(nb));
+  m.first = static_cast<int>(pos.size());
+  muscle_targets(m, 0.0, skull, pos, s);
+  for (int i = 0; i < nb; ++i) pos.push_back(s.targets.get(i));
+  for (int i = 0; i < nb; ++i) {
+    const Vec3 p = s.targets.get(i);
+    pos.push_back(p + thickness * normal_at(p));
+  }
+  build_muscle_constraints(m, pos, k);
+}
+
+void step_muscle(const Muscle& m, double c, const Points& skull, Points& pos,
+                 const std::vector<double>& w, MuscleScratch& s, Points& grad) {
+  muscle_targets(m, c, skull, pos, s);
+  project(m.distances, pos, w);
+  project(m.bending, pos, w);
+  project(m.volume, pos, w, grad);
+  project(m.attach, pos, w, s.targets);
 }
 
 }  // namespace facectl::face

@@ -15,6 +15,7 @@
 // A1 pairs with sample i of A3 (the thesis's j = w−1−i for its opposite-running lines).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,16 @@ struct MuscleScratch {
   Points targets;  // rows*cols attachment goals
 };
 
+// Appends the muscle's rest particles to `pos` (bottom grid on the rest samples of its
+// lines, top grid `thickness` along normal_at(p)), sets m.first, builds its constraints.
+void place_muscle(Muscle& m, double thickness, const std::function<Vec3(const Vec3&)>& normal_at,
+                  const Points& skull, Points& pos, const MuscleStiffness& k);
+// One PBD iteration of one muscle at contraction c (thesis L2776): attachment goals from
+// the current supports, then distances, bending, volume and attachments in that order.
+void step_muscle(const Muscle& m, double c, const Points& skull, Points& pos,
+                 const std::vector<double>& w, MuscleScratch& s, Points& grad);
+// Scratch sized for muscle m (the builder sizes one for the largest muscle).
+MuscleScratch make_muscle_scratch(std::size_t max_line, std::size_t max_grid);
 // Builds the box mesh and constraints for particles already placed in `pos` at
 // [m.first, m.first + 2·rows·cols): bottom grid first, then top grid.
 void build_muscle_constraints(Muscle& m, const Points& pos, const MuscleStiffness& k);
