@@ -67,3 +67,52 @@ TEST(Probe, Hits) {
     }
   }
 }
+TEST(Probe, Tri) {
+  HeadSpec s = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  FaceModel m = build_face_model(s);
+  for (int t : {670, 56, 250}) { auto tr = m.skin.tris[t]; std::printf("tri %d: %d %d %d\n", t, tr[0], tr[1], tr[2]);
+    for (int k = 0; k < 3; ++k) { int v = tr[k]; bool lid = false; for (size_t j = 0; j < m.lids.size(); ++j) if (m.lids.particle[j] == v) lid = true; Vec3 p = m.skin.v.get(v) * 1e3; std::printf("  v%d (%.1f %.1f %.1f) lid %d infl %.2f\n", v, p.x(), p.y(), p.z(), lid, m.influence[v]); } }
+}
+#include <random>
+static int soak_count(const FaceModel& m, int frames, unsigned seed, bool teeth, bool only_jaw, bool only_muscles) {
+  FaceData d = make_face_data(m);
+  const std::size_t n = m.spec.commanded.size();
+  std::vector<double> c(n, 0.0), goal(n, 0.0);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  FaceInput in; in.contractions = c; in.teeth_collision = teeth;
+  MandiblePose jaw_goal;
+  std::vector<Vec3> rest_n;
+  for (const Tri& t : m.skin.tris) rest_n.push_back((m.skin.v.get(t[1]) - m.skin.v.get(t[0])).cross(m.skin.v.get(t[2]) - m.skin.v.get(t[0])));
+  int bad = 0; std::vector<int> worst(m.skin.tris.size(), 0);
+  for (int f = 0; f < frames; ++f) {
+    if (f % 40 == 0) {
+      for (auto& g : goal) g = (!only_jaw && u(rng) < 0.4) ? u(rng) : 0.0;
+      jaw_goal = {(-4 + 22 * u(rng)) * M_PI / 180, (-5 + 10 * u(rng)) * M_PI / 180, 0.008 * u(rng)};
+      if (only_muscles) jaw_goal = {};
+    }
+    for (std::size_t k = 0; k < n; ++k) c[k] += 0.1 * (goal[k] - c[k]);
+    in.jaw.pitch_rad += 0.1 * (jaw_goal.pitch_rad - in.jaw.pitch_rad);
+    in.jaw.yaw_rad += 0.1 * (jaw_goal.yaw_rad - in.jaw.yaw_rad);
+    in.jaw.protrusion_m += 0.1 * (jaw_goal.protrusion_m - in.jaw.protrusion_m);
+    step_face(m, d, in);
+    for (std::size_t t = 0; t < m.skin.tris.size(); ++t) {
+      const Tri& tr = m.skin.tris[t];
+      const Vec3 nn = (d.skin_x.get(tr[1]) - d.skin_x.get(tr[0])).cross(d.skin_x.get(tr[2]) - d.skin_x.get(tr[0]));
+      if (nn.dot(rest_n[t]) <= 0) { ++bad; ++worst[t]; }
+    }
+  }
+  std::printf("teeth %d onlyjaw %d onlymus %d: inverted tri-frames %d; tris:", teeth, only_jaw, only_muscles, bad);
+  for (size_t t = 0; t < worst.size(); ++t) if (worst[t]) std::printf(" %zu(%d)", t, worst[t]);
+  std::printf("\n");
+  return bad;
+}
+TEST(Probe, Soak) {
+  HeadSpec s = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  FaceModel m = build_face_model(s);
+  { HeadSpec s2 = s; s2.skin.anchor = 0.05; FaceModel m2 = build_face_model(s2); std::printf("anchor .05 "); soak_count(m2, 1000, 5, true, false, false); }
+  { HeadSpec s2 = s; s2.skin.stretch = 0.5; FaceModel m2 = build_face_model(s2); std::printf("stretch .5 "); soak_count(m2, 1000, 5, true, false, false); }
+  { HeadSpec s2 = s; s2.skin.damping = 1.0; FaceModel m2 = build_face_model(s2); std::printf("damp 1 "); soak_count(m2, 1000, 5, true, false, false); }
+  { HeadSpec s2 = s; s2.skin.volume = 0; FaceModel m2 = build_face_model(s2); std::printf("vol 0 "); soak_count(m2, 1000, 5, true, false, false); }
+  { HeadSpec s2 = s; s2.influence_falloff = 1; FaceModel m2 = build_face_model(s2); std::printf("infl wide "); soak_count(m2, 1000, 5, true, false, false); }
+}

@@ -105,7 +105,11 @@ void project(const BendingConstraints& s, Points& p, const std::vector<double>& 
   }
 }
 
-void project(const AreaConstraints& s, Points& p, const std::vector<double>& w) {
+namespace {
+
+template <bool kSigned>
+void project_area(const AreaConstraints& s, Points& p, const std::vector<double>& w,
+                  const Points* ref, const std::vector<double>* rest_sign) {
   const std::size_t n = s.size();
   for (std::size_t i = 0; i < n; ++i) {
     const int ia = s.a[i], ib = s.b[i], ic = s.c[i];
@@ -114,14 +118,28 @@ void project(const AreaConstraints& s, Points& p, const std::vector<double>& w) 
     const double len = cr.norm();
     if (len < 1e-14) continue;
     const Vec3 nh = cr / len;
+    double sign = 1;
+    if constexpr (kSigned) sign = cr.dot(ref->get(ia)) * (*rest_sign)[i] < 0 ? -1 : 1;
     const Vec3 g2 = 0.5 * e2.cross(nh), g3 = 0.5 * nh.cross(e1), g1 = -(g2 + g3);
     const double denom = w[ia] * g1.squaredNorm() + w[ib] * g2.squaredNorm() + w[ic] * g3.squaredNorm();
     if (denom < 1e-20) continue;
-    const double f = -s.k[i] * (0.5 * len - s.rest[i]) / denom;
+    // ∇(sign·A) = sign·g, so Δp = −k·(sign·A − A0)·sign·g/Σw|g|².
+    const double f = -s.k[i] * (sign * 0.5 * len - s.rest[i]) * sign / denom;
     p.add(ia, f * w[ia] * g1);
     p.add(ib, f * w[ib] * g2);
     p.add(ic, f * w[ic] * g3);
   }
+}
+
+}  // namespace
+
+void project(const AreaConstraints& s, Points& p, const std::vector<double>& w) {
+  project_area<false>(s, p, w, nullptr, nullptr);
+}
+
+void project_signed(const AreaConstraints& s, Points& p, const std::vector<double>& w,
+                    const Points& ref_normal, const std::vector<double>& rest_sign) {
+  project_area<true>(s, p, w, &ref_normal, &rest_sign);
 }
 
 void project(const VolumeConstraint& v, Points& p, const std::vector<double>& w, Points& grad) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 
 #include "facectl/face/face_model.hpp"
 #include "facectl/face/input_error.hpp"
@@ -248,6 +249,13 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
   add_edge_distances(m.skin_stretch, m.skin.v, m.skin.tris, spec.skin.stretch);
   add_bending(m.skin_bending, m.skin.v, m.skin.tris, spec.skin.bending);
   add_areas(m.skin_area, m.skin.v, m.skin.tris, spec.skin.area);
+  for (std::size_t t = 0; t < m.skin_area.size(); ++t) {
+    const int a = m.skin_area.a[t];
+    const SurfacePoint& sp = m.anchor_support[a];
+    const Vec3 n = sp.normal(sp.layer == Layer::kSkull ? m.skull.v : m.muscle_rest);
+    const Vec3 cr = (m.skin.v.get(m.skin_area.b[t]) - m.skin.v.get(a)).cross(m.skin.v.get(m.skin_area.c[t]) - m.skin.v.get(a));
+    m.skin_area_sign.push_back(cr.dot(n) < 0 ? -1.0 : 1.0);
+  }
   m.skin_volume = make_volume(m.skin.v, m.skin.tris, m.axes.yaw_point, spec.skin.volume);
 
   // Eyelids (§5.5.1): vertices near each eye opening's border, rotated rigidly about an
@@ -285,6 +293,11 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
         m.lid_side.push_back(static_cast<std::uint8_t>(side));
         m.lid_upper.push_back(split.dot(perp(m.skin.v.get(i))) * upper_sign > 0);
         m.lid_rest.push_back(m.skin.v.get(i));
+        // The opening is highest mid-eye and closes to nothing at the corners; scaling the
+        // angle by sin(π·s) makes the margins meet along their length instead of crossing
+        // near the corners.
+        const double along = std::clamp((m.skin.v.get(i) - co).dot(ci - co) / (ci - co).squaredNorm(), 0.0, 1.0);
+        m.lid_profile.push_back(std::sin(std::numbers::pi * along));
       }
   }
   return m;
@@ -300,6 +313,7 @@ FaceData make_face_data(const FaceModel& m) {
   d.skull = m.skull.v;
   d.muscles = m.muscle_rest;
   d.anchor_targets.resize(ns);
+  d.anchor_normals.resize(ns);
   d.lid_targets = m.lid_rest;
   d.grad.resize(std::max(ns, m.muscle_rest.size()));
   std::size_t max_line = 0, max_grid = 0;

@@ -14,18 +14,11 @@ void update_bones(const FaceModel& m, FaceData& d, const MandiblePose& pose) {
 }
 
 void update_lid_drivers(const FaceModel& m, FaceData& d, const double closure[2]) {
-  Mat3 R[2][2];  // [side][upper]
-  Vec3 t[2][2];
-  for (int s = 0; s < 2; ++s)
-    for (int u = 0; u < 2; ++u) {
-      const double a = closure[s] * (u ? m.eyes[s].upper_max : m.eyes[s].lower_max);
-      RigidTransform T = rotation_about_line(m.eyes[s].axis_point, m.eyes[s].axis, a);
-      R[s][u] = T.R;
-      t[s][u] = T.t;
-    }
   for (std::size_t j = 0; j < m.lids.size(); ++j) {
-    const int s = m.lid_side[j], u = m.lid_upper[j];
-    d.lid_targets.set(j, R[s][u] * m.lid_rest.get(j) + t[s][u]);
+    const EyelidSide& e = m.eyes[m.lid_side[j]];
+    const double a =
+        closure[m.lid_side[j]] * m.lid_profile[j] * (m.lid_upper[j] ? e.upper_max : e.lower_max);
+    d.lid_targets.set(j, rotation_about_line(e.axis_point, e.axis, a).apply(m.lid_rest.get(j)));
   }
 }
 
@@ -39,7 +32,9 @@ void update_anchor_targets(const FaceModel& m, FaceData& d) {
   for (std::size_t i = 0; i < n; ++i) {
     const SurfacePoint& sp = m.anchor_support[i];
     const Points& src = sp.layer == Layer::kSkull ? d.skull : d.muscles;
-    d.anchor_targets.set(i, sp.position(src) + sp.frame(src) * m.anchor_local.get(i));
+    const Mat3 F = sp.frame(src);
+    d.anchor_targets.set(i, sp.position(src) + F * m.anchor_local.get(i));
+    d.anchor_normals.set(i, F.col(2));  // the support's outward normal
   }
 }
 
@@ -111,7 +106,7 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
   for (int it = 0; it < m.spec.skin_iterations; ++it) {
     project(m.skin_stretch, p, m.skin_w);
     project(m.skin_bending, p, m.skin_w);
-    project(m.skin_area, p, m.skin_w);
+    project_signed(m.skin_area, p, m.skin_w, d.anchor_normals, m.skin_area_sign);
     project(m.skin_volume, p, m.skin_w, d.grad);
     project(m.anchors, p, m.skin_w, d.anchor_targets);
     project(m.lids, p, m.skin_w, d.lid_targets);

@@ -30,6 +30,7 @@ struct FaceModel {
   DistanceConstraints skin_stretch;
   BendingConstraints skin_bending;
   AreaConstraints skin_area;
+  std::vector<double> skin_area_sign;  // orientation vs. the anchor normal at rest
   VolumeConstraint skin_volume;
   // Skin anchors (L2593): vertex i follows the point carried in the frame of its support.
   std::vector<SurfacePoint> anchor_support;
@@ -40,6 +41,7 @@ struct FaceModel {
   // Eyelids: particles driven rigidly by infinite-mass drivers.
   Attachments lids;
   std::vector<std::uint8_t> lid_side, lid_upper;
+  std::vector<double> lid_profile;  // sin(π·s), s = position between the eye corners
   Points lid_rest;
   EyelidSide eyes[2];  // 0 = left (+x), 1 = right
 
@@ -75,7 +77,7 @@ struct FaceData {
   Points skin_x, skin_prev, skin_p, skin_start;
   Points skull;
   Points muscles;
-  Points anchor_targets, lid_targets;
+  Points anchor_targets, anchor_normals, lid_targets;
   Points grad;  // volume-gradient scratch, sized to the largest particle array
   MuscleScratch scratch;
   std::vector<double> contraction;  // per model muscle
