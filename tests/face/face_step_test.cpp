@@ -25,7 +25,7 @@ TEST(FaceStep, NeutralInputKeepsTheRestShape) {
   in.contractions = c;
   for (int f = 0; f < 50; ++f) step_face(m, d, in);
   for (std::size_t i = 0; i < d.skin_x.size(); ++i)
-    ASSERT_LT((d.skin_x.get(i) - m.skin.v.get(i)).norm(), 1e-9) << i;
+    ASSERT_LT((d.skin_x.get(i) - m.skin.v.get(i)).norm(), 1e-7) << i;  // round-off only
 }
 
 TEST(TeethCollision, NoSkinVertexEndsAFrameInsideATeethHull) {
