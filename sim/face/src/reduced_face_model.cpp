@@ -12,19 +12,26 @@
 namespace facectl::face {
 namespace {
 
-int feature_count(std::size_t muscles) { return static_cast<int>(3 * muscles + 9); }
+constexpr std::size_t kPerMuscle = 6;  // c, c², c³, c·pitch, c·yaw, c·protrusion
+
+int feature_count(std::size_t muscles, std::size_t pairs) {
+  return static_cast<int>(kPerMuscle * muscles + 9 + pairs);
+}
 
 void fill_features(std::span<const double> c, double pitch, double yaw, double prot,
-                   Eigen::Ref<Eigen::VectorXd> f) {
+                   const std::vector<std::array<int, 2>>& pairs, Eigen::Ref<Eigen::VectorXd> f) {
   const std::size_t n = c.size();
+  // Jaw terms in scaled units (deg-like and mm-like) so the fit is well conditioned.
+  const double p = pitch * 10, y = yaw * 10, t = prot * 100;
   for (std::size_t i = 0; i < n; ++i) {
     f[i] = c[i];
     f[n + i] = c[i] * c[i];
-    f[2 * n + i] = c[i] * pitch;
+    f[2 * n + i] = c[i] * c[i] * c[i];
+    f[3 * n + i] = c[i] * p;
+    f[4 * n + i] = c[i] * y;
+    f[5 * n + i] = c[i] * t;
   }
-  // Jaw terms in scaled units (deg-like and mm-like) so the fit is well conditioned.
-  const double p = pitch * 10, y = yaw * 10, t = prot * 100;
-  const std::size_t j = 3 * n;
+  const std::size_t j = kPerMuscle * n;
   f[j + 0] = p;
   f[j + 1] = y;
   f[j + 2] = t;
@@ -34,6 +41,7 @@ void fill_features(std::span<const double> c, double pitch, double yaw, double p
   f[j + 6] = p * y;
   f[j + 7] = p * t;
   f[j + 8] = y * t;
+  for (std::size_t k = 0; k < pairs.size(); ++k) f[j + 9 + k] = c[pairs[k][0]] * c[pairs[k][1]];
 }
 
 }  // namespace
@@ -45,7 +53,7 @@ ReducedFaceWorkspace make_reduced_workspace(const ReducedFaceModel& m) {
 void evaluate(const ReducedFaceModel& m, ReducedFaceWorkspace& w,
               std::span<const double> contractions, double pitch_rad, double yaw_rad,
               double protrusion_m, std::span<double> out) {
-  fill_features(contractions, pitch_rad, yaw_rad, protrusion_m, w.features);
+  fill_features(contractions, pitch_rad, yaw_rad, protrusion_m, m.pairs, w.features);
   Eigen::Map<Eigen::VectorXd> o(out.data(), static_cast<Eigen::Index>(out.size()));
   o.noalias() = m.coefficients * w.features;
 }
@@ -95,27 +103,65 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   r.control_points = full.spec.control_points;
   std::vector<int> cps;
   for (const auto& n : r.control_points) cps.push_back(full.landmark_index(n));
-  const int F = feature_count(r.muscles.size());
-  const int P = 3 * static_cast<int>(cps.size());
+  const int M = static_cast<int>(r.muscles.size()), P = static_cast<int>(cps.size());
   FaceData d = make_face_data(full);
+
+  // Which muscles move which control point: one full-model run per muscle alone.
+  std::vector<std::vector<char>> moves(M, std::vector<char>(P, 0));
+  for (int i = 0; i < M; ++i) {
+    ReducedSample s;
+    s.contractions.assign(M, 0.0);
+    s.contractions[i] = 0.6;
+    const std::vector<double> y = full_model_response(full, d, cps, s, o.frames);
+    for (int p = 0; p < P; ++p)
+      moves[i][p] = Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3 > o.relevance_mm;
+  }
+  for (int i = 0; i < M; ++i)
+    for (int j = i + 1; j < M; ++j)
+      for (int p = 0; p < P; ++p)
+        if (moves[i][p] && moves[j][p]) {
+          r.pairs.push_back({i, j});
+          break;
+        }
+  const int F = feature_count(r.muscles.size(), r.pairs.size());
+  // Columns used by control point p: its muscles' terms, the jaw terms, its pairs.
+  std::vector<std::vector<int>> cols(P);
+  for (int p = 0; p < P; ++p) {
+    for (int i = 0; i < M; ++i)
+      if (moves[i][p])
+        for (int k = 0; k < static_cast<int>(kPerMuscle); ++k) cols[p].push_back(k * M + i);
+    const int jaw = static_cast<int>(kPerMuscle) * M;
+    for (int k = 0; k < 9; ++k) cols[p].push_back(jaw + k);
+    for (std::size_t k = 0; k < r.pairs.size(); ++k)
+      if (moves[r.pairs[k][0]][p] && moves[r.pairs[k][1]][p]) cols[p].push_back(jaw + 9 + static_cast<int>(k));
+  }
+
   auto collect = [&](const std::vector<ReducedSample>& set, Eigen::MatrixXd& X, Eigen::MatrixXd& Y) {
     X.resize(static_cast<Eigen::Index>(set.size()), F);
-    Y.resize(static_cast<Eigen::Index>(set.size()), P);
+    Y.resize(static_cast<Eigen::Index>(set.size()), 3 * P);
     for (std::size_t k = 0; k < set.size(); ++k) {
       Eigen::VectorXd f(F);
       fill_features(set[k].contractions, set[k].jaw.pitch_rad, set[k].jaw.yaw_rad,
-                    set[k].jaw.protrusion_m, f);
+                    set[k].jaw.protrusion_m, r.pairs, f);
       X.row(static_cast<Eigen::Index>(k)) = f.transpose();
       const std::vector<double> y = full_model_response(full, d, cps, set[k], o.frames);
-      for (int j = 0; j < P; ++j) Y(static_cast<Eigen::Index>(k), j) = y[j];
+      for (int j = 0; j < 3 * P; ++j) Y(static_cast<Eigen::Index>(k), j) = y[j];
     }
   };
   Eigen::MatrixXd Xtr, Ytr, Xte, Yte;
   collect(random_samples(full.spec, o, o.train_samples, o.seed), Xtr, Ytr);
-  // Ridge-regularised normal equations, solved by Cholesky (LDLT).
-  const Eigen::MatrixXd A = Xtr.transpose() * Xtr + o.ridge * Eigen::MatrixXd::Identity(F, F);
-  const Eigen::MatrixXd B = Xtr.transpose() * Ytr;
-  r.coefficients = A.ldlt().solve(B).transpose();
+  r.coefficients.setZero(3 * P, F);
+  for (int p = 0; p < P; ++p) {
+    // Ridge-regularised normal equations on this point's columns, solved by LDLT.
+    const Eigen::Index n = static_cast<Eigen::Index>(cols[p].size());
+    Eigen::MatrixXd Xp(Xtr.rows(), n);
+    for (Eigen::Index c = 0; c < n; ++c) Xp.col(c) = Xtr.col(cols[p][c]);
+    const Eigen::MatrixXd A = Xp.transpose() * Xp + o.ridge * Eigen::MatrixXd::Identity(n, n);
+    const Eigen::MatrixXd B = Xp.transpose() * Ytr.middleCols(3 * p, 3);
+    const Eigen::MatrixXd W = A.ldlt().solve(B);  // n × 3
+    for (Eigen::Index c = 0; c < n; ++c)
+      for (int k = 0; k < 3; ++k) r.coefficients(3 * p + k, cols[p][c]) = W(c, k);
+  }
   if (report) {
     report->train_samples = o.train_samples;
     report->test_samples = o.test_samples;
@@ -147,6 +193,8 @@ void save_reduced_model(const ReducedFaceModel& m, const std::string& path) {
   for (const auto& s : m.muscles) out << ' ' << s;
   out << "\ncontrol_points " << m.control_points.size();
   for (const auto& s : m.control_points) out << ' ' << s;
+  out << "\npairs " << m.pairs.size();
+  for (const auto& p : m.pairs) out << ' ' << p[0] << ' ' << p[1];
   out << "\ncoefficients " << m.coefficients.rows() << ' ' << m.coefficients.cols() << '\n';
   out.precision(17);
   for (Eigen::Index i = 0; i < m.coefficients.rows(); ++i) {
@@ -187,14 +235,26 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
   if (m.muscles != head.commanded)
     throw InputError(path, ln, 0, "expected the muscles of head.yaml in order, found a different list (rebuild with `facectl face reduce`)");
   names("control_points", m.control_points);
+  {
+    auto ps = next("'pairs N i j ...'");
+    std::string tag;
+    std::size_t n = 0;
+    if (!(ps >> tag >> n) || tag != "pairs") throw InputError(path, ln, 0, "expected 'pairs N i j ...', found '" + line + "'");
+    m.pairs.resize(n);
+    for (auto& pr : m.pairs)
+      if (!(ps >> pr[0] >> pr[1]) || pr[0] < 0 || pr[1] < 0 || pr[0] >= static_cast<int>(m.muscles.size()) ||
+          pr[1] >= static_cast<int>(m.muscles.size()))
+        throw InputError(path, ln, 0, "expected " + std::to_string(n) + " muscle index pairs in 0.." +
+                                          std::to_string(m.muscles.size() - 1));
+  }
   auto s = next("'coefficients ROWS COLS'");
   std::string tag;
   Eigen::Index rows = 0, cols = 0;
   if (!(s >> tag >> rows >> cols) || tag != "coefficients" ||
       rows != 3 * static_cast<Eigen::Index>(m.control_points.size()) ||
-      cols != feature_count(m.muscles.size()))
+      cols != feature_count(m.muscles.size(), m.pairs.size()))
     throw InputError(path, ln, 0, "expected 'coefficients " + std::to_string(3 * m.control_points.size()) + " " +
-                                      std::to_string(feature_count(m.muscles.size())) + "', found '" + line + "'");
+                                      std::to_string(feature_count(m.muscles.size(), m.pairs.size())) + "', found '" + line + "'");
   m.coefficients.resize(rows, cols);
   for (Eigen::Index i = 0; i < rows; ++i) {
     auto r = next("a row of coefficients");

@@ -1,12 +1,16 @@
 // The reduced face for the 1 kHz loop: a fitted response surface from (muscle
 // contractions, mandible pitch/yaw/protrusion) to the steady-state displacement of named
 // skin control points, fitted by least squares to full-model steady states.
-// Features: c_i, c_i², c_i·pitch for every commanded muscle, plus pitch, yaw, protrusion,
-// their squares and pairwise products. evaluate() is one small dense matrix-vector
-// product over preallocated storage: no allocation, no branches on the data.
+// Features: c_i, c_i², c_i³, c_i·pitch, c_i·yaw, c_i·protrusion for every muscle; pitch, yaw, protrusion,
+// their squares and pairwise products; and c_i·c_j for muscle pairs that both move some
+// control point. Each control point is fitted only on the muscles that move it (by a
+// single-muscle probe of the full model), so unrelated muscles cannot add noise.
+// evaluate() is one small dense matrix-vector product over preallocated storage: no
+// allocation, no branches on the data.
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -18,6 +22,7 @@ namespace facectl::face {
 struct ReducedFaceModel {
   std::vector<std::string> muscles;         // head.yaml order
   std::vector<std::string> control_points;  // landmark names
+  std::vector<std::array<int, 2>> pairs;    // muscle pairs with an interaction feature
   // (3·control_points) × features, row-major so each output is one contiguous dot product.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> coefficients;
   int feature_count() const { return static_cast<int>(coefficients.cols()); }
@@ -41,6 +46,7 @@ struct ReduceOptions {
   double active_probability = 0.35, max_contraction = 0.7;
   unsigned seed = 1;
   double ridge = 1e-6;
+  double relevance_mm = 0.3;  // a muscle moves a point if c = 0.6 alone moves it this much
 };
 
 struct ReduceReport {
