@@ -204,6 +204,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     m.muscles.push_back(std::move(mu));
   }
   m.muscle_w.assign(m.muscle_rest.size(), 1.0);
+  for (const auto& t : tops) m.muscle_tops.insert(m.muscle_tops.end(), t.begin(), t.end());
+  vertex_normals(m.muscle_rest, m.muscle_tops, m.muscle_rest_normals);
 
   // Skin binding (L2581–L2602): along the vertex normal line, the nearest muscle top
   // (outward hits allowed: fitted muscles may poke out), else the skull, else the nearest
@@ -231,8 +233,10 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     }
     if (!hit && !cast(skull_only, p, -n, -0.5 * reach, 3 * reach, sp))
       sp = vertex_point(Layer::kSkull, m.skull.tris, nearest_vertex(m.skull.v, p));
+    const Mat3 F = sp.layer == Layer::kSkull ? sp.frame(m.skull.v)
+                                              : sp.smooth_frame(m.muscle_rest, m.muscle_rest_normals);
     const Points& src = sp.layer == Layer::kSkull ? m.skull.v : m.muscle_rest;
-    m.anchor_local.set(i, sp.frame(src).transpose() * (p - sp.position(src)));
+    m.anchor_local.set(i, F.transpose() * (p - sp.position(src)));
     m.anchor_support.push_back(sp);
     m.anchors.add(i, spec.skin.anchor);
     if (sp.layer == Layer::kMuscle || on_jaw[sp.i0] || on_jaw[sp.i1] || on_jaw[sp.i2]) seeds.push_back(i);
@@ -252,7 +256,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
   for (std::size_t t = 0; t < m.skin_area.size(); ++t) {
     const int a = m.skin_area.a[t];
     const SurfacePoint& sp = m.anchor_support[a];
-    const Vec3 n = sp.normal(sp.layer == Layer::kSkull ? m.skull.v : m.muscle_rest);
+    const Vec3 n = sp.layer == Layer::kSkull ? sp.normal(m.skull.v)
+                                             : Vec3(sp.smooth_frame(m.muscle_rest, m.muscle_rest_normals).col(2));
     const Vec3 cr = (m.skin.v.get(m.skin_area.b[t]) - m.skin.v.get(a)).cross(m.skin.v.get(m.skin_area.c[t]) - m.skin.v.get(a));
     m.skin_area_sign.push_back(cr.dot(n) < 0 ? -1.0 : 1.0);
   }
@@ -312,6 +317,7 @@ FaceData make_face_data(const FaceModel& m) {
   d.skin_start = m.skin.v;
   d.skull = m.skull.v;
   d.muscles = m.muscle_rest;
+  d.muscle_normals = m.muscle_rest_normals;
   d.anchor_targets.resize(ns);
   d.anchor_normals.resize(ns);
   d.lid_targets = m.lid_rest;
@@ -335,6 +341,7 @@ void reset_face_data(const FaceModel& m, FaceData& d) {
   d.skin_p = m.skin.v;
   d.skull = m.skull.v;
   d.muscles = m.muscle_rest;
+  d.muscle_normals = m.muscle_rest_normals;
   d.lid_targets = m.lid_rest;
   d.lower_teeth = m.lower_teeth;
   d.hits = 0;

@@ -28,11 +28,13 @@ void step_muscles(const FaceModel& m, FaceData& d) {
 }
 
 void update_anchor_targets(const FaceModel& m, FaceData& d) {
+  vertex_normals(d.muscles, m.muscle_tops, d.muscle_normals);
   const std::size_t n = m.anchor_support.size();
   for (std::size_t i = 0; i < n; ++i) {
     const SurfacePoint& sp = m.anchor_support[i];
-    const Points& src = sp.layer == Layer::kSkull ? d.skull : d.muscles;
-    const Mat3 F = sp.frame(src);
+    const bool bone = sp.layer == Layer::kSkull;
+    const Points& src = bone ? d.skull : d.muscles;
+    const Mat3 F = bone ? sp.frame(src) : sp.smooth_frame(src, d.muscle_normals);
     d.anchor_targets.set(i, sp.position(src) + F * m.anchor_local.get(i));
     d.anchor_normals.set(i, F.col(2));  // the support's outward normal
   }
@@ -68,7 +70,7 @@ void project_contacts(FaceData& d, Points& p) {
 
 }  // namespace
 
-void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
+void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in) {
   // (2)–(7) inputs and rigid parts.
   for (std::size_t k = 0; k < m.muscles.size(); ++k) {
     const int slot = m.command_slot[k];
@@ -88,6 +90,10 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
   update_lid_drivers(m, d, closure);
   // (8)–(11) muscles, deepest first.
   step_muscles(m, d);
+}
+
+void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
+  step_skull_and_muscles(m, d, in);
   // (12)–(13) skin anchors.
   update_anchor_targets(m, d);
   // Prediction with damping: v ← (1 − damping)·v, p = x + v·Δt (Δt cancels, see §2).

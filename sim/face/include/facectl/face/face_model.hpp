@@ -58,6 +58,8 @@ struct FaceModel {
   std::vector<std::uint8_t> is_oculi;  // orbicularis oculi ring of side 0/1, else 2
   Points muscle_rest;
   std::vector<double> muscle_w;
+  std::vector<Tri> muscle_tops;  // top surfaces of all muscles (skin supports)
+  Points muscle_rest_normals;    // vertex normals of muscle_tops at rest
 
   // Landmarks on the skin: mean of vertices plus a fixed rest offset.
   std::vector<std::string> landmark_names;
@@ -76,7 +78,7 @@ struct FaceInput {
 struct FaceData {
   Points skin_x, skin_prev, skin_p, skin_start;
   Points skull;
-  Points muscles;
+  Points muscles, muscle_normals;
   Points anchor_targets, anchor_normals, lid_targets;
   Points grad;  // volume-gradient scratch, sized to the largest particle array
   MuscleScratch scratch;
@@ -96,6 +98,10 @@ void reset_face_data(const FaceModel& m, FaceData& d);
 // One frame of §5.7: bones, muscles deepest first (one PBD iteration each), skin anchors,
 // teeth contacts, skin iterations, influence weights. Allocation-free.
 void step_face(const FaceModel& m, FaceData& d, const FaceInput& in);
+
+// Steps (2)–(11) alone: bones, eyelid drivers and muscles (the thesis's "skull +
+// muscles" row of Table 5.1). step_face() calls this first.
+void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in);
 
 Vec3 landmark_position(const FaceModel& m, const Points& skin, int landmark);
 // Counts skin vertices strictly inside a teeth hull (by `margin` m).

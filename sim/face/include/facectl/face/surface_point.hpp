@@ -25,6 +25,24 @@ struct SurfacePoint {
     double l = n.norm();
     return l > 0 ? Vec3(n / l) : Vec3(0, 0, 1);
   }
+  // Frame whose normal interpolates per-vertex normals `vn` (smooth, and stable when the
+  // triangle itself becomes thin) and whose first axis is the first edge made tangent.
+  Mat3 smooth_frame(const Points& p, const Points& vn) const {
+    Vec3 n = t0 * vn.get(i0) + t1 * vn.get(i1) + t2 * vn.get(i2);
+    const double nn = n.norm();
+    if (nn == 0) return frame(p);
+    n /= nn;
+    Vec3 e = p.get(i1) - p.get(i0);
+    e -= n * n.dot(e);
+    const double en = e.norm();
+    if (en == 0) return frame(p);
+    e /= en;
+    Mat3 F;
+    F.col(0) = e;
+    F.col(1) = n.cross(e);
+    F.col(2) = n;
+    return F;
+  }
   // Orthonormal frame (edge, normal × edge, normal) of the triangle, as columns.
   Mat3 frame(const Points& p) const {
     Vec3 e = p.get(i1) - p.get(i0);
