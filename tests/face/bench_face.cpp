@@ -27,7 +27,8 @@ const FaceModel& model(std::size_t skin_vertices) {
 
 // A busy input: joy plus an open, shifted jaw, so every layer and the teeth work.
 Expression busy() {
-  const ExpressionLibrary lib = load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec());
+  const ExpressionLibrary lib =
+      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec());
   Expression e = *lib.find("joy");
   e.jaw = {10 * 3.14159265 / 180, 2 * 3.14159265 / 180, 0.002};
   return e;
@@ -47,7 +48,13 @@ void BM_FullStep(benchmark::State& state) {
   state.counters["constraints"] = static_cast<double>(
       m.skin_stretch.size() + m.skin_bending.size() + m.skin_area.size() + 1 + m.anchors.size());
 }
-BENCHMARK(BM_FullStep)->Arg(0)->Arg(1466)->Arg(2502)->Arg(4604)->Arg(4904)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FullStep)
+    ->Arg(0)
+    ->Arg(1466)
+    ->Arg(2502)
+    ->Arg(4604)
+    ->Arg(4904)
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_SkullAndMuscles(benchmark::State& state) {
   const FaceModel& m = model(0);
@@ -68,14 +75,16 @@ void BM_SkullAndMuscles(benchmark::State& state) {
 BENCHMARK(BM_SkullAndMuscles)->Unit(benchmark::kMicrosecond);
 
 void BM_ReducedPerTick(benchmark::State& state) {
-  const ReducedFaceModel r = load_reduced_model(FACECTL_DEFAULT_HEAD_DIR "/reduced_face.txt", spec());
+  const ReducedFaceModel r =
+      load_reduced_model(FACECTL_DEFAULT_HEAD_DIR "/reduced_face.txt", spec());
   ReducedFaceWorkspace w = make_reduced_workspace(r);
   const Expression e = busy();
   std::vector<double> out(3 * r.control_points.size());
   double phase = 0;
   for (auto _ : state) {
     phase += 1e-3;  // vary the input a little so nothing is hoisted
-    evaluate(r, w, e.contractions, e.jaw.pitch_rad + phase * 1e-3, e.jaw.yaw_rad, e.jaw.protrusion_m, out);
+    evaluate(r, w, e.contractions, e.jaw.pitch_rad + phase * 1e-3, e.jaw.yaw_rad,
+             e.jaw.protrusion_m, out);
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["control_points"] = static_cast<double>(r.control_points.size());

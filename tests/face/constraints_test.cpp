@@ -1,10 +1,10 @@
 // Thesis §3.2 checkable claims: a k = 1 distance constraint lands exactly at its rest
 // length, and every constraint type reduces |C| when projected.
+#include "facectl/face/constraints.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
-
-#include "facectl/face/constraints.hpp"
 
 namespace facectl::face {
 namespace {

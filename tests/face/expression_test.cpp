@@ -19,8 +19,8 @@ using testing::default_model;
 using testing::ExpressionMetrics;
 
 const ExpressionLibrary& library() {
-  static const ExpressionLibrary lib =
-      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", testing::default_spec());
+  static const ExpressionLibrary lib = load_expression_library(
+      FACECTL_CONFIG_DIR "/expressions/library.yaml", testing::default_spec());
   return lib;
 }
 
@@ -37,14 +37,17 @@ ExpressionMetrics run(const std::string& name) {
 }
 
 TEST(Expression, LibraryHasTheRequiredSet) {
-  for (const char* n : {"neutral", "joy", "sadness", "anger", "fear", "disgust", "surprise",
-                        "closed_smile", "pucker", "jaw_open", "brow_raise", "frown", "blink", "wink"})
+  for (const char* n :
+       {"neutral", "joy", "sadness", "anger", "fear", "disgust", "surprise", "closed_smile",
+        "pucker", "jaw_open", "brow_raise", "frown", "blink", "wink"})
     EXPECT_NE(library().find(n), nullptr) << n;
   ASSERT_EQ(library().sequences.size(), 1u);
   EXPECT_EQ(library().sequences[0].name, "chewing");
 }
 
-TEST(Expression, NeutralStaysAtRest) { EXPECT_LT(run("neutral").max_skin, 0.01); }
+TEST(Expression, NeutralStaysAtRest) {
+  EXPECT_LT(run("neutral").max_skin, 0.01);
+}
 
 TEST(Expression, JoyCornersRiseAndPullBackTowardTheEars) {
   const auto r = run("joy");

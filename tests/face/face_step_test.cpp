@@ -66,7 +66,8 @@ int soak(const FaceModel& m, int frames, unsigned seed) {
   MandiblePose jaw_goal;
   std::vector<Vec3> rest_n;
   for (const Tri& t : m.skin.tris)
-    rest_n.push_back((m.skin.v.get(t[1]) - m.skin.v.get(t[0])).cross(m.skin.v.get(t[2]) - m.skin.v.get(t[0])));
+    rest_n.push_back(
+        (m.skin.v.get(t[1]) - m.skin.v.get(t[0])).cross(m.skin.v.get(t[2]) - m.skin.v.get(t[0])));
   int inverted = 0;
   for (int f = 0; f < frames; ++f) {
     if (f % 40 == 0) {
@@ -92,7 +93,8 @@ int soak(const FaceModel& m, int frames, unsigned seed) {
       }
     for (std::size_t t = 0; t < m.skin.tris.size(); ++t) {
       const Tri& tr = m.skin.tris[t];
-      const Vec3 nn = (d.skin_x.get(tr[1]) - d.skin_x.get(tr[0])).cross(d.skin_x.get(tr[2]) - d.skin_x.get(tr[0]));
+      const Vec3 nn = (d.skin_x.get(tr[1]) - d.skin_x.get(tr[0]))
+                          .cross(d.skin_x.get(tr[2]) - d.skin_x.get(tr[0]));
       inverted += nn.dot(rest_n[t]) <= 0;
     }
   }

@@ -1,6 +1,8 @@
 // Mandible of thesis §5.2 with the errata fixed: rotations leave their axis points fixed,
 // protrusion moves every jaw vertex by exactly d, the composition order and signs are
 // the documented ones, and the lower teeth follow the jaw.
+#include "facectl/face/mandible.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -8,7 +10,6 @@
 #include <numbers>
 
 #include "default_head.hpp"
-#include "facectl/face/mandible.hpp"
 
 namespace facectl::face {
 namespace {
@@ -56,7 +57,7 @@ TEST(Mandible, SignConventions) {
   const Vec3 chin = landmark("fdp_2_10");
   EXPECT_LT(mandible_transform(ax, {10 * kDeg, 0, 0}).apply(chin).y(), chin.y() - 0.005);  // opens
   EXPECT_GT(mandible_transform(ax, {0, 5 * kDeg, 0}).apply(chin).x(), chin.x() + 0.002);   // to +x
-  EXPECT_GT(mandible_transform(ax, {0, 0, 0.004}).apply(chin).z(), chin.z() + 0.002);      // forward
+  EXPECT_GT(mandible_transform(ax, {0, 0, 0.004}).apply(chin).z(), chin.z() + 0.002);  // forward
 }
 
 TEST(Mandible, CompositionIsPitchThenYawThenProtrusion) {
@@ -101,10 +102,10 @@ TEST(Mandible, JawVerticesAreTheLowerFaceOnly) {
   const FaceModel& m = default_model();
   std::vector<char> jaw(m.skull.v.size(), 0);
   for (int v : m.mandible_vertices) jaw[v] = 1;
-  EXPECT_TRUE(jaw[152]);   // chin
-  EXPECT_TRUE(jaw[14]);    // lower inner lip
-  EXPECT_FALSE(jaw[13]);   // upper inner lip
-  EXPECT_FALSE(jaw[4]);    // nose tip
+  EXPECT_TRUE(jaw[152]);  // chin
+  EXPECT_TRUE(jaw[14]);   // lower inner lip
+  EXPECT_FALSE(jaw[13]);  // upper inner lip
+  EXPECT_FALSE(jaw[4]);   // nose tip
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 // Muscle claims of thesis ch. 4: a sheet muscle on a plane shortens monotonically with c
 // and bulges (Fig. 4.7), its volume constraint holds the volume (Fig. 4.8), and the
 // sphincter on a sphere closes toward its centre (Fig. 4.10).
+#include "facectl/face/muscle.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
-
-#include "facectl/face/muscle.hpp"
 
 namespace facectl::face {
 namespace {
@@ -77,7 +77,8 @@ SheetRun run_sheet(double c, double k_volume) {
   MuscleStiffness k = sheet_table();
   k.volume = k_volume;
   Points pos;
-  place_muscle(mu, 0.003, [](const Vec3&) { return Vec3(0, 0, 1); }, skull.v, pos, k);
+  place_muscle(
+      mu, 0.003, [](const Vec3&) { return Vec3(0, 0, 1); }, skull.v, pos, k);
   const double v0 = volume_of(mu.volume, pos);
   std::vector<double> w(pos.size(), 1.0);
   MuscleScratch s = make_muscle_scratch(9, 15);
@@ -114,7 +115,8 @@ TriMesh sphere(double r, int nlat, int nlon) {
   for (int i = 1; i < nlat; ++i)
     for (int j = 0; j < nlon; ++j) {
       double th = std::numbers::pi * i / nlat, ph = 2 * std::numbers::pi * j / nlon;
-      m.v.push_back(r * Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
+      m.v.push_back(r *
+                    Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
     }
   m.v.push_back(Vec3(0, 0, -r));
   auto id = [&](int i, int j) { return 1 + (i - 1) * nlon + (j % nlon); };
@@ -147,8 +149,9 @@ double inner_radius(double c) {
     mu.lines.push_back(line);
   }
   Points pos;
-  place_muscle(mu, 0.003, [](const Vec3& p) { return Vec3(p.normalized()); }, skull.v, pos,
-               sphincter_table());
+  place_muscle(
+      mu, 0.003, [](const Vec3& p) { return Vec3(p.normalized()); }, skull.v, pos,
+      sphincter_table());
   std::vector<double> w(pos.size(), 1.0);
   MuscleScratch s = make_muscle_scratch(24, 38);
   Points grad;

@@ -1,11 +1,11 @@
 // RBF morph of thesis §3.4: exact at the landmarks, and exact for any affine map thanks
 // to the linear term and the conditions of eqs. 3.32–3.35.
+#include "facectl/face/rbf_morph.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <stdexcept>
-
-#include "facectl/face/rbf_morph.hpp"
 
 namespace facectl::face {
 namespace {

@@ -1,5 +1,7 @@
 // The reduced model: allocation-free evaluation, exact save/load, error messages, and a
 // fit that tracks the full model on held-out inputs.
+#include "facectl/face/reduced_face_model.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,7 +10,6 @@
 #include "alloc_counter.hpp"
 #include "default_head.hpp"
 #include "facectl/face/input_error.hpp"
-#include "facectl/face/reduced_face_model.hpp"
 
 namespace facectl::face {
 namespace {
@@ -70,7 +71,8 @@ TEST(ReducedFaceModel, ShippedCacheMatchesTheHead) {
 }
 
 TEST(ReducedFaceModel, MalformedFileNamesFileAndLine) {
-  const std::string p = (std::filesystem::temp_directory_path() / "facectl_bad_reduced.txt").string();
+  const std::string p =
+      (std::filesystem::temp_directory_path() / "facectl_bad_reduced.txt").string();
   std::ofstream(p) << "facectl-reduced-face 1\nmuscles 1 frontalis_l\n";
   try {
     load_reduced_model(p, testing::default_spec());

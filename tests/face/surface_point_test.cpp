@@ -1,10 +1,10 @@
 // A surface point keeps its barycentric coordinates and so stays on its triangle while
 // the triangle deforms (thesis Fig. 4.1).
+#include "facectl/face/surface_point.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
-
-#include "facectl/face/surface_point.hpp"
 
 namespace facectl::face {
 namespace {

@@ -121,7 +121,8 @@ void project_area(const AreaConstraints& s, Points& p, const std::vector<double>
     double sign = 1;
     if constexpr (kSigned) sign = cr.dot(ref->get(ia)) * (*rest_sign)[i] < 0 ? -1 : 1;
     const Vec3 g2 = 0.5 * e2.cross(nh), g3 = 0.5 * nh.cross(e1), g1 = -(g2 + g3);
-    const double denom = w[ia] * g1.squaredNorm() + w[ib] * g2.squaredNorm() + w[ic] * g3.squaredNorm();
+    const double denom =
+        w[ia] * g1.squaredNorm() + w[ib] * g2.squaredNorm() + w[ic] * g3.squaredNorm();
     if (denom < 1e-20) continue;
     // ∇(sign·A) = sign·g, so Δp = −k·(sign·A − A0)·sign·g/Σw|g|².
     const double f = -s.k[i] * (sign * 0.5 * len - s.rest[i]) * sign / denom;

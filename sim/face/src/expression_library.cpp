@@ -15,7 +15,9 @@ namespace {
 
 double number(const std::string& file, const YAML::Node& n, const std::string& key) {
   try {
-    if (!n.IsScalar()) bad(file, n, "key '" + key + "': expected a number, found a " + (n.IsMap() ? "mapping" : "list"));
+    if (!n.IsScalar())
+      bad(file, n,
+          "key '" + key + "': expected a number, found a " + (n.IsMap() ? "mapping" : "list"));
     return n.as<double>();
   } catch (const YAML::Exception&) {
     bad(file, n, "key '" + key + "': expected a number, found '" + n.Scalar() + "'");
@@ -41,7 +43,8 @@ ExpressionLibrary load_expression_library(const std::string& path, const HeadSpe
   }
   ExpressionLibrary lib;
   const YAML::Node ex = root["expressions"];
-  if (!ex.IsMap()) throw InputError(path + ": key 'expressions': expected a mapping of expressions");
+  if (!ex.IsMap())
+    throw InputError(path + ": key 'expressions': expected a mapping of expressions");
   constexpr double kDeg = std::numbers::pi / 180;
   for (const auto& kv : ex) {
     Expression e;
@@ -62,7 +65,8 @@ ExpressionLibrary load_expression_library(const std::string& path, const HeadSpe
         if (slot == head.commanded.size())
           bad(path, m.first, "muscle '" + name + "': expected a commanded muscle of head.yaml");
         const double c = number(path, m.second, name);
-        if (c < 0 || c > 1) bad(path, m.second, "muscle '" + name + "': expected 0..1, found " + m.second.Scalar());
+        if (c < 0 || c > 1)
+          bad(path, m.second, "muscle '" + name + "': expected 0..1, found " + m.second.Scalar());
         e.contractions[slot] = c;
       }
     }
@@ -72,8 +76,9 @@ ExpressionLibrary load_expression_library(const std::string& path, const HeadSpe
         if (!j[key].IsDefined()) return 0.0;
         const double v = number(path, j[key], key);
         if (v < lo || v > hi)
-          bad(path, j[key], std::string("key '") + key + "': expected " + std::to_string(lo) + ".." +
-                                std::to_string(hi) + ", found " + j[key].Scalar());
+          bad(path, j[key],
+              std::string("key '") + key + "': expected " + std::to_string(lo) + ".." +
+                  std::to_string(hi) + ", found " + j[key].Scalar());
         return v;
       };
       e.jaw.pitch_rad = get("pitch_deg", -4, 18) * kDeg;
@@ -85,10 +90,15 @@ ExpressionLibrary load_expression_library(const std::string& path, const HeadSpe
         const std::string key = r.first.as<std::string>();
         const double v = number(path, r.second, key);
         if (v < 0 || v > 1) bad(path, r.second, "key '" + key + "': expected 0..1");
-        if (key == "eyelid_closure_l") e.eyelid_closure[0] = v;
-        else if (key == "eyelid_closure_r") e.eyelid_closure[1] = v;
-        else if (key == "eyelid_closure") e.eyelid_closure[0] = e.eyelid_closure[1] = v;
-        else bad(path, r.first, "key '" + key + "': expected eyelid_closure, eyelid_closure_l or eyelid_closure_r");
+        if (key == "eyelid_closure_l")
+          e.eyelid_closure[0] = v;
+        else if (key == "eyelid_closure_r")
+          e.eyelid_closure[1] = v;
+        else if (key == "eyelid_closure")
+          e.eyelid_closure[0] = e.eyelid_closure[1] = v;
+        else
+          bad(path, r.first,
+              "key '" + key + "': expected eyelid_closure, eyelid_closure_l or eyelid_closure_r");
       }
     }
     lib.expressions.push_back(std::move(e));
@@ -101,7 +111,8 @@ ExpressionLibrary load_expression_library(const std::string& path, const HeadSpe
       s.period_s = number(path, kv.second["period_s"], "period_s");
       for (const auto& p : kv.second["poses"]) {
         const std::string name = p.as<std::string>();
-        if (!lib.find(name)) bad(path, p, "pose '" + name + "': expected an expression of this file");
+        if (!lib.find(name))
+          bad(path, p, "pose '" + name + "': expected an expression of this file");
         s.poses.push_back(name);
       }
       lib.sequences.push_back(std::move(s));

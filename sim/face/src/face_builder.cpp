@@ -59,7 +59,8 @@ bool cast(const std::vector<Support>& supports, const Vec3& p, const Vec3& dir, 
       if (u < -1e-9 || hit < tmin || hit > tmax || std::abs(hit) >= best) continue;
       // ray_triangle returns −1 for a miss; a true hit at t = −1 m is out of range anyway.
       best = std::abs(hit);
-      out = {s.layer, t[0], t[1], t[2], std::max(0.0, 1 - u - v), std::max(0.0, u), std::max(0.0, v)};
+      out = {s.layer,         t[0], t[1], t[2], std::max(0.0, 1 - u - v), std::max(0.0, u),
+             std::max(0.0, v)};
     }
   return best < std::numeric_limits<double>::infinity();
 }
@@ -102,7 +103,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     for (int v : l.vertices)
       if (v < 0 || v >= nbase)
         throw InputError(spec.dir + "/landmarks.yaml: landmark '" + l.name + "': vertex " +
-                         std::to_string(v) + " is outside the skin's 0.." + std::to_string(nbase - 1));
+                         std::to_string(v) + " is outside the skin's 0.." +
+                         std::to_string(nbase - 1));
     m.landmark_names.push_back(l.name);
     m.landmark_vertices.push_back(l.vertices);
     m.landmark_offset.push_back(l.offset);
@@ -115,7 +117,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
 
   // Skull: the skin pushed inward by the soft-tissue depth; same topology.
   m.skull = base;
-  for (int i = 0; i < nbase; ++i) m.skull.v.set(i, base.v.get(i) - spec.tissue_depth * base_n.get(i));
+  for (int i = 0; i < nbase; ++i)
+    m.skull.v.set(i, base.v.get(i) - spec.tissue_depth * base_n.get(i));
   m.axes = mandible_axes(L("fdp_2_13"), L("fdp_2_14"), L("fdp_11_4"), L("fdp_7_1"), L("fdp_2_10"));
   // Mandible: skull below the plane through the condyles and the stomion.
   const Vec3 stomion = 0.5 * (L("fdp_2_2") + L("fdp_2_3"));
@@ -146,7 +149,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
 
   // Muscles, deepest first, each resting on the skull and on the layers already built.
   std::vector<MuscleSpec> order = spec.muscles;
-  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.layer < b.layer; });
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.layer < b.layer; });
   std::vector<Support> supports{{Layer::kSkull, &m.skull.v, m.skull.tris}};
   std::vector<std::vector<Tri>> tops;  // top triangles of each built muscle
   auto resolve = [&](const PointRef& r) -> Vec3 { return L(r.landmark) + r.offset; };
@@ -174,7 +178,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
         Vec3 o = (1 - f) * resolve(ms.origin[0]) + f * resolve(ms.origin[1]);
         Vec3 i = (1 - f) * resolve(ms.insertion[0]) + f * resolve(ms.insertion[1]);
         std::vector<SurfacePoint> line;
-        for (int j = 0; j <= segs; ++j) line.push_back(project(o + (i - o) * (j / double(segs)), ms.layer));
+        for (int j = 0; j <= segs; ++j)
+          line.push_back(project(o + (i - o) * (j / double(segs)), ms.layer));
         mu.lines.push_back(line);
       }
     } else {
@@ -200,7 +205,9 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     for (std::size_t k = 0; k < spec.commanded.size(); ++k)
       if (spec.commanded[k] == ms.name) slot = static_cast<int>(k);
     m.command_slot.push_back(slot);
-    m.is_oculi.push_back(ms.name == "orbicularis_oculi_l" ? 0 : ms.name == "orbicularis_oculi_r" ? 1 : 2);
+    m.is_oculi.push_back(ms.name == "orbicularis_oculi_l"   ? 0
+                         : ms.name == "orbicularis_oculi_r" ? 1
+                                                            : 2);
     m.muscles.push_back(std::move(mu));
   }
   m.muscle_w.assign(m.muscle_rest.size(), 1.0);
@@ -211,7 +218,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
   // (outward hits allowed: fitted muscles may poke out), else the skull, else the nearest
   // skull vertex. The anchor is carried in the support triangle's frame.
   std::vector<Support> muscle_tops;
-  for (std::size_t k = 0; k < m.muscles.size(); ++k) muscle_tops.push_back({Layer::kMuscle, &m.muscle_rest, tops[k]});
+  for (std::size_t k = 0; k < m.muscles.size(); ++k)
+    muscle_tops.push_back({Layer::kMuscle, &m.muscle_rest, tops[k]});
   std::vector<Support> skull_only{supports[0]};
   std::vector<char> on_jaw(nbase, 0);
   for (int v : m.mandible_vertices) on_jaw[v] = 1;
@@ -233,13 +241,15 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     }
     if (!hit && !cast(skull_only, p, -n, -0.5 * reach, 3 * reach, sp))
       sp = vertex_point(Layer::kSkull, m.skull.tris, nearest_vertex(m.skull.v, p));
-    const Mat3 F = sp.layer == Layer::kSkull ? sp.frame(m.skull.v)
-                                              : sp.smooth_frame(m.muscle_rest, m.muscle_rest_normals);
+    const Mat3 F = sp.layer == Layer::kSkull
+                       ? sp.frame(m.skull.v)
+                       : sp.smooth_frame(m.muscle_rest, m.muscle_rest_normals);
     const Points& src = sp.layer == Layer::kSkull ? m.skull.v : m.muscle_rest;
     m.anchor_local.set(i, F.transpose() * (p - sp.position(src)));
     m.anchor_support.push_back(sp);
     m.anchors.add(i, spec.skin.anchor);
-    if (sp.layer == Layer::kMuscle || on_jaw[sp.i0] || on_jaw[sp.i1] || on_jaw[sp.i2]) seeds.push_back(i);
+    if (sp.layer == Layer::kMuscle || on_jaw[sp.i0] || on_jaw[sp.i1] || on_jaw[sp.i2])
+      seeds.push_back(i);
   }
   // Influence map (L2604–L2611): 1 on vertices bound to muscles or the jaw, easing to 0
   // over `influence_falloff` of edge-geodesic distance.
@@ -256,9 +266,11 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
   for (std::size_t t = 0; t < m.skin_area.size(); ++t) {
     const int a = m.skin_area.a[t];
     const SurfacePoint& sp = m.anchor_support[a];
-    const Vec3 n = sp.layer == Layer::kSkull ? sp.normal(m.skull.v)
-                                             : Vec3(sp.smooth_frame(m.muscle_rest, m.muscle_rest_normals).col(2));
-    const Vec3 cr = (m.skin.v.get(m.skin_area.b[t]) - m.skin.v.get(a)).cross(m.skin.v.get(m.skin_area.c[t]) - m.skin.v.get(a));
+    const Vec3 n = sp.layer == Layer::kSkull
+                       ? sp.normal(m.skull.v)
+                       : Vec3(sp.smooth_frame(m.muscle_rest, m.muscle_rest_normals).col(2));
+    const Vec3 cr = (m.skin.v.get(m.skin_area.b[t]) - m.skin.v.get(a))
+                        .cross(m.skin.v.get(m.skin_area.c[t]) - m.skin.v.get(a));
     m.skin_area_sign.push_back(cr.dot(n) < 0 ? -1.0 : 1.0);
   }
   m.skin_volume = make_volume(m.skin.v, m.skin.tris, m.axes.yaw_point, spec.skin.volume);
@@ -301,7 +313,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
         // The opening is highest mid-eye and closes to nothing at the corners; scaling the
         // angle by sin(π·s) makes the margins meet along their length instead of crossing
         // near the corners.
-        const double along = std::clamp((m.skin.v.get(i) - co).dot(ci - co) / (ci - co).squaredNorm(), 0.0, 1.0);
+        const double along =
+            std::clamp((m.skin.v.get(i) - co).dot(ci - co) / (ci - co).squaredNorm(), 0.0, 1.0);
         m.lid_profile.push_back(std::sin(std::numbers::pi * along));
       }
   }
@@ -311,16 +324,9 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
 FaceData make_face_data(const FaceModel& m) {
   FaceData d;
   const std::size_t ns = m.skin.v.size();
-  d.skin_x = m.skin.v;
-  d.skin_prev = m.skin.v;
-  d.skin_p = m.skin.v;
-  d.skin_start = m.skin.v;
-  d.skull = m.skull.v;
-  d.muscles = m.muscle_rest;
-  d.muscle_normals = m.muscle_rest_normals;
+  reset_face_data(m, d);
   d.anchor_targets.resize(ns);
   d.anchor_normals.resize(ns);
-  d.lid_targets = m.lid_rest;
   d.grad.resize(std::max(ns, m.muscle_rest.size()));
   std::size_t max_line = 0, max_grid = 0;
   for (const Muscle& mu : m.muscles) {
@@ -329,7 +335,6 @@ FaceData make_face_data(const FaceModel& m) {
   }
   d.scratch = make_muscle_scratch(max_line, max_grid);
   d.contraction.assign(m.muscles.size(), 0.0);
-  d.lower_teeth = m.lower_teeth;
   d.hit_particle.assign(ns, 0);
   d.hit_target.resize(ns);
   return d;

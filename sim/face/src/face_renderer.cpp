@@ -16,7 +16,9 @@ struct Canvas {
   std::vector<double> depth;
   Image img;
   Canvas(int width, int height)
-      : w(width), h(height), depth(static_cast<std::size_t>(width) * height, -std::numeric_limits<double>::infinity()),
+      : w(width),
+        h(height),
+        depth(static_cast<std::size_t>(width) * height, -std::numeric_limits<double>::infinity()),
         img(width, height, 0) {
     for (int y = 0; y < h; ++y)  // soft vertical background gradient
       for (int x = 0; x < w; ++x)
@@ -49,17 +51,24 @@ void triangle(Canvas& c, const Camera& cam, const Vec3 p[3], const Vec3 n[3], co
     s[k] = cam.project(p[k]);
     I[k] = shade(cam.R * n[k]);
   }
-  const double area = (s[1].x() - s[0].x()) * (s[2].y() - s[0].y()) - (s[2].x() - s[0].x()) * (s[1].y() - s[0].y());
+  const double area =
+      (s[1].x() - s[0].x()) * (s[2].y() - s[0].y()) - (s[2].x() - s[0].x()) * (s[1].y() - s[0].y());
   if (std::abs(area) < 1e-12) return;
-  const int x0 = std::max(0, static_cast<int>(std::floor(std::min({s[0].x(), s[1].x(), s[2].x()}))));
-  const int x1 = std::min(c.w - 1, static_cast<int>(std::ceil(std::max({s[0].x(), s[1].x(), s[2].x()}))));
-  const int y0 = std::max(0, static_cast<int>(std::floor(std::min({s[0].y(), s[1].y(), s[2].y()}))));
-  const int y1 = std::min(c.h - 1, static_cast<int>(std::ceil(std::max({s[0].y(), s[1].y(), s[2].y()}))));
+  const int x0 =
+      std::max(0, static_cast<int>(std::floor(std::min({s[0].x(), s[1].x(), s[2].x()}))));
+  const int x1 =
+      std::min(c.w - 1, static_cast<int>(std::ceil(std::max({s[0].x(), s[1].x(), s[2].x()}))));
+  const int y0 =
+      std::max(0, static_cast<int>(std::floor(std::min({s[0].y(), s[1].y(), s[2].y()}))));
+  const int y1 =
+      std::min(c.h - 1, static_cast<int>(std::ceil(std::max({s[0].y(), s[1].y(), s[2].y()}))));
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x) {
       const double px = x + 0.5, py = y + 0.5;
-      const double b0 = ((s[1].x() - px) * (s[2].y() - py) - (s[2].x() - px) * (s[1].y() - py)) / area;
-      const double b1 = ((s[2].x() - px) * (s[0].y() - py) - (s[0].x() - px) * (s[2].y() - py)) / area;
+      const double b0 =
+          ((s[1].x() - px) * (s[2].y() - py) - (s[2].x() - px) * (s[1].y() - py)) / area;
+      const double b1 =
+          ((s[2].x() - px) * (s[0].y() - py) - (s[0].x() - px) * (s[2].y() - py)) / area;
       const double b2 = 1 - b0 - b1;
       if (b0 < 0 || b1 < 0 || b2 < 0) continue;
       const double z = b0 * s[0].z() + b1 * s[1].z() + b2 * s[2].z();
@@ -72,7 +81,8 @@ void triangle(Canvas& c, const Camera& cam, const Vec3 p[3], const Vec3 n[3], co
     }
 }
 
-void mesh(Canvas& c, const Camera& cam, const Points& v, const std::vector<Tri>& tris, const Rgb& col) {
+void mesh(Canvas& c, const Camera& cam, const Points& v, const std::vector<Tri>& tris,
+          const Rgb& col) {
   Points n;
   vertex_normals(v, tris, n);
   for (const Tri& t : tris) {
@@ -82,8 +92,8 @@ void mesh(Canvas& c, const Camera& cam, const Points& v, const std::vector<Tri>&
   }
 }
 
-void flat_tris(Canvas& c, const Camera& cam, const std::vector<Vec3>& pts, const std::vector<Tri>& tris,
-               const Rgb& col) {
+void flat_tris(Canvas& c, const Camera& cam, const std::vector<Vec3>& pts,
+               const std::vector<Tri>& tris, const Rgb& col) {
   for (const Tri& t : tris) {
     const Vec3 p[3] = {pts[t[0]], pts[t[1]], pts[t[2]]};
     Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
@@ -103,7 +113,9 @@ void eyeball(Canvas& c, const Camera& cam, const Vec3& centre, double r) {
     for (int j = 0; j < nm; ++j) {
       const Vec3 a = at(i, j), b = at(i + 1, j), d = at(i + 1, j + 1), e = at(i, j + 1);
       const double gaze = ((a + d) / 2).normalized().z();
-      const Rgb col = gaze > 0.97 ? Rgb{20, 15, 10} : gaze > 0.88 ? Rgb{95, 70, 45} : Rgb{235, 232, 225};
+      const Rgb col = gaze > 0.97   ? Rgb{20, 15, 10}
+                      : gaze > 0.88 ? Rgb{95, 70, 45}
+                                    : Rgb{235, 232, 225};
       for (const auto& q : {std::array<Vec3, 3>{a, b, d}, std::array<Vec3, 3>{a, d, e}}) {
         const Vec3 p[3] = {centre + r * q[0], centre + r * q[1], centre + r * q[2]};
         triangle(c, cam, p, q.data(), col);
@@ -126,7 +138,8 @@ Image render_face(const FaceModel& m, const FaceData& d, const RenderOptions& o)
   // Fit the rotated rest bounding box into the picture with a small margin.
   double ex = 0, ey = 0;
   for (int k = 0; k < 8; ++k) {
-    const Vec3 corner((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(), (k & 4) ? hi.z() : lo.z());
+    const Vec3 corner((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(),
+                      (k & 4) ? hi.z() : lo.z());
     const Vec3 v = cam.R * (corner - cam.centre);
     ex = std::max(ex, std::abs(v.x()));
     ey = std::max(ey, std::abs(v.y()));
@@ -144,7 +157,8 @@ Image render_face(const FaceModel& m, const FaceData& d, const RenderOptions& o)
     flat_tris(c, cam, m.upper_teeth.points, m.upper_teeth.tris, {245, 242, 230});
     flat_tris(c, cam, d.lower_teeth.points, d.lower_teeth.tris, {245, 242, 230});
     // Mouth cavity: a dark disc behind the teeth.
-    const Vec3 centre = 0.5 * (m.upper_teeth.box_min + m.upper_teeth.box_max) - Vec3(0, 0.004, 0.01);
+    const Vec3 centre =
+        0.5 * (m.upper_teeth.box_min + m.upper_teeth.box_max) - Vec3(0, 0.004, 0.01);
     std::vector<Vec3> disc{centre};
     std::vector<Tri> fan;
     for (int k = 0; k < 24; ++k) {

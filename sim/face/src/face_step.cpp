@@ -51,7 +51,7 @@ bool contact(const ConvexHull& h, const Vec3& p, const Vec3& dir, Vec3& target) 
 
 void detect_teeth(const FaceModel& m, FaceData& d, const Points& p) {
   d.hits = 0;
-  const Vec3 vertical = m.axes.yaw_axis;              // sagittal ∩ coronal plane
+  const Vec3 vertical = m.axes.yaw_axis;                     // sagittal ∩ coronal plane
   const Vec3 forward = d.jaw.rotate(m.axes.protrusion_dir);  // the jaw's protrusion direction
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3 q = p.get(i);
@@ -107,8 +107,10 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
     p.z[i] = x.z[i] + keep * (x.z[i] - d.skin_prev.z[i]);
   }
   // (14) teeth contacts, (15) skin iterations with the contacts included.
-  if (in.teeth_collision) detect_teeth(m, d, p);
-  else d.hits = 0;
+  if (in.teeth_collision)
+    detect_teeth(m, d, p);
+  else
+    d.hits = 0;
   for (int it = 0; it < m.spec.skin_iterations; ++it) {
     project(m.skin_stretch, p, m.skin_w);
     project(m.skin_bending, p, m.skin_w);

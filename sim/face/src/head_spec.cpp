@@ -26,13 +26,14 @@ Doc load(const std::string& file) {
 
 [[noreturn]] void fail(const Doc& d, const YAML::Node& n, const std::string& key,
                        const std::string& expected) {
-  std::string found = !n.IsDefined() ? "nothing"
-                      : n.IsScalar() ? "'" + n.Scalar() + "'"
+  std::string found = !n.IsDefined()   ? "nothing"
+                      : n.IsScalar()   ? "'" + n.Scalar() + "'"
                       : n.IsSequence() ? "a list"
-                      : n.IsMap() ? "a mapping"
-                                  : "null";
+                      : n.IsMap()      ? "a mapping"
+                                       : "null";
   int line = n.IsDefined() ? n.Mark().line + 1 : 0, col = n.IsDefined() ? n.Mark().column + 1 : 0;
-  throw InputError(d.file, line, col, "key '" + key + "': expected " + expected + ", found " + found);
+  throw InputError(d.file, line, col,
+                   "key '" + key + "': expected " + expected + ", found " + found);
 }
 
 YAML::Node need(const Doc& d, const YAML::Node& parent, const std::string& key) {
@@ -116,10 +117,14 @@ HeadSpec load_head_spec(const std::string& dir) {
   YAML::Node skin = need(face, f, "skin");
   h.skin_file = dir + "/" + as<std::string>(face, need(face, skin, "file"), "file", "a file name");
   std::string units = as<std::string>(face, need(face, skin, "units"), "units", "m, cm or mm");
-  if (units == "m") h.skin_scale = 1;
-  else if (units == "cm") h.skin_scale = 0.01;
-  else if (units == "mm") h.skin_scale = 0.001;
-  else fail(face, skin["units"], "units", "m, cm or mm");
+  if (units == "m")
+    h.skin_scale = 1;
+  else if (units == "cm")
+    h.skin_scale = 0.01;
+  else if (units == "mm")
+    h.skin_scale = 0.001;
+  else
+    fail(face, skin["units"], "units", "m, cm or mm");
   if (f["openings"].IsDefined()) {
     if (!f["openings"].IsMap()) fail(face, f["openings"], "openings", "a mapping name -> vertices");
     for (const auto& kv : f["openings"])
@@ -145,7 +150,8 @@ HeadSpec load_head_spec(const std::string& dir) {
   YAML::Node solver = f["solver"];
   if (solver.IsDefined()) {
     h.skin_iterations = static_cast<int>(num(face, solver, "skin_iterations", 2));
-    if (h.skin_iterations < 1) fail(face, solver["skin_iterations"], "skin_iterations", "an integer ≥ 1");
+    if (h.skin_iterations < 1)
+      fail(face, solver["skin_iterations"], "skin_iterations", "an integer ≥ 1");
     h.influence_falloff = num(face, solver, "influence_falloff_mm", 25) * 1e-3;
     YAML::Node sk = solver["skin"];
     if (sk.IsDefined()) {
@@ -161,17 +167,21 @@ HeadSpec load_head_spec(const std::string& dir) {
   }
   if (f["variants"].IsDefined()) h.variants = int_list(face, f["variants"], "variants");
 
-  Doc lm = load(dir + "/" + as<std::string>(face, need(face, f, "landmarks"), "landmarks", "a file name"));
+  Doc lm = load(dir + "/" +
+                as<std::string>(face, need(face, f, "landmarks"), "landmarks", "a file name"));
   YAML::Node lms = need(lm, lm.root, "landmarks");
-  if (!lms.IsMap()) fail(lm, lms, "landmarks", "a mapping name -> { vertex | vertices, offset_mm }");
+  if (!lms.IsMap())
+    fail(lm, lms, "landmarks", "a mapping name -> { vertex | vertices, offset_mm }");
   std::set<std::string> names;
   for (const auto& kv : lms) {
     LandmarkSpec s;
     s.name = kv.first.as<std::string>();
     const YAML::Node& n = kv.second;
     if (!n.IsMap()) fail(lm, n, s.name, "{ vertex: N } or { vertices: [..] }");
-    if (n["vertex"].IsDefined()) s.vertices = {as<int>(lm, n["vertex"], "vertex", "a vertex index")};
-    else s.vertices = int_list(lm, need(lm, n, "vertices"), "vertices");
+    if (n["vertex"].IsDefined())
+      s.vertices = {as<int>(lm, n["vertex"], "vertex", "a vertex index")};
+    else
+      s.vertices = int_list(lm, need(lm, n, "vertices"), "vertices");
     if (n["offset_mm"].IsDefined()) s.offset = vec_mm(lm, n["offset_mm"], "offset_mm");
     names.insert(s.name);
     h.landmarks.push_back(s);
@@ -184,16 +194,20 @@ HeadSpec load_head_spec(const std::string& dir) {
     }
   }
 
-  Doc mu = load(dir + "/" + as<std::string>(face, need(face, f, "muscles"), "muscles", "a file name"));
+  Doc mu =
+      load(dir + "/" + as<std::string>(face, need(face, f, "muscles"), "muscles", "a file name"));
   YAML::Node ms = need(mu, mu.root, "muscles");
   if (!ms.IsSequence()) fail(mu, ms, "muscles", "a list of muscles");
   for (const auto& n : ms) {
     MuscleSpec m;
     m.name = as<std::string>(mu, need(mu, n, "name"), "name", "a muscle name");
     std::string kind = as<std::string>(mu, need(mu, n, "kind"), "kind", "sheet or sphincter");
-    if (kind == "sheet") m.kind = MuscleKind::kSheet;
-    else if (kind == "sphincter") m.kind = MuscleKind::kSphincter;
-    else fail(mu, n["kind"], "kind", "sheet or sphincter");
+    if (kind == "sheet")
+      m.kind = MuscleKind::kSheet;
+    else if (kind == "sphincter")
+      m.kind = MuscleKind::kSphincter;
+    else
+      fail(mu, n["kind"], "kind", "sheet or sphincter");
     m.layer = as<int>(mu, need(mu, n, "layer"), "layer", "an integer layer (0 = deepest)");
     YAML::Node g = need(mu, n, "grid");
     if (!g.IsSequence() || g.size() != 2) fail(mu, g, "grid", "[rows, cols]");
@@ -224,7 +238,8 @@ HeadSpec load_head_spec(const std::string& dir) {
   for (const auto& m : h.muscles) mapped.insert(m.name);
   for (const auto& n : h.commanded)
     if (!mapped.count(n))
-      throw InputError(mu.file + ": muscle '" + n + "' is commanded by head.yaml but has no geometry");
+      throw InputError(mu.file + ": muscle '" + n +
+                       "' is commanded by head.yaml but has no geometry");
   for (const auto& n : h.passive)
     if (!mapped.count(n))
       throw InputError(mu.file + ": passive muscle '" + n + "' from head.yaml has no geometry");

@@ -26,7 +26,8 @@ Image downsample(const Image& img, int f) {
       for (int c = 0; c < 3; ++c) {
         int sum = 0;
         for (int dy = 0; dy < f; ++dy)
-          for (int dx = 0; dx < f; ++dx) sum += img.rgb[3 * ((y * f + dy) * img.width + x * f + dx) + c];
+          for (int dx = 0; dx < f; ++dx)
+            sum += img.rgb[3 * ((y * f + dy) * img.width + x * f + dx) + c];
         out.rgb[3 * (y * out.width + x) + c] = static_cast<std::uint8_t>(sum / (f * f));
       }
   return out;

@@ -22,8 +22,8 @@ RigidTransform compose(const RigidTransform& outer, const RigidTransform& inner)
   return {outer.R * inner.R, outer.R * inner.t + outer.t};
 }
 
-MandibleAxes mandible_axes(const Vec3& l213, const Vec3& l214, const Vec3& l114,
-                           const Vec3& l71, const Vec3& l210) {
+MandibleAxes mandible_axes(const Vec3& l213, const Vec3& l214, const Vec3& l114, const Vec3& l71,
+                           const Vec3& l210) {
   MandibleAxes a;
   a.pitch_point = l214;
   a.pitch_axis = (l213 - l214).normalized();

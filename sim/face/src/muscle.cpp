@@ -8,8 +8,12 @@
 namespace facectl::face {
 namespace {
 
-int bot(const Muscle& m, int r, int c) { return m.first + r * m.cols + (c % m.cols); }
-int top(const Muscle& m, int r, int c) { return m.first + m.rows * m.cols + r * m.cols + (c % m.cols); }
+int bot(const Muscle& m, int r, int c) {
+  return m.first + r * m.cols + (c % m.cols);
+}
+int top(const Muscle& m, int r, int c) {
+  return m.first + m.rows * m.cols + r * m.cols + (c % m.cols);
+}
 
 // Adds quad (a,b,c,d) as two triangles oriented away from `inside`.
 void add_quad(std::vector<Tri>& out, const Points& p, int a, int b, int c, int d,
@@ -25,7 +29,8 @@ void add_quad(std::vector<Tri>& out, const Points& p, int a, int b, int c, int d
 Vec3 cell_centre(const Muscle& m, const Points& p, int r, int c) {
   Vec3 s = Vec3::Zero();
   for (int dr = 0; dr < 2; ++dr)
-    for (int dc = 0; dc < 2; ++dc) s += p.get(bot(m, r + dr, c + dc)) + p.get(top(m, r + dr, c + dc));
+    for (int dc = 0; dc < 2; ++dc)
+      s += p.get(bot(m, r + dr, c + dc)) + p.get(top(m, r + dr, c + dc));
   return s / 8;
 }
 
@@ -38,13 +43,17 @@ void build_muscle_constraints(Muscle& m, const Points& p, const MuscleStiffness&
   for (int r = 0; r + 1 < R; ++r)
     for (int c = 0; c < ccells; ++c) {
       Vec3 in = cell_centre(m, p, r, c);
-      add_quad(m.surface, p, bot(m, r, c), bot(m, r, c + 1), bot(m, r + 1, c + 1), bot(m, r + 1, c), in);
-      add_quad(m.surface, p, top(m, r, c), top(m, r, c + 1), top(m, r + 1, c + 1), top(m, r + 1, c), in);
-      if (r == 0) add_quad(m.surface, p, bot(m, 0, c), bot(m, 0, c + 1), top(m, 0, c + 1), top(m, 0, c), in);
+      add_quad(m.surface, p, bot(m, r, c), bot(m, r, c + 1), bot(m, r + 1, c + 1), bot(m, r + 1, c),
+               in);
+      add_quad(m.surface, p, top(m, r, c), top(m, r, c + 1), top(m, r + 1, c + 1), top(m, r + 1, c),
+               in);
+      if (r == 0)
+        add_quad(m.surface, p, bot(m, 0, c), bot(m, 0, c + 1), top(m, 0, c + 1), top(m, 0, c), in);
       if (r == R - 2)
         add_quad(m.surface, p, bot(m, R - 1, c), bot(m, R - 1, c + 1), top(m, R - 1, c + 1),
                  top(m, R - 1, c), in);
-      if (!ring && c == 0) add_quad(m.surface, p, bot(m, r, 0), bot(m, r + 1, 0), top(m, r + 1, 0), top(m, r, 0), in);
+      if (!ring && c == 0)
+        add_quad(m.surface, p, bot(m, r, 0), bot(m, r + 1, 0), top(m, r + 1, 0), top(m, r, 0), in);
       if (!ring && c == C - 2)
         add_quad(m.surface, p, bot(m, r, C - 1), bot(m, r + 1, C - 1), top(m, r + 1, C - 1),
                  top(m, r, C - 1), in);
@@ -92,8 +101,8 @@ void build_muscle_constraints(Muscle& m, const Points& p, const MuscleStiffness&
   for (int i = 0; i < R * C; ++i) m.attach.add(m.first + i, k.position);
 }
 
-void sample_polyline(const Points& poly, std::vector<double>& arc, bool closed, int n,
-                     double scale, Points& out, int off) {
+void sample_polyline(const Points& poly, std::vector<double>& arc, bool closed, int n, double scale,
+                     Points& out, int off) {
   const int np = static_cast<int>(poly.size());
   if (closed) {
     // Rings are sampled at fixed positions along their polyline (material sampling):

@@ -58,13 +58,14 @@ TriMesh read_obj(const std::string& path, double scale) {
                     scale);
     } else if (tag == "f") {
       if (tok.size() < 3)
-        throw InputError(path, line, 0,
-                         "expected a face with at least 3 vertices, found " +
-                             std::to_string(tok.size()));
+        throw InputError(
+            path, line, 0,
+            "expected a face with at least 3 vertices, found " + std::to_string(tok.size()));
       int n = static_cast<int>(m.v.size());
       std::vector<int> idx;
       for (const auto& t : tok) idx.push_back(parse_index(t, n, path, line));
-      for (std::size_t k = 1; k + 1 < idx.size(); ++k) m.tris.push_back({idx[0], idx[k], idx[k + 1]});
+      for (std::size_t k = 1; k + 1 < idx.size(); ++k)
+        m.tris.push_back({idx[0], idx[k], idx[k + 1]});
     }
     // vt, vn, mtllib, usemtl, o, g, s: not needed by the model.
   }
@@ -80,7 +81,8 @@ void write_obj(const std::string& path, const TriMesh& mesh, double scale) {
   for (std::size_t i = 0; i < mesh.v.size(); ++i)
     out << "v " << mesh.v.x[i] / scale << ' ' << mesh.v.y[i] / scale << ' ' << mesh.v.z[i] / scale
         << '\n';
-  for (const Tri& t : mesh.tris) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+  for (const Tri& t : mesh.tris)
+    out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
   if (!out) throw InputError(path + ": write failed");
 }
 

@@ -133,10 +133,12 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
     const int jaw = static_cast<int>(kPerMuscle) * M;
     for (int k = 0; k < 9; ++k) cols[p].push_back(jaw + k);
     for (std::size_t k = 0; k < r.pairs.size(); ++k)
-      if (moves[r.pairs[k][0]][p] && moves[r.pairs[k][1]][p]) cols[p].push_back(jaw + 9 + static_cast<int>(k));
+      if (moves[r.pairs[k][0]][p] && moves[r.pairs[k][1]][p])
+        cols[p].push_back(jaw + 9 + static_cast<int>(k));
   }
 
-  auto collect = [&](const std::vector<ReducedSample>& set, Eigen::MatrixXd& X, Eigen::MatrixXd& Y) {
+  auto collect = [&](const std::vector<ReducedSample>& set, Eigen::MatrixXd& X,
+                     Eigen::MatrixXd& Y) {
     X.resize(static_cast<Eigen::Index>(set.size()), F);
     Y.resize(static_cast<Eigen::Index>(set.size()), 3 * P);
     for (std::size_t k = 0; k < set.size(); ++k) {
@@ -166,14 +168,16 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
     report->train_samples = o.train_samples;
     report->test_samples = o.test_samples;
     const Eigen::MatrixXd Etr = Xtr * r.coefficients.transpose() - Ytr;
-    report->train_rms_mm = 1e3 * std::sqrt(Etr.squaredNorm() / (static_cast<double>(Etr.rows() * Etr.cols()) / 3.0));
+    report->train_rms_mm =
+        1e3 * std::sqrt(Etr.squaredNorm() / (static_cast<double>(Etr.rows() * Etr.cols()) / 3.0));
     if (o.test_samples > 0) {
       collect(random_samples(full.spec, o, o.test_samples, o.seed + 7919), Xte, Yte);
       const Eigen::MatrixXd E = Xte * r.coefficients.transpose() - Yte;
       double sum = 0, worst = 0;
       for (Eigen::Index k = 0; k < E.rows(); ++k)
         for (Eigen::Index j = 0; j + 2 < E.cols(); j += 3) {
-          const double e2 = E(k, j) * E(k, j) + E(k, j + 1) * E(k, j + 1) + E(k, j + 2) * E(k, j + 2);
+          const double e2 =
+              E(k, j) * E(k, j) + E(k, j + 1) * E(k, j + 1) + E(k, j + 2) * E(k, j + 2);
           sum += e2;
           worst = std::max(worst, std::sqrt(e2));
         }
@@ -198,7 +202,8 @@ void save_reduced_model(const ReducedFaceModel& m, const std::string& path) {
   out << "\ncoefficients " << m.coefficients.rows() << ' ' << m.coefficients.cols() << '\n';
   out.precision(17);
   for (Eigen::Index i = 0; i < m.coefficients.rows(); ++i) {
-    for (Eigen::Index j = 0; j < m.coefficients.cols(); ++j) out << (j ? " " : "") << m.coefficients(i, j);
+    for (Eigen::Index j = 0; j < m.coefficients.cols(); ++j)
+      out << (j ? " " : "") << m.coefficients(i, j);
     out << '\n';
   }
   if (!out) throw InputError(path + ": write failed");
@@ -211,7 +216,8 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
   std::string line;
   int ln = 0;
   auto next = [&](const char* what) {
-    if (!std::getline(in, line)) throw InputError(path, ln + 1, 0, std::string("expected ") + what + ", found end of file");
+    if (!std::getline(in, line))
+      throw InputError(path, ln + 1, 0, std::string("expected ") + what + ", found end of file");
     ++ln;
     return std::istringstream(line);
   };
@@ -226,26 +232,36 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
     auto s = next(key);
     std::string tag;
     std::size_t n = 0;
-    if (!(s >> tag >> n) || tag != key) throw InputError(path, ln, 0, std::string("expected '") + key + " N ...', found '" + line + "'");
+    if (!(s >> tag >> n) || tag != key)
+      throw InputError(path, ln, 0,
+                       std::string("expected '") + key + " N ...', found '" + line + "'");
     out.resize(n);
     for (auto& x : out)
-      if (!(s >> x)) throw InputError(path, ln, 0, std::string("expected ") + std::to_string(n) + " names after '" + key + "'");
+      if (!(s >> x))
+        throw InputError(
+            path, ln, 0,
+            std::string("expected ") + std::to_string(n) + " names after '" + key + "'");
   };
   names("muscles", m.muscles);
   if (m.muscles != head.commanded)
-    throw InputError(path, ln, 0, "expected the muscles of head.yaml in order, found a different list (rebuild with `facectl face reduce`)");
+    throw InputError(path, ln, 0,
+                     "expected the muscles of head.yaml in order, found a different list (rebuild "
+                     "with `facectl face reduce`)");
   names("control_points", m.control_points);
   {
     auto ps = next("'pairs N i j ...'");
     std::string tag;
     std::size_t n = 0;
-    if (!(ps >> tag >> n) || tag != "pairs") throw InputError(path, ln, 0, "expected 'pairs N i j ...', found '" + line + "'");
+    if (!(ps >> tag >> n) || tag != "pairs")
+      throw InputError(path, ln, 0, "expected 'pairs N i j ...', found '" + line + "'");
     m.pairs.resize(n);
     for (auto& pr : m.pairs)
-      if (!(ps >> pr[0] >> pr[1]) || pr[0] < 0 || pr[1] < 0 || pr[0] >= static_cast<int>(m.muscles.size()) ||
+      if (!(ps >> pr[0] >> pr[1]) || pr[0] < 0 || pr[1] < 0 ||
+          pr[0] >= static_cast<int>(m.muscles.size()) ||
           pr[1] >= static_cast<int>(m.muscles.size()))
-        throw InputError(path, ln, 0, "expected " + std::to_string(n) + " muscle index pairs in 0.." +
-                                          std::to_string(m.muscles.size() - 1));
+        throw InputError(path, ln, 0,
+                         "expected " + std::to_string(n) + " muscle index pairs in 0.." +
+                             std::to_string(m.muscles.size() - 1));
   }
   auto s = next("'coefficients ROWS COLS'");
   std::string tag;
@@ -253,14 +269,18 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
   if (!(s >> tag >> rows >> cols) || tag != "coefficients" ||
       rows != 3 * static_cast<Eigen::Index>(m.control_points.size()) ||
       cols != feature_count(m.muscles.size(), m.pairs.size()))
-    throw InputError(path, ln, 0, "expected 'coefficients " + std::to_string(3 * m.control_points.size()) + " " +
-                                      std::to_string(feature_count(m.muscles.size(), m.pairs.size())) + "', found '" + line + "'");
+    throw InputError(path, ln, 0,
+                     "expected 'coefficients " + std::to_string(3 * m.control_points.size()) + " " +
+                         std::to_string(feature_count(m.muscles.size(), m.pairs.size())) +
+                         "', found '" + line + "'");
   m.coefficients.resize(rows, cols);
   for (Eigen::Index i = 0; i < rows; ++i) {
     auto r = next("a row of coefficients");
     for (Eigen::Index j = 0; j < cols; ++j)
       if (!(r >> m.coefficients(i, j)))
-        throw InputError(path, ln, 0, "expected " + std::to_string(cols) + " numbers, found fewer or a non-number");
+        throw InputError(
+            path, ln, 0,
+            "expected " + std::to_string(cols) + " numbers, found fewer or a non-number");
   }
   return m;
 }

@@ -65,9 +65,9 @@ void project(const DistanceConstraints& s, Points& p, const std::vector<double>&
 void project(const BendingConstraints& s, Points& p, const std::vector<double>& w);
 void project(const AreaConstraints& s, Points& p, const std::vector<double>& w);
 // Signed variant: the area counts negative when the triangle's normal opposes
-// ref_normal[a] (a per-vertex outward direction) differently than at rest, so an inverted triangle is driven back
-// through zero instead of being content at |area| = rest.
-// rest_sign[i] is the sign the constraint had at rest (+1 or −1).
+// ref_normal[a] (a per-vertex outward direction) differently than at rest, so an inverted triangle
+// is driven back through zero instead of being content at |area| = rest. rest_sign[i] is the sign
+// the constraint had at rest (+1 or −1).
 void project_signed(const AreaConstraints& s, Points& p, const std::vector<double>& w,
                     const Points& ref_normal, const std::vector<double>& rest_sign);
 // `grad` is caller-owned scratch with at least p.size() entries (no allocation here).

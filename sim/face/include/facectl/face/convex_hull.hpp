@@ -11,11 +11,11 @@
 namespace facectl::face {
 
 struct ConvexHull {
-  std::vector<Vec3> points;              // the input points
-  std::vector<Tri> tris;                 // hull faces, outward winding (for rendering)
-  std::vector<Vec3> normals;             // one per distinct face plane, unit, outward
-  std::vector<double> offsets;           // plane: normals[i]·x = offsets[i]
-  Vec3 box_min, box_max;                 // axis-aligned bounding box
+  std::vector<Vec3> points;     // the input points
+  std::vector<Tri> tris;        // hull faces, outward winding (for rendering)
+  std::vector<Vec3> normals;    // one per distinct face plane, unit, outward
+  std::vector<double> offsets;  // plane: normals[i]·x = offsets[i]
+  Vec3 box_min, box_max;        // axis-aligned bounding box
 };
 
 ConvexHull convex_hull(const std::vector<Vec3>& points);

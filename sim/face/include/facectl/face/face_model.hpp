@@ -17,7 +17,7 @@
 namespace facectl::face {
 
 struct EyelidSide {
-  Vec3 axis_point, axis;       // through the eyeball centre, parallel to the eye corners
+  Vec3 axis_point, axis;                // through the eyeball centre, parallel to the eye corners
   double upper_max = 0, lower_max = 0;  // rotation (rad) at closure 1, signed
 };
 
@@ -46,10 +46,10 @@ struct FaceModel {
   EyelidSide eyes[2];  // 0 = left (+x), 1 = right
 
   // Bones.
-  TriMesh skull;                          // rest pose
-  std::vector<int> mandible_vertices;     // skull vertices that move with the jaw
+  TriMesh skull;                       // rest pose
+  std::vector<int> mandible_vertices;  // skull vertices that move with the jaw
   MandibleAxes axes;
-  ConvexHull upper_teeth, lower_teeth;    // rest pose
+  ConvexHull upper_teeth, lower_teeth;  // rest pose
 
   // Muscles, deepest layer first. command_slot[m] is the index into the commanded
   // contractions, or −1 for a passive muscle.
@@ -76,7 +76,7 @@ struct FaceInput {
 };
 
 struct FaceData {
-  Points skin_x, skin_prev, skin_p, skin_start;
+  Points skin_x, skin_prev, skin_p;
   Points skull;
   Points muscles, muscle_normals;
   Points anchor_targets, anchor_normals, lid_targets;

@@ -49,8 +49,8 @@ struct HeadSpec {
   std::vector<std::string> control_points;      // landmark names the reduced model reports
   double tissue_depth = 0.008;
   // Teeth: dental arches centred behind the stomion.
-  double teeth_half_width = 0.022, teeth_depth = 0.03, teeth_height = 0.009,
-         teeth_inset = 0.008, teeth_gap = 0.0005;
+  double teeth_half_width = 0.022, teeth_depth = 0.03, teeth_height = 0.009, teeth_inset = 0.008,
+         teeth_gap = 0.0005;
   // Eyelids (§5.5.1).
   double eyelid_band = 0.005, eyeball_radius = 0.012, upper_lid_share = 0.8,
          oculi_lid_coupling = 0.3;

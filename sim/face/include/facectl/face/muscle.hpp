@@ -73,7 +73,7 @@ void build_muscle_constraints(Muscle& m, const Points& pos, const MuscleStiffnes
 void muscle_targets(const Muscle& m, double c, const Points& skull, const Points& muscles,
                     MuscleScratch& s);
 // Samples `n` points at arc length i·step·scale (open) or evenly around a closed loop.
-void sample_polyline(const Points& poly, std::vector<double>& arc, bool closed, int n,
-                     double scale, Points& out, int out_offset);
+void sample_polyline(const Points& poly, std::vector<double>& arc, bool closed, int n, double scale,
+                     Points& out, int out_offset);
 
 }  // namespace facectl::face

@@ -12,9 +12,9 @@
 namespace facectl::face {
 
 struct RbfMorph {
-  Eigen::MatrixX3d centers;     // n × 3 source landmarks
-  Eigen::VectorXd radius;       // n
-  Eigen::MatrixX3d weights;     // n × 3 multiquadric coefficients h_i
+  Eigen::MatrixX3d centers;            // n × 3 source landmarks
+  Eigen::VectorXd radius;              // n
+  Eigen::MatrixX3d weights;            // n × 3 multiquadric coefficients h_i
   Eigen::Matrix<double, 4, 3> linear;  // rows: x, y, z, 1
 
   Vec3 apply(const Vec3& p) const;

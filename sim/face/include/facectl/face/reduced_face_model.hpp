@@ -1,8 +1,8 @@
 // The reduced face for the 1 kHz loop: a fitted response surface from (muscle
 // contractions, mandible pitch/yaw/protrusion) to the steady-state displacement of named
 // skin control points, fitted by least squares to full-model steady states.
-// Features: c_i, c_i², c_i³, c_i·pitch, c_i·yaw, c_i·protrusion for every muscle; pitch, yaw, protrusion,
-// their squares and pairwise products; and c_i·c_j for muscle pairs that both move some
+// Features: c_i, c_i², c_i³, c_i·pitch, c_i·yaw, c_i·protrusion for every muscle; pitch, yaw,
+// protrusion, their squares and pairwise products; and c_i·c_j for muscle pairs that both move some
 // control point. Each control point is fitted only on the muscles that move it (by a
 // single-muscle probe of the full model), so unrelated muscles cannot add noise.
 // evaluate() is one small dense matrix-vector product over preallocated storage: no
@@ -42,7 +42,7 @@ void evaluate(const ReducedFaceModel& m, ReducedFaceWorkspace& w,
 
 struct ReduceOptions {
   int train_samples = 400, test_samples = 100;
-  int frames = 250;             // full-model frames to steady state per sample
+  int frames = 250;  // full-model frames to steady state per sample
   double active_probability = 0.35, max_contraction = 0.7;
   unsigned seed = 1;
   double ridge = 1e-6;

@@ -16,9 +16,7 @@ struct SurfacePoint {
   int i0 = 0, i1 = 0, i2 = 0;
   double t0 = 1, t1 = 0, t2 = 0;  // t0 + t1 + t2 = 1, each ≥ 0
 
-  Vec3 position(const Points& p) const {
-    return t0 * p.get(i0) + t1 * p.get(i1) + t2 * p.get(i2);
-  }
+  Vec3 position(const Points& p) const { return t0 * p.get(i0) + t1 * p.get(i1) + t2 * p.get(i2); }
   // Unit normal of the underlying triangle (counter-clockwise winding).
   Vec3 normal(const Points& p) const {
     Vec3 n = (p.get(i1) - p.get(i0)).cross(p.get(i2) - p.get(i0));
@@ -36,25 +34,23 @@ struct SurfacePoint {
     e -= n * n.dot(e);
     const double en = e.norm();
     if (en == 0) return frame(p);
-    e /= en;
-    Mat3 F;
-    F.col(0) = e;
-    F.col(1) = n.cross(e);
-    F.col(2) = n;
-    return F;
+    return columns(e / en, n);
   }
   // Orthonormal frame (edge, normal × edge, normal) of the triangle, as columns.
   Mat3 frame(const Points& p) const {
-    Vec3 e = p.get(i1) - p.get(i0);
-    Vec3 n = e.cross(p.get(i2) - p.get(i0));
-    double en = e.norm(), nn = n.norm();
+    const Vec3 e = p.get(i1) - p.get(i0);
+    const Vec3 n = e.cross(p.get(i2) - p.get(i0));
+    const double en = e.norm(), nn = n.norm();
     if (en == 0 || nn == 0) return Mat3::Identity();
-    e /= en;
-    n /= nn;
+    return columns(e / en, n / nn);
+  }
+
+ private:
+  static Mat3 columns(const Vec3& unit_e, const Vec3& unit_n) {
     Mat3 F;
-    F.col(0) = e;
-    F.col(1) = n.cross(e);
-    F.col(2) = n;
+    F.col(0) = unit_e;
+    F.col(1) = unit_n.cross(unit_e);
+    F.col(2) = unit_n;
     return F;
   }
 };
