@@ -37,8 +37,14 @@ TEST(ReducedFaceModel, FitTracksTheFullModelOnHeldOutInputs) {
   EXPECT_GT(rep.test_rms_mm, 0.0);
 }
 
+const ReducedFaceModel& shipped() {
+  static const ReducedFaceModel r =
+      load_reduced_model(FACECTL_DEFAULT_HEAD_DIR "/reduced_face.txt", testing::default_spec());
+  return r;
+}
+
 TEST(ReducedFaceModel, ZeroInputGivesZeroDisplacement) {
-  const ReducedFaceModel& r = small_fit();
+  const ReducedFaceModel& r = shipped();
   ReducedFaceWorkspace w = make_reduced_workspace(r);
   std::vector<double> c(r.muscles.size(), 0.0), out(3 * r.control_points.size(), 1.0);
   evaluate(r, w, c, 0, 0, 0, out);
@@ -46,7 +52,7 @@ TEST(ReducedFaceModel, ZeroInputGivesZeroDisplacement) {
 }
 
 TEST(ReducedFaceModel, EvaluateDoesNotAllocate) {
-  const ReducedFaceModel& r = small_fit();
+  const ReducedFaceModel& r = shipped();
   ReducedFaceWorkspace w = make_reduced_workspace(r);
   std::vector<double> c(r.muscles.size(), 0.3), out(3 * r.control_points.size());
   testing::arm_alloc_counter();
@@ -55,7 +61,7 @@ TEST(ReducedFaceModel, EvaluateDoesNotAllocate) {
 }
 
 TEST(ReducedFaceModel, SaveLoadRoundTripIsExact) {
-  const ReducedFaceModel& r = small_fit();
+  const ReducedFaceModel& r = shipped();
   const std::string p = (std::filesystem::temp_directory_path() / "facectl_reduced.txt").string();
   save_reduced_model(r, p);
   const ReducedFaceModel back = load_reduced_model(p, testing::default_spec());
@@ -65,9 +71,30 @@ TEST(ReducedFaceModel, SaveLoadRoundTripIsExact) {
 }
 
 TEST(ReducedFaceModel, ShippedCacheMatchesTheHead) {
-  const ReducedFaceModel r =
-      load_reduced_model(FACECTL_DEFAULT_HEAD_DIR "/reduced_face.txt", testing::default_spec());
-  EXPECT_EQ(r.control_points, testing::default_spec().control_points);
+  EXPECT_EQ(shipped().control_points, testing::default_spec().control_points);
+  EXPECT_EQ(shipped().muscles, testing::default_spec().commanded);
+}
+
+TEST(ReducedFaceModel, ShippedCacheTracksTheFullModelOnAnExpression) {
+  // Joy is not in the training set; its lip corners must agree within 1.5 mm.
+  const FaceModel& m = testing::default_model();
+  FaceData d = make_face_data(m);
+  ReducedSample s;
+  s.contractions.assign(m.spec.commanded.size(), 0.0);
+  for (std::size_t k = 0; k < s.contractions.size(); ++k)
+    if (m.spec.commanded[k].rfind("zygomaticus_major", 0) == 0) s.contractions[k] = 0.5;
+  s.jaw.pitch_rad = 0.05;
+  std::vector<int> cps;
+  for (const auto& n : shipped().control_points) cps.push_back(m.landmark_index(n));
+  const std::vector<double> full = full_model_response(m, d, cps, s, 250);
+  ReducedFaceWorkspace w = make_reduced_workspace(shipped());
+  std::vector<double> out(full.size());
+  evaluate(shipped(), w, s.contractions, s.jaw.pitch_rad, 0, 0, out);
+  for (std::size_t p = 0; p < cps.size(); ++p) {
+    const Vec3 e(out[3 * p] - full[3 * p], out[3 * p + 1] - full[3 * p + 1],
+                 out[3 * p + 2] - full[3 * p + 2]);
+    EXPECT_LT(e.norm(), 1.5e-3) << shipped().control_points[p];
+  }
 }
 
 TEST(ReducedFaceModel, MalformedFileNamesFileAndLine) {
