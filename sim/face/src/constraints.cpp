@@ -119,7 +119,11 @@ void project_area(const AreaConstraints& s, Points& p, const std::vector<double>
     if (len < 1e-14) continue;
     const Vec3 nh = cr / len;
     double sign = 1;
-    if constexpr (kSigned) sign = cr.dot(ref->get(ia)) * (*rest_sign)[i] < 0 ? -1 : 1;
+    if constexpr (kSigned) {
+      // rest_sign 0: the reference was too oblique at rest to tell the sides apart.
+      const double rs = (*rest_sign)[i];
+      sign = rs != 0 && cr.dot(ref->get(ia)) * rs < -0.5 * len ? -1 : 1;
+    }
     const Vec3 g2 = 0.5 * e2.cross(nh), g3 = 0.5 * nh.cross(e1), g1 = -(g2 + g3);
     const double denom =
         w[ia] * g1.squaredNorm() + w[ib] * g2.squaredNorm() + w[ic] * g3.squaredNorm();

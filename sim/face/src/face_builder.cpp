@@ -271,7 +271,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
                        : Vec3(sp.smooth_frame(m.muscle_rest, m.muscle_rest_normals).col(2));
     const Vec3 cr = (m.skin.v.get(m.skin_area.b[t]) - m.skin.v.get(a))
                         .cross(m.skin.v.get(m.skin_area.c[t]) - m.skin.v.get(a));
-    m.skin_area_sign.push_back(cr.dot(n) < 0 ? -1.0 : 1.0);
+    const double cosine = cr.dot(n) / std::max(cr.norm(), 1e-30);
+    m.skin_area_sign.push_back(std::abs(cosine) < 0.5 ? 0.0 : (cosine < 0 ? -1.0 : 1.0));
   }
   m.skin_volume = make_volume(m.skin.v, m.skin.tris, m.axes.yaw_point, spec.skin.volume);
 
