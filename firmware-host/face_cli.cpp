@@ -174,9 +174,9 @@ void register_face_commands(CLI::App& app) {
       save_reduced_model(red, path);
       std::printf(
           "wrote %s: %zu control points, %d features; train RMS %.3f mm; held-out (%d) RMS %.3f "
-          "mm, max %.3f mm; %.1f s\n",
+          "mm, median %.3f mm, 95th percentile %.3f mm, max %.3f mm; %.1f s\n",
           path.c_str(), red.control_points.size(), red.feature_count(), r.train_rms_mm,
-          r.test_samples, r.test_rms_mm, r.test_max_mm, secs);
+          r.test_samples, r.test_rms_mm, r.test_median_mm, r.test_p95_mm, r.test_max_mm, secs);
       if (max_rms_mm > 0 && r.test_rms_mm > max_rms_mm) {
         std::fprintf(stderr, "facectl face reduce: held-out RMS %.3f mm exceeds %.3f mm\n",
                      r.test_rms_mm, max_rms_mm);

@@ -1,6 +1,7 @@
 #include "facectl/face/reduced_face_model.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -174,13 +175,18 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
       collect(random_samples(full.spec, o, o.test_samples, o.seed + 7919), Xte, Yte);
       const Eigen::MatrixXd E = Xte * r.coefficients.transpose() - Yte;
       double sum = 0, worst = 0;
+      std::vector<double> errors;
       for (Eigen::Index k = 0; k < E.rows(); ++k)
         for (Eigen::Index j = 0; j + 2 < E.cols(); j += 3) {
           const double e2 =
               E(k, j) * E(k, j) + E(k, j + 1) * E(k, j + 1) + E(k, j + 2) * E(k, j + 2);
           sum += e2;
           worst = std::max(worst, std::sqrt(e2));
+          errors.push_back(std::sqrt(e2));
         }
+      std::sort(errors.begin(), errors.end());
+      report->test_median_mm = 1e3 * errors[errors.size() / 2];
+      report->test_p95_mm = 1e3 * errors[errors.size() * 95 / 100];
       // RMS and max of the per-point 3D error over all held-out samples and points.
       report->test_rms_mm = 1e3 * std::sqrt(sum / static_cast<double>(E.rows() * (E.cols() / 3)));
       report->test_max_mm = 1e3 * worst;

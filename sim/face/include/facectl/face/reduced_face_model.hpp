@@ -51,6 +51,7 @@ struct ReduceOptions {
 
 struct ReduceReport {
   double train_rms_mm = 0, test_rms_mm = 0, test_max_mm = 0;
+  double test_median_mm = 0, test_p95_mm = 0;  // of the per-point 3-D errors
   int train_samples = 0, test_samples = 0;
 };
 
