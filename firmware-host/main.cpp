@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "firmware-host/bench_command.hpp"
+#include "firmware-host/face_cli.hpp"
 #include "firmware-host/plot_command.hpp"
 #include "firmware-host/run_command.hpp"
 
@@ -49,8 +50,12 @@ int run_cli(int argc, char** argv) {
   plot_cmd->add_option("--out", plot.out_dir, "Output folder (default: .)");
   plot_cmd->callback([&] { exit_code = facectl::plot_command(plot); });
 
+  register_face_commands(app);
+
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a command's own exit code (0, 1 or 2)
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;  // usage errors are exit code 2

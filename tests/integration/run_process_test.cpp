@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -97,9 +98,28 @@ const std::string& last_state(const Telemetry& t) {
   return t.rows.back()[t.column("state")];
 }
 
+// The shipped configuration, except that a virtual machine's stall (tens of
+// ms have been seen on shared CI VMs) does not end the run in an overrun
+// storm: these tests rehearse other behaviour. The overrun-storm rehearsal
+// itself uses the shipped configuration.
+const std::string& stall_tolerant_config() {
+  static const std::string path = [] {
+    const std::string dir = std::string(FACECTL_SOURCE_DIR) + "/config/";
+    std::string p = "/tmp/facectl-test-stall-tolerant-" + std::to_string(getpid()) + ".yaml";
+    std::ofstream(p) << "runtime:\n  overrun_fault_count: 100000\n"
+                     << "head: " << dir << "heads/default/head.yaml\n"
+                     << "rig: " << dir << "rigs/default.yaml\n"
+                     << "expressions: " << dir << "expressions/library.yaml\n"
+                     << "show: " << dir << "shows/demo.yaml\n";
+    return p;
+  }();
+  return path;
+}
+
 TEST(RunProcess, SigtermEasesToRestDisablesAndKeepsEveryTick) {
   facectl::testing::TempFile csv("", ".csv");
-  Child c = spawn({"run", "--duration", "30", "--record", csv.path(), "--quiet"});
+  Child c = spawn({"run", "--config", stall_tolerant_config(), "--duration", "30", "--record",
+                   csv.path(), "--quiet"});
   std::this_thread::sleep_for(std::chrono::milliseconds(2500));
   kill(c.pid, SIGTERM);
   const auto t0 = std::chrono::steady_clock::now();
@@ -129,8 +149,14 @@ class RunFaults : public ::testing::TestWithParam<Rehearsal> {};
 
 TEST_P(RunFaults, EndsInItsSafeStateWithExitCode3AndEveryTickRecorded) {
   facectl::testing::TempFile csv("", ".csv");
-  Child c = spawn({"run", "--duration", "20", "--record", csv.path(), "--quiet", "--inject",
-                   GetParam().inject});
+  const bool storm = GetParam().inject.rfind("overrun_storm", 0) == 0;
+  std::vector<std::string> args = {"run",      "--duration", "20",       "--record",
+                                   csv.path(), "--quiet",    "--inject", GetParam().inject};
+  if (!storm) {
+    args.insert(args.begin() + 1, stall_tolerant_config());
+    args.insert(args.begin() + 1, "--config");
+  }
+  Child c = spawn(args);
   const int code = wait_exit(c);
   const std::string out = read_file(c.out_path);
   EXPECT_EQ(code, 3) << out;
@@ -177,8 +203,8 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(RunProcess, InputLossEasesToNeutralAndTheRunCompletes) {
   facectl::testing::TempFile csv("", ".csv");
-  Child c = spawn(
-      {"run", "--duration", "3", "--record", csv.path(), "--quiet", "--inject", "input_loss@1.5"});
+  Child c = spawn({"run", "--config", stall_tolerant_config(), "--duration", "3", "--record",
+                   csv.path(), "--quiet", "--inject", "input_loss@1.5"});
   const int code = wait_exit(c);
   const std::string out = read_file(c.out_path);
   EXPECT_EQ(code, 0) << out;
@@ -191,16 +217,25 @@ TEST(RunProcess, InputLossEasesToNeutralAndTheRunCompletes) {
     if (r[stale] == "1" && std::stod(r[time]) > 1.5) went_stale = true;
   }
   EXPECT_TRUE(went_stale);
-  // Documented: neutral (all face signals of the default head are 0 there)
-  // within input_timeout + neutral_ease + 0.5 s = 1.2 s of the loss.
+  // Documented: neutral (every face signal of the default head is 0 there)
+  // within neutral_ease (0.5 s) + 0.5 s of the input going stale, which the
+  // watchdog flags input_timeout (0.2 s) after the last command.
+  double stale_at = 1e9;
+  for (const auto& r : t.rows) {
+    if (r[stale] == "1" && std::stod(r[time]) > 1.5)
+      stale_at = std::min(stale_at, std::stod(r[time]));
+  }
+  long checked = 0;
   for (const auto& r : t.rows) {
     const double when = std::stod(r[time]);
-    if (when < 1.5 + 1.2 || r[t.column("state")] != "RUNNING") continue;
+    if (when < stale_at + 1.0 || r[t.column("state")] != "RUNNING") continue;
+    ++checked;
     for (std::size_t col = 0; col < t.header.size(); ++col) {
       if (t.header[col].rfind("face.", 0) != 0) continue;
       ASSERT_NEAR(std::stod(r[col]), 0.0, 1e-3) << t.header[col] << " at " << when << " s";
     }
   }
+  EXPECT_GT(checked, 100) << "the run ended before neutral could be checked";
   EXPECT_EQ(last_state(t), "IDLE");
 }
 

@@ -56,7 +56,10 @@ TEST_F(ShowTest, BlendsAnExpressionByWeightAndAppliesOverrides) {
       "    - { t: 0, expression: joy, weight: 0.5, muscles: { zygomaticus_major_r: 0.1 } }\n");
   std::array<double, kMaxFaceSignals> out{};
   s.evaluate(0.0, out);
-  EXPECT_NEAR(out[*cfg_.head.layout.find("zygomaticus_major_l")], 0.4, 1e-12);
+  const std::size_t zyg = *cfg_.head.layout.find("zygomaticus_major_l");
+  const FacePose& joy = *cfg_.expressions.find("joy");
+  ASSERT_TRUE(joy.set[zyg]);
+  EXPECT_NEAR(out[zyg], 0.5 * joy.values[zyg], 1e-12);  // neutral is 0
   EXPECT_NEAR(out[*cfg_.head.layout.find("zygomaticus_major_r")], 0.1, 1e-12);
 }
 

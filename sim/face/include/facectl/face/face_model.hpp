@@ -1,0 +1,110 @@
+// The full layered face (thesis ch. 5) in the MuJoCo style: a FaceModel that is const
+// after build_face_model(), and a FaceData workspace holding every mutable array, sized
+// once by make_face_data(), so step_face() never allocates.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "facectl/face/constraints.hpp"
+#include "facectl/face/convex_hull.hpp"
+#include "facectl/face/head_spec.hpp"
+#include "facectl/face/mandible.hpp"
+#include "facectl/face/muscle.hpp"
+
+namespace facectl::face {
+
+struct EyelidSide {
+  Vec3 axis_point, axis;                // through the eyeball centre, parallel to the eye corners
+  double upper_max = 0, lower_max = 0;  // rotation (rad) at closure 1, signed
+};
+
+struct FaceModel {
+  HeadSpec spec;
+
+  // Skin: the mesh (positions in m), inverse masses and its constraint network.
+  TriMesh skin;
+  std::vector<double> skin_w;
+  DistanceConstraints skin_stretch;
+  BendingConstraints skin_bending;
+  AreaConstraints skin_area;
+  std::vector<double> skin_area_sign;  // orientation vs. the anchor normal at rest
+  VolumeConstraint skin_volume;
+  // Skin anchors (L2593): vertex i follows the point carried in the frame of its support.
+  std::vector<SurfacePoint> anchor_support;
+  Points anchor_local;  // rest offset of vertex i in the support triangle's frame
+  Attachments anchors;
+  std::vector<double> influence;  // per skin vertex, in [0, 1]
+
+  // Eyelids: particles driven rigidly by infinite-mass drivers.
+  Attachments lids;
+  std::vector<std::uint8_t> lid_side, lid_upper;
+  std::vector<double> lid_profile;  // sin(π·s), s = position between the eye corners
+  Points lid_rest;
+  EyelidSide eyes[2];  // 0 = left (+x), 1 = right
+
+  // Bones.
+  TriMesh skull;                       // rest pose
+  std::vector<int> mandible_vertices;  // skull vertices that move with the jaw
+  MandibleAxes axes;
+  ConvexHull upper_teeth, lower_teeth;  // rest pose
+
+  // Muscles, deepest layer first. command_slot[m] is the index into the commanded
+  // contractions, or −1 for a passive muscle.
+  std::vector<Muscle> muscles;
+  std::vector<int> command_slot;
+  std::vector<std::uint8_t> is_oculi;  // orbicularis oculi ring of side 0/1, else 2
+  Points muscle_rest;
+  std::vector<double> muscle_w;
+  std::vector<Tri> muscle_tops;  // top surfaces of all muscles (skin supports)
+  Points muscle_rest_normals;    // vertex normals of muscle_tops at rest
+
+  // Landmarks on the skin: mean of vertices plus a fixed rest offset.
+  std::vector<std::string> landmark_names;
+  std::vector<std::vector<int>> landmark_vertices;
+  std::vector<Vec3> landmark_offset;
+  int landmark_index(const std::string& name) const;  // −1 if absent
+};
+
+struct FaceInput {
+  std::span<const double> contractions;  // head.yaml order, each in [0, 1]
+  MandiblePose jaw;
+  double eyelid_closure[2] = {0, 0};  // left, right in [0, 1]
+  bool teeth_collision = true;
+};
+
+struct FaceData {
+  Points skin_x, skin_prev, skin_p;
+  Points skull;
+  Points muscles, muscle_normals;
+  Points anchor_targets, anchor_normals, lid_targets;
+  Points grad;  // volume-gradient scratch, sized to the largest particle array
+  MuscleScratch scratch;
+  std::vector<double> contraction;  // per model muscle
+  ConvexHull lower_teeth;
+  RigidTransform jaw;
+  std::vector<int> hit_particle;  // teeth contacts of this frame
+  Points hit_target;
+  int hits = 0;
+  long frame = 0;
+};
+
+// Builds the head from its spec. `skin_vertices` > base count selects a refined variant.
+FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices = 0);
+FaceData make_face_data(const FaceModel& m);
+void reset_face_data(const FaceModel& m, FaceData& d);
+// One frame of §5.7: bones, muscles deepest first (one PBD iteration each), skin anchors,
+// teeth contacts, skin iterations, influence weights. Allocation-free.
+void step_face(const FaceModel& m, FaceData& d, const FaceInput& in);
+
+// Steps (2)–(11) alone: bones, eyelid drivers and muscles (the thesis's "skull +
+// muscles" row of Table 5.1). step_face() calls this first.
+void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in);
+
+Vec3 landmark_position(const FaceModel& m, const Points& skin, int landmark);
+// Counts skin vertices strictly inside a teeth hull (by `margin` m).
+int skin_vertices_inside_teeth(const FaceModel& m, const FaceData& d, double margin);
+
+}  // namespace facectl::face

@@ -1,0 +1,24 @@
+// An 8-bit RGB image and PNG output (libpng), for headless pictures of the face.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace facectl::face {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;  // row-major, 3 bytes per pixel
+  Image() = default;
+  Image(int w, int h, std::uint8_t grey) : width(w), height(h), rgb(3u * w * h, grey) {}
+};
+
+// Throws InputError when the file cannot be written.
+void write_png(const std::string& path, const Image& img);
+// Averages factor × factor blocks (anti-aliasing after supersampled rendering).
+Image downsample(const Image& img, int factor);
+// Tiles images of equal size into a grid with `cols` columns and a `gap`-pixel border.
+Image contact_sheet(const std::vector<Image>& tiles, int cols, int gap);
+
+}  // namespace facectl::face

@@ -1,0 +1,76 @@
+// The reduced face for the 1 kHz loop: a fitted response surface from (muscle
+// contractions, mandible pitch/yaw/protrusion) to the steady-state displacement of named
+// skin control points, fitted by least squares to full-model steady states.
+// Features: c_i, c_i², c_i³, c_i·pitch, c_i·yaw, c_i·protrusion for every muscle; pitch, yaw,
+// protrusion, their squares and pairwise products; and c_i·c_j for muscle pairs that both move some
+// control point. Each control point is fitted only on the muscles that move it (by a
+// single-muscle probe of the full model), so unrelated muscles cannot add noise.
+// evaluate() is one small dense matrix-vector product over preallocated storage: no
+// allocation, no branches on the data.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "facectl/face/face_model.hpp"
+
+namespace facectl::face {
+
+struct ReducedFaceModel {
+  std::vector<std::string> muscles;         // head.yaml order
+  std::vector<std::string> control_points;  // landmark names
+  std::vector<std::array<int, 2>> pairs;    // muscle pairs with an interaction feature
+  // (3·control_points) × features, row-major so each output is one contiguous dot product.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> coefficients;
+  int feature_count() const { return static_cast<int>(coefficients.cols()); }
+};
+
+struct ReducedFaceWorkspace {
+  Eigen::VectorXd features;
+};
+
+ReducedFaceWorkspace make_reduced_workspace(const ReducedFaceModel& m);
+
+// contractions: size = muscles.size(); out_displacements_m: 3·control_points.size(),
+// (x, y, z) per point in metres, head frame.
+void evaluate(const ReducedFaceModel& m, ReducedFaceWorkspace& w,
+              std::span<const double> contractions, double pitch_rad, double yaw_rad,
+              double protrusion_m, std::span<double> out_displacements_m);
+
+struct ReduceOptions {
+  int train_samples = 400, test_samples = 100;
+  int frames = 250;  // full-model frames to steady state per sample
+  double active_probability = 0.35, max_contraction = 0.7;
+  unsigned seed = 1;
+  double ridge = 1e-6;
+  double relevance_mm = 0.3;  // a muscle moves a point if c = 0.6 alone moves it this much
+};
+
+struct ReduceReport {
+  double train_rms_mm = 0, test_rms_mm = 0, test_max_mm = 0;
+  double test_median_mm = 0, test_p95_mm = 0;  // of the per-point 3-D errors
+  int train_samples = 0, test_samples = 0;
+};
+
+// One random input of the distribution used for fitting and testing.
+struct ReducedSample {
+  std::vector<double> contractions;
+  MandiblePose jaw;
+};
+std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOptions& o, int n,
+                                          unsigned seed);
+// Full-model steady-state control-point displacements (m) for one sample.
+std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
+                                        const std::vector<int>& control_landmarks,
+                                        const ReducedSample& s, int frames);
+
+ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions& o,
+                                     ReduceReport* report);
+void save_reduced_model(const ReducedFaceModel& m, const std::string& path);
+// Throws InputError naming file:line when the file is malformed or does not match `head`.
+ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& head);
+
+}  // namespace facectl::face

@@ -1,0 +1,150 @@
+// One frame of the layered solver, in the order of thesis §5.7 (L2764–L2788).
+#include <algorithm>
+#include <cmath>
+
+#include "facectl/face/face_model.hpp"
+
+namespace facectl::face {
+namespace {
+
+void update_bones(const FaceModel& m, FaceData& d, const MandiblePose& pose) {
+  d.jaw = mandible_transform(m.axes, pose);
+  for (int v : m.mandible_vertices) d.skull.set(v, d.jaw.apply(m.skull.v.get(v)));
+  transform_hull(m.lower_teeth, d.jaw, d.lower_teeth);
+}
+
+void update_lid_drivers(const FaceModel& m, FaceData& d, const double closure[2]) {
+  for (std::size_t j = 0; j < m.lids.size(); ++j) {
+    const EyelidSide& e = m.eyes[m.lid_side[j]];
+    const double a =
+        closure[m.lid_side[j]] * m.lid_profile[j] * (m.lid_upper[j] ? e.upper_max : e.lower_max);
+    d.lid_targets.set(j, rotation_about_line(e.axis_point, e.axis, a).apply(m.lid_rest.get(j)));
+  }
+}
+
+void step_muscles(const FaceModel& m, FaceData& d) {
+  for (std::size_t k = 0; k < m.muscles.size(); ++k)
+    step_muscle(m.muscles[k], d.contraction[k], d.skull, d.muscles, m.muscle_w, d.scratch, d.grad);
+}
+
+void update_anchor_targets(const FaceModel& m, FaceData& d) {
+  vertex_normals(d.muscles, m.muscle_tops, d.muscle_normals);
+  const std::size_t n = m.anchor_support.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const SurfacePoint& sp = m.anchor_support[i];
+    const bool bone = sp.layer == Layer::kSkull;
+    const Points& src = bone ? d.skull : d.muscles;
+    const Mat3 F = bone ? sp.frame(src) : sp.smooth_frame(src, d.muscle_normals);
+    d.anchor_targets.set(i, sp.position(src) + F * m.anchor_local.get(i));
+    d.anchor_normals.set(i, F.col(2));  // the support's outward normal
+  }
+}
+
+// Contact response against one hull: a position constraint to where the ray from p
+// leaves the hull, along ±dir whichever is nearer.
+bool contact(const ConvexHull& h, const Vec3& p, const Vec3& dir, Vec3& target) {
+  if (!inside(h, p)) return false;
+  const double up = exit_distance(h, p, dir), down = exit_distance(h, p, -dir);
+  target = up <= down ? Vec3(p + up * dir) : Vec3(p - down * dir);
+  return true;
+}
+
+void detect_teeth(const FaceModel& m, FaceData& d, const Points& p) {
+  d.hits = 0;
+  const Vec3 vertical = m.axes.yaw_axis;                     // sagittal ∩ coronal plane
+  const Vec3 forward = d.jaw.rotate(m.axes.protrusion_dir);  // the jaw's protrusion direction
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3 q = p.get(i);
+    Vec3 t;
+    if (contact(m.upper_teeth, q, vertical, t) || contact(d.lower_teeth, q, forward, t)) {
+      d.hit_particle[d.hits] = static_cast<int>(i);
+      d.hit_target.set(d.hits, t);
+      ++d.hits;
+    }
+  }
+}
+
+void project_contacts(FaceData& d, Points& p) {
+  for (int j = 0; j < d.hits; ++j) p.set(d.hit_particle[j], d.hit_target.get(j));
+}
+
+}  // namespace
+
+void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in) {
+  // (2)–(7) inputs and rigid parts.
+  for (std::size_t k = 0; k < m.muscles.size(); ++k) {
+    const int slot = m.command_slot[k];
+    d.contraction[k] = slot >= 0 && static_cast<std::size_t>(slot) < in.contractions.size()
+                           ? std::clamp(in.contractions[slot], 0.0, 1.0)
+                           : 0.0;
+  }
+  double closure[2];
+  for (int s = 0; s < 2; ++s) {
+    // The palpebral part of the orbicularis oculi narrows the eye (AU 7).
+    double oculi = 0;
+    for (std::size_t k = 0; k < m.muscles.size(); ++k)
+      if (m.is_oculi[k] == s) oculi = d.contraction[k];
+    closure[s] = std::clamp(in.eyelid_closure[s] + m.spec.oculi_lid_coupling * oculi, 0.0, 1.0);
+  }
+  update_bones(m, d, in.jaw);
+  update_lid_drivers(m, d, closure);
+  // (8)–(11) muscles, deepest first.
+  step_muscles(m, d);
+}
+
+void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
+  step_skull_and_muscles(m, d, in);
+  // (12)–(13) skin anchors.
+  update_anchor_targets(m, d);
+  // Prediction with damping: v ← (1 − damping)·v, p = x + v·Δt (Δt cancels, see §2).
+  const double keep = 1 - m.spec.skin.damping;
+  Points& x = d.skin_x;
+  Points& p = d.skin_p;
+  const std::size_t ns = x.size();
+  for (std::size_t i = 0; i < ns; ++i) {
+    p.x[i] = x.x[i] + keep * (x.x[i] - d.skin_prev.x[i]);
+    p.y[i] = x.y[i] + keep * (x.y[i] - d.skin_prev.y[i]);
+    p.z[i] = x.z[i] + keep * (x.z[i] - d.skin_prev.z[i]);
+  }
+  // (14) teeth contacts, (15) skin iterations with the contacts included.
+  if (in.teeth_collision)
+    detect_teeth(m, d, p);
+  else
+    d.hits = 0;
+  for (int it = 0; it < m.spec.skin_iterations; ++it) {
+    project(m.skin_stretch, p, m.skin_w);
+    project(m.skin_bending, p, m.skin_w);
+    project_signed(m.skin_area, p, m.skin_w, d.anchor_normals, m.skin_area_sign);
+    project(m.skin_volume, p, m.skin_w, d.grad);
+    project(m.anchors, p, m.skin_w, d.anchor_targets);
+    project(m.lids, p, m.skin_w, d.lid_targets);
+    project_contacts(d, p);
+  }
+  // (16)–(17) influence weights; eyelid particles keep their drivers' motion.
+  for (std::size_t i = 0; i < ns; ++i) {
+    const double w = m.influence[i];
+    p.x[i] = x.x[i] + w * (p.x[i] - x.x[i]);
+    p.y[i] = x.y[i] + w * (p.y[i] - x.y[i]);
+    p.z[i] = x.z[i] + w * (p.z[i] - x.z[i]);
+  }
+  for (std::size_t j = 0; j < m.lids.size(); ++j) p.set(m.lids.particle[j], d.lid_targets.get(j));
+  // The weighting can move a contact back inside; re-detect so no vertex ends inside.
+  if (in.teeth_collision) {
+    detect_teeth(m, d, p);
+    project_contacts(d, p);
+  }
+  std::swap(d.skin_prev, d.skin_x);  // prev ← x
+  std::swap(d.skin_x, d.skin_p);     // x ← p
+  ++d.frame;
+}
+
+int skin_vertices_inside_teeth(const FaceModel& m, const FaceData& d, double margin) {
+  int n = 0;
+  for (std::size_t i = 0; i < d.skin_x.size(); ++i) {
+    const Vec3 q = d.skin_x.get(i);
+    n += inside(m.upper_teeth, q, -margin) || inside(d.lower_teeth, q, -margin);
+  }
+  return n;
+}
+
+}  // namespace facectl::face

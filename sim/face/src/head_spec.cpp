@@ -1,0 +1,249 @@
+#include "facectl/face/head_spec.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+
+#include "facectl/face/input_error.hpp"
+
+namespace facectl::face {
+namespace {
+
+struct Doc {
+  std::string file;
+  YAML::Node root;
+};
+
+Doc load(const std::string& file) {
+  try {
+    return {file, YAML::LoadFile(file)};
+  } catch (const YAML::BadFile&) {
+    throw InputError(file + ": cannot open file");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(file, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
+  }
+}
+
+[[noreturn]] void fail(const Doc& d, const YAML::Node& n, const std::string& key,
+                       const std::string& expected) {
+  std::string found = !n.IsDefined()   ? "nothing"
+                      : n.IsScalar()   ? "'" + n.Scalar() + "'"
+                      : n.IsSequence() ? "a list"
+                      : n.IsMap()      ? "a mapping"
+                                       : "null";
+  int line = n.IsDefined() ? n.Mark().line + 1 : 0, col = n.IsDefined() ? n.Mark().column + 1 : 0;
+  throw InputError(d.file, line, col,
+                   "key '" + key + "': expected " + expected + ", found " + found);
+}
+
+YAML::Node need(const Doc& d, const YAML::Node& parent, const std::string& key) {
+  YAML::Node n = parent[key];
+  if (!n.IsDefined()) {
+    int line = parent.Mark().line + 1, col = parent.Mark().column + 1;
+    throw InputError(d.file, line, col, "key '" + key + "': expected it here, found nothing");
+  }
+  return n;
+}
+
+template <class T>
+T as(const Doc& d, const YAML::Node& n, const std::string& key, const std::string& expected) {
+  try {
+    if (!n.IsScalar()) fail(d, n, key, expected);
+    return n.as<T>();
+  } catch (const YAML::Exception&) {
+    fail(d, n, key, expected);
+  }
+}
+
+double num(const Doc& d, const YAML::Node& parent, const std::string& key, double fallback) {
+  YAML::Node n = parent[key];
+  return n.IsDefined() ? as<double>(d, n, key, "a number") : fallback;
+}
+
+Vec3 vec_mm(const Doc& d, const YAML::Node& n, const std::string& key) {
+  if (!n.IsSequence() || n.size() != 3) fail(d, n, key, "a list of 3 numbers (mm)");
+  return Vec3(as<double>(d, n[0], key, "a number"), as<double>(d, n[1], key, "a number"),
+              as<double>(d, n[2], key, "a number")) *
+         1e-3;
+}
+
+std::vector<int> int_list(const Doc& d, const YAML::Node& n, const std::string& key) {
+  if (!n.IsSequence() || n.size() == 0) fail(d, n, key, "a non-empty list of vertex indices");
+  std::vector<int> out;
+  for (const auto& e : n) out.push_back(as<int>(d, e, key, "a vertex index"));
+  return out;
+}
+
+PointRef point_ref(const Doc& d, const YAML::Node& n, const std::string& key,
+                   const std::set<std::string>& names) {
+  if (!n.IsMap()) fail(d, n, key, "{ at: LANDMARK, offset_mm: [x, y, z] }");
+  PointRef p;
+  p.landmark = as<std::string>(d, need(d, n, "at"), "at", "a landmark name");
+  if (!names.count(p.landmark)) fail(d, n["at"], "at", "a landmark defined in landmarks.yaml");
+  if (n["offset_mm"].IsDefined()) p.offset = vec_mm(d, n["offset_mm"], "offset_mm");
+  return p;
+}
+
+std::vector<PointRef> refs(const Doc& d, const YAML::Node& n, const std::string& key,
+                           std::size_t min_count, const std::set<std::string>& names) {
+  if (!n.IsSequence() || n.size() < min_count)
+    fail(d, n, key, "a list of at least " + std::to_string(min_count) + " points");
+  std::vector<PointRef> out;
+  for (const auto& e : n) out.push_back(point_ref(d, e, key, names));
+  return out;
+}
+
+void read_muscle_stiffness(const Doc& d, const YAML::Node& n, MuscleStiffness& k) {
+  if (!n.IsDefined()) return;
+  k.up_latitudinal = num(d, n, "up_latitudinal", 0);
+  k.up_longitudinal = num(d, n, "up_longitudinal", 0);
+  k.low_latitudinal = num(d, n, "low_latitudinal", 0);
+  k.low_longitudinal = num(d, n, "low_longitudinal", 0);
+  k.connection = num(d, n, "connection", 0);
+  k.up_shear = num(d, n, "up_shear", 0);
+  k.low_shear = num(d, n, "low_shear", 0);
+  k.bend = num(d, n, "bend", 0);
+  k.volume = num(d, n, "volume", 0);
+  k.position = num(d, n, "position", 0);
+}
+
+}  // namespace
+
+HeadSpec load_head_spec(const std::string& dir) {
+  HeadSpec h;
+  h.dir = dir;
+  Doc face = load(dir + "/face.yaml");
+  YAML::Node f = need(face, face.root, "face");
+  YAML::Node skin = need(face, f, "skin");
+  h.skin_file = dir + "/" + as<std::string>(face, need(face, skin, "file"), "file", "a file name");
+  std::string units = as<std::string>(face, need(face, skin, "units"), "units", "m, cm or mm");
+  if (units == "m")
+    h.skin_scale = 1;
+  else if (units == "cm")
+    h.skin_scale = 0.01;
+  else if (units == "mm")
+    h.skin_scale = 0.001;
+  else
+    fail(face, skin["units"], "units", "m, cm or mm");
+  if (f["openings"].IsDefined()) {
+    if (!f["openings"].IsMap()) fail(face, f["openings"], "openings", "a mapping name -> vertices");
+    for (const auto& kv : f["openings"])
+      h.openings.push_back({kv.first.as<std::string>(), int_list(face, kv.second, "openings")});
+  }
+  YAML::Node skull = f["skull"];
+  if (skull.IsDefined()) h.tissue_depth = num(face, skull, "tissue_depth_mm", 8) * 1e-3;
+  YAML::Node teeth = f["teeth"];
+  if (teeth.IsDefined()) {
+    h.teeth_half_width = num(face, teeth, "half_width_mm", 22) * 1e-3;
+    h.teeth_depth = num(face, teeth, "arch_depth_mm", 30) * 1e-3;
+    h.teeth_height = num(face, teeth, "height_mm", 9) * 1e-3;
+    h.teeth_inset = num(face, teeth, "inset_mm", 8) * 1e-3;
+    h.teeth_gap = num(face, teeth, "gap_mm", 0.5) * 1e-3;
+  }
+  YAML::Node lids = f["eyelids"];
+  if (lids.IsDefined()) {
+    h.eyelid_band = num(face, lids, "band_mm", 5) * 1e-3;
+    h.eyeball_radius = num(face, lids, "eyeball_radius_mm", 12) * 1e-3;
+    h.upper_lid_share = num(face, lids, "upper_share", 0.8);
+    h.oculi_lid_coupling = num(face, lids, "orbicularis_oculi_coupling", 0.3);
+  }
+  YAML::Node solver = f["solver"];
+  if (solver.IsDefined()) {
+    h.skin_iterations = static_cast<int>(num(face, solver, "skin_iterations", 2));
+    if (h.skin_iterations < 1)
+      fail(face, solver["skin_iterations"], "skin_iterations", "an integer ≥ 1");
+    h.influence_falloff = num(face, solver, "influence_falloff_mm", 25) * 1e-3;
+    YAML::Node sk = solver["skin"];
+    if (sk.IsDefined()) {
+      h.skin.stretch = num(face, sk, "stretch", h.skin.stretch);
+      h.skin.bending = num(face, sk, "bending", h.skin.bending);
+      h.skin.area = num(face, sk, "area", h.skin.area);
+      h.skin.anchor = num(face, sk, "anchor", h.skin.anchor);
+      h.skin.volume = num(face, sk, "volume", h.skin.volume);
+      h.skin.damping = num(face, sk, "damping", h.skin.damping);
+    }
+    read_muscle_stiffness(face, solver["sheet"], h.sheet);
+    read_muscle_stiffness(face, solver["sphincter"], h.sphincter);
+  }
+  if (f["variants"].IsDefined()) h.variants = int_list(face, f["variants"], "variants");
+
+  Doc lm = load(dir + "/" +
+                as<std::string>(face, need(face, f, "landmarks"), "landmarks", "a file name"));
+  YAML::Node lms = need(lm, lm.root, "landmarks");
+  if (!lms.IsMap())
+    fail(lm, lms, "landmarks", "a mapping name -> { vertex | vertices, offset_mm }");
+  std::set<std::string> names;
+  for (const auto& kv : lms) {
+    LandmarkSpec s;
+    s.name = kv.first.as<std::string>();
+    const YAML::Node& n = kv.second;
+    if (!n.IsMap()) fail(lm, n, s.name, "{ vertex: N } or { vertices: [..] }");
+    if (n["vertex"].IsDefined())
+      s.vertices = {as<int>(lm, n["vertex"], "vertex", "a vertex index")};
+    else
+      s.vertices = int_list(lm, need(lm, n, "vertices"), "vertices");
+    if (n["offset_mm"].IsDefined()) s.offset = vec_mm(lm, n["offset_mm"], "offset_mm");
+    names.insert(s.name);
+    h.landmarks.push_back(s);
+  }
+  if (f["control_points"].IsDefined()) {
+    for (const auto& e : f["control_points"]) {
+      std::string n = as<std::string>(face, e, "control_points", "a landmark name");
+      if (!names.count(n)) fail(face, e, "control_points", "a landmark defined in landmarks.yaml");
+      h.control_points.push_back(n);
+    }
+  }
+
+  Doc mu =
+      load(dir + "/" + as<std::string>(face, need(face, f, "muscles"), "muscles", "a file name"));
+  YAML::Node ms = need(mu, mu.root, "muscles");
+  if (!ms.IsSequence()) fail(mu, ms, "muscles", "a list of muscles");
+  for (const auto& n : ms) {
+    MuscleSpec m;
+    m.name = as<std::string>(mu, need(mu, n, "name"), "name", "a muscle name");
+    std::string kind = as<std::string>(mu, need(mu, n, "kind"), "kind", "sheet or sphincter");
+    if (kind == "sheet")
+      m.kind = MuscleKind::kSheet;
+    else if (kind == "sphincter")
+      m.kind = MuscleKind::kSphincter;
+    else
+      fail(mu, n["kind"], "kind", "sheet or sphincter");
+    m.layer = as<int>(mu, need(mu, n, "layer"), "layer", "an integer layer (0 = deepest)");
+    YAML::Node g = need(mu, n, "grid");
+    if (!g.IsSequence() || g.size() != 2) fail(mu, g, "grid", "[rows, cols]");
+    m.rows = as<int>(mu, g[0], "grid", "an integer");
+    m.cols = as<int>(mu, g[1], "grid", "an integer");
+    if (m.rows < 2 || m.cols < 2 || (m.kind == MuscleKind::kSphincter && m.rows != 2))
+      fail(mu, g, "grid", "rows, cols ≥ 2 (a sphincter has rows = 2)");
+    m.thickness = as<double>(mu, need(mu, n, "thickness_mm"), "thickness_mm", "a number") * 1e-3;
+    if (m.kind == MuscleKind::kSheet) {
+      m.origin = refs(mu, need(mu, n, "origin"), "origin", 2, names);
+      m.insertion = refs(mu, need(mu, n, "insertion"), "insertion", 2, names);
+      if (m.origin.size() != 2 || m.insertion.size() != 2)
+        fail(mu, n["origin"], "origin/insertion", "exactly two corner points each");
+    } else {
+      m.inner = refs(mu, need(mu, n, "inner"), "inner", 3, names);
+      m.outer = refs(mu, need(mu, n, "outer"), "outer", 3, names);
+    }
+    h.muscles.push_back(m);
+  }
+
+  Doc hd = load(dir + "/head.yaml");
+  YAML::Node head = need(hd, hd.root, "head");
+  for (const auto& e : need(hd, head, "muscles"))
+    h.commanded.push_back(as<std::string>(hd, need(hd, e, "name"), "name", "a muscle name"));
+  for (const auto& e : need(hd, head, "passive_muscles"))
+    h.passive.push_back(as<std::string>(hd, e, "passive_muscles", "a muscle name"));
+  std::set<std::string> mapped;
+  for (const auto& m : h.muscles) mapped.insert(m.name);
+  for (const auto& n : h.commanded)
+    if (!mapped.count(n))
+      throw InputError(mu.file + ": muscle '" + n +
+                       "' is commanded by head.yaml but has no geometry");
+  for (const auto& n : h.passive)
+    if (!mapped.count(n))
+      throw InputError(mu.file + ": passive muscle '" + n + "' from head.yaml has no geometry");
+  return h;
+}
+
+}  // namespace facectl::face

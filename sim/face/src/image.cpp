@@ -1,0 +1,49 @@
+#include "facectl/face/image.hpp"
+
+#include <png.h>
+
+#include <cstring>
+
+#include "facectl/face/input_error.hpp"
+
+namespace facectl::face {
+
+void write_png(const std::string& path, const Image& img) {
+  png_image pi;
+  std::memset(&pi, 0, sizeof pi);
+  pi.version = PNG_IMAGE_VERSION;
+  pi.width = static_cast<png_uint_32>(img.width);
+  pi.height = static_cast<png_uint_32>(img.height);
+  pi.format = PNG_FORMAT_RGB;
+  if (!png_image_write_to_file(&pi, path.c_str(), 0, img.rgb.data(), 0, nullptr))
+    throw InputError(path + ": cannot write PNG (" + pi.message + ")");
+}
+
+Image downsample(const Image& img, int f) {
+  Image out(img.width / f, img.height / f, 0);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        int sum = 0;
+        for (int dy = 0; dy < f; ++dy)
+          for (int dx = 0; dx < f; ++dx)
+            sum += img.rgb[3 * ((y * f + dy) * img.width + x * f + dx) + c];
+        out.rgb[3 * (y * out.width + x) + c] = static_cast<std::uint8_t>(sum / (f * f));
+      }
+  return out;
+}
+
+Image contact_sheet(const std::vector<Image>& tiles, int cols, int gap) {
+  if (tiles.empty()) return {};
+  const int tw = tiles[0].width, th = tiles[0].height;
+  const int n = static_cast<int>(tiles.size()), rows = (n + cols - 1) / cols;
+  Image out(cols * tw + (cols + 1) * gap, rows * th + (rows + 1) * gap, 255);
+  for (int k = 0; k < n; ++k) {
+    const int ox = gap + (k % cols) * (tw + gap), oy = gap + (k / cols) * (th + gap);
+    for (int y = 0; y < th; ++y)
+      std::memcpy(&out.rgb[3 * ((oy + y) * out.width + ox)], &tiles[k].rgb[3 * y * tw], 3u * tw);
+  }
+  return out;
+}
+
+}  // namespace facectl::face

@@ -1,0 +1,15 @@
+#include "default_head.hpp"
+
+namespace facectl::face::testing {
+
+const HeadSpec& default_spec() {
+  static const HeadSpec spec = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  return spec;
+}
+
+const FaceModel& default_model() {
+  static const FaceModel model = build_face_model(default_spec());
+  return model;
+}
+
+}  // namespace facectl::face::testing

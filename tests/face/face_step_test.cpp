@@ -1,0 +1,147 @@
+// Whole-frame properties of the layered solver (§5.7): teeth contacts, robustness under
+// long random contraction sequences at two mesh scales, determinism, no allocation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "alloc_counter.hpp"
+#include "default_head.hpp"
+
+namespace facectl::face {
+namespace {
+
+using testing::default_model;
+using testing::default_spec;
+
+constexpr double kDeg = M_PI / 180;
+
+TEST(FaceStep, NeutralInputKeepsTheRestShape) {
+  const FaceModel& m = default_model();
+  FaceData d = make_face_data(m);
+  std::vector<double> c(m.spec.commanded.size(), 0.0);
+  FaceInput in;
+  in.contractions = c;
+  for (int f = 0; f < 50; ++f) step_face(m, d, in);
+  for (std::size_t i = 0; i < d.skin_x.size(); ++i)
+    ASSERT_LT((d.skin_x.get(i) - m.skin.v.get(i)).norm(), 1e-7) << i;  // round-off only
+}
+
+TEST(TeethCollision, NoSkinVertexEndsAFrameInsideATeethHull) {
+  HeadSpec spec = default_spec();
+  spec.teeth_inset = -0.004;  // teeth pushed through the lips: contacts are certain
+  const FaceModel m = build_face_model(spec);
+  std::vector<double> c(m.spec.commanded.size(), 0.0);
+  c[m.spec.commanded.size() - 1] = 0.4;  // orbicularis oris presses the lips
+  FaceInput in;
+  in.contractions = c;
+  in.jaw.pitch_rad = 6 * kDeg;
+  in.jaw.yaw_rad = 3 * kDeg;
+
+  FaceData off = make_face_data(m);
+  in.teeth_collision = false;
+  for (int f = 0; f < 40; ++f) step_face(m, off, in);
+  ASSERT_GT(skin_vertices_inside_teeth(m, off, 1e-6), 0) << "the scenario must penetrate";
+
+  FaceData on = make_face_data(m);
+  in.teeth_collision = true;
+  for (int f = 0; f < 40; ++f) {
+    step_face(m, on, in);
+    ASSERT_EQ(skin_vertices_inside_teeth(m, on, 1e-6), 0) << "frame " << f;
+  }
+  EXPECT_GT(on.hits, 0);
+}
+
+// Random contraction sequence: a new random target every 40 frames, eased toward.
+// Returns the number of (triangle, frame) inversions; fails at once on a NaN.
+int soak(const FaceModel& m, int frames, unsigned seed) {
+  FaceData d = make_face_data(m);
+  const std::size_t n = m.spec.commanded.size();
+  std::vector<double> c(n, 0.0), goal(n, 0.0);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  FaceInput in;
+  in.contractions = c;
+  MandiblePose jaw_goal;
+  std::vector<Vec3> rest_n;
+  for (const Tri& t : m.skin.tris)
+    rest_n.push_back(
+        (m.skin.v.get(t[1]) - m.skin.v.get(t[0])).cross(m.skin.v.get(t[2]) - m.skin.v.get(t[0])));
+  int inverted = 0;
+  for (int f = 0; f < frames; ++f) {
+    if (f % 40 == 0) {
+      for (auto& g : goal) g = u(rng) < 0.4 ? u(rng) : 0.0;
+      jaw_goal = {(-4 + 22 * u(rng)) * kDeg, (-5 + 10 * u(rng)) * kDeg, 0.008 * u(rng)};
+      in.eyelid_closure[0] = u(rng);
+      in.eyelid_closure[1] = u(rng);
+    }
+    for (std::size_t k = 0; k < n; ++k) c[k] += 0.1 * (goal[k] - c[k]);
+    in.jaw.pitch_rad += 0.1 * (jaw_goal.pitch_rad - in.jaw.pitch_rad);
+    in.jaw.yaw_rad += 0.1 * (jaw_goal.yaw_rad - in.jaw.yaw_rad);
+    in.jaw.protrusion_m += 0.1 * (jaw_goal.protrusion_m - in.jaw.protrusion_m);
+    step_face(m, d, in);
+    for (std::size_t i = 0; i < d.skin_x.size(); ++i)
+      if (!std::isfinite(d.skin_x.x[i] + d.skin_x.y[i] + d.skin_x.z[i])) {
+        ADD_FAILURE() << "NaN/inf skin at frame " << f;
+        return -1;
+      }
+    for (std::size_t i = 0; i < d.muscles.size(); ++i)
+      if (!std::isfinite(d.muscles.x[i] + d.muscles.y[i] + d.muscles.z[i])) {
+        ADD_FAILURE() << "NaN/inf muscle at frame " << f;
+        return -1;
+      }
+    for (std::size_t t = 0; t < m.skin.tris.size(); ++t) {
+      const Tri& tr = m.skin.tris[t];
+      const Vec3 nn = (d.skin_x.get(tr[1]) - d.skin_x.get(tr[0]))
+                          .cross(d.skin_x.get(tr[2]) - d.skin_x.get(tr[0]));
+      inverted += nn.dot(rest_n[t]) <= 0;
+    }
+  }
+  return inverted;
+}
+
+TEST(Soak, RandomContractionsNeverProduceNaNAtTwoScales) {
+  EXPECT_GE(soak(default_model(), 2000, 5), 0);
+  EXPECT_GE(soak(build_face_model(default_spec(), 1500), 1000, 6), 0);
+}
+
+// KNOWN FAILURE (docs/FACE_MODEL.md, "Known issues"): under random contractions and jaw
+// motion, small triangles around the mouth corners and nostrils invert transiently
+// (about 7 triangle-frames per frame on the base mesh). Kept, disabled, as the target.
+TEST(Soak, DISABLED_RandomContractionsNeverInvertATriangleAtTwoScales) {
+  EXPECT_EQ(soak(default_model(), 2000, 5), 0);
+  EXPECT_EQ(soak(build_face_model(default_spec(), 1500), 1000, 6), 0);
+}
+
+TEST(FaceStep, DeterministicBitForBit) {
+  const FaceModel& m = default_model();
+  std::vector<double> c(m.spec.commanded.size(), 0.0);
+  for (std::size_t k = 0; k < c.size(); ++k) c[k] = 0.05 * static_cast<double>(k % 7);
+  FaceInput in;
+  in.contractions = c;
+  in.jaw = {8 * kDeg, 2 * kDeg, 0.002};
+  FaceData a = make_face_data(m), b = make_face_data(m);
+  for (int f = 0; f < 100; ++f) step_face(m, a, in);
+  for (int f = 0; f < 100; ++f) step_face(m, b, in);
+  ASSERT_EQ(std::memcmp(a.skin_x.x.data(), b.skin_x.x.data(), a.skin_x.size() * sizeof(double)), 0);
+  ASSERT_EQ(std::memcmp(a.skin_x.y.data(), b.skin_x.y.data(), a.skin_x.size() * sizeof(double)), 0);
+  ASSERT_EQ(std::memcmp(a.skin_x.z.data(), b.skin_x.z.data(), a.skin_x.size() * sizeof(double)), 0);
+}
+
+TEST(FaceStep, StepDoesNotAllocate) {
+  const FaceModel& m = default_model();
+  FaceData d = make_face_data(m);
+  std::vector<double> c(m.spec.commanded.size(), 0.3);
+  FaceInput in;
+  in.contractions = c;
+  in.jaw = {10 * kDeg, 3 * kDeg, 0.003};
+  in.eyelid_closure[0] = 0.5;
+  step_face(m, d, in);  // warm
+  testing::arm_alloc_counter();
+  for (int f = 0; f < 20; ++f) step_face(m, d, in);
+  EXPECT_EQ(testing::disarm_alloc_counter(), 0);
+}
+
+}  // namespace
+}  // namespace facectl::face
