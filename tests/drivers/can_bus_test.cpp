@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "drivers/bus_factory.hpp"
 #include "drivers/cia402_bus.hpp"
 #include "drivers/custom_can_bus.hpp"
 #include "drivers/memory_can_link.hpp"
@@ -224,6 +225,26 @@ TEST(CanBudget, TheDefaultRigsTwelveCanAxesFitOnlyPackedAndBelow1kHz) {
   const CustomCanBus quarter("can0", link.host(), axes, std::vector<double>(12, 0.0), slow);
   EXPECT_NEAR(quarter.budget(1000.0, 1'000'000).load, 0.27, 1e-12);
   EXPECT_FALSE(quarter.budget(1000.0, 1'000'000).warned());
+}
+
+TEST(BusFactory, ARigAbove70PercentIsRefusedWithItsBudgetBeforeTheBusIsOpened) {
+  BusSpec spec{"can0", "can", "no-such-can", 1'000'000, "cia402", {}, {}};
+  try {
+    make_bus(spec, rotary(12), std::vector<double>(12, 0.0), 1000.0);
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("can0: 26 frames per cycle at 1000 Hz"), std::string::npos)
+        << e.what();
+  }
+  // Within budget, the next problem is the missing interface, named.
+  spec.can_protocol = "custom";
+  spec.can.cycle_divider = 4;
+  try {
+    make_bus(spec, rotary(12), std::vector<double>(12, 0.0), 1000.0);
+    FAIL() << "opened a missing interface";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("SocketCAN no-such-can"), std::string::npos) << e.what();
+  }
 }
 
 class CustomCan : public ::testing::Test {
