@@ -13,33 +13,15 @@
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
+#include "tests/drivers/can_test_axes.hpp"
 
 namespace facectl {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+using testing::fast_plant;
+using testing::kDeg;
+const auto rotary = testing::rotary_axes;
 constexpr std::int64_t kMs = 1'000'000;
-
-std::vector<ActuatorModel> rotary(int count) {
-  std::vector<ActuatorModel> a(static_cast<std::size_t>(count));
-  for (int i = 0; i < count; ++i) {
-    auto& m = a[static_cast<std::size_t>(i)];
-    m.name = "axis" + std::to_string(i + 1);
-    m.address = i + 1;
-    m.limits.position_min = -30 * kDeg;
-    m.limits.position_max = 30 * kDeg;
-    m.limits.max_velocity = 200 * kDeg;
-  }
-  return a;
-}
-
-sim::ServoPlantParams fast_plant() {
-  sim::ServoPlantParams p;
-  p.time_constant_s = 0.01;
-  p.latency_s = 0.0;
-  p.max_velocity = 10.0;
-  return p;
-}
 
 // Counts the host's frames as they reach the devices' side of the wire.
 class Sniffer final : public sim::CanDevice {

@@ -17,38 +17,20 @@
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
+#include "tests/drivers/can_test_axes.hpp"
 
 namespace facectl {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+using testing::fast_plant;
+using testing::kDeg;
+const auto rotary = testing::rotary_axes;
 const char* kIf = "vcan0";
 
 std::int64_t now_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
       .count();
-}
-
-std::vector<ActuatorModel> rotary(int count) {
-  std::vector<ActuatorModel> a(static_cast<std::size_t>(count));
-  for (int i = 0; i < count; ++i) {
-    auto& m = a[static_cast<std::size_t>(i)];
-    m.name = "axis" + std::to_string(i + 1);
-    m.address = i + 1;
-    m.limits.position_min = -30 * kDeg;
-    m.limits.position_max = 30 * kDeg;
-    m.limits.max_velocity = 200 * kDeg;
-  }
-  return a;
-}
-
-sim::ServoPlantParams plant() {
-  sim::ServoPlantParams p;
-  p.time_constant_s = 0.01;
-  p.latency_s = 0.0;
-  p.max_velocity = 10.0;
-  return p;
 }
 
 // A 1 kHz tick in real time on this thread: read, then write `target(t)`.
@@ -80,7 +62,7 @@ TEST(Vcan, Cia402DrivesReachOperationEnabledAndFollowTheCommandedPositions) {
   std::vector<sim::CanDevice*> devices;
   for (int n = 1; n <= 3; ++n) {
     drives.push_back(
-        std::make_unique<sim::Cia402DriveSim>(n, plant(), options.rotary_counts_per_rad, 0.0));
+        std::make_unique<sim::Cia402DriveSim>(n, fast_plant(), options.rotary_counts_per_rad, 0.0));
     devices.push_back(drives.back().get());
   }
   sim::CanDeviceNetwork net(wire, devices);
@@ -138,7 +120,7 @@ TEST(Vcan, CustomBoardsFollowAndNothingIsTransmittedAfterTheEstop) {
   std::vector<sim::CanDevice*> devices;
   for (int n = 1; n <= 4; ++n) {
     std::vector<sim::BoardChannel> ch(3);
-    for (auto& c : ch) c.plant = plant();
+    for (auto& c : ch) c.plant = fast_plant();
     boards.push_back(std::make_unique<sim::CustomCanBoardSim>(n, ch, custom_can::Width::kInt16));
     devices.push_back(boards.back().get());
   }
@@ -187,8 +169,8 @@ TEST(Vcan, ASilentDriveIsAHeartbeatLossFault) {
   SocketCanTransport host(kIf, false);
   SocketCanTransport wire(kIf, false);
   CanBusOptions options;
-  sim::Cia402DriveSim d1(1, plant(), options.rotary_counts_per_rad, 0.0);
-  sim::Cia402DriveSim d2(2, plant(), options.rotary_counts_per_rad, 0.0);
+  sim::Cia402DriveSim d1(1, fast_plant(), options.rotary_counts_per_rad, 0.0);
+  sim::Cia402DriveSim d2(2, fast_plant(), options.rotary_counts_per_rad, 0.0);
   sim::CanDeviceNetwork net(wire, {&d1, &d2});
   net.start(200);
   Cia402Bus bus("vcan0", host, rotary(2), std::vector<double>(2, 0.0), options);
