@@ -6,7 +6,12 @@
 #include "drivers/modbus_bus.hpp"
 
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <pty.h>
+#include <termios.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -315,6 +320,46 @@ TEST(ModbusRtu, APtyBoardFollowsCommandsAndASilentOneFaults) {
                      0.02);
     EXPECT_STREQ(bus.status().reason, "modbus_rtu0 board 1: not answering");
   }
+}
+
+// docs/PROTOCOLS.md's worked example, checked on the wire: the bytes the
+// driver puts on a serial line (the master side of a pty, nobody answering).
+TEST(ModbusRtu, TheDocumentedFirstCycleBytesAreWhatGoesOnTheWire) {
+  int master = -1;
+  int slave = -1;
+  char name[128] = {};
+  ASSERT_EQ(openpty(&master, &slave, name, nullptr, nullptr), 0);
+  termios tio{};
+  tcgetattr(slave, &tio);
+  cfmakeraw(&tio);
+  tcsetattr(slave, TCSANOW, &tio);
+  auto acts = actuators(1, 3);
+  acts[2].kind = ActuatorKind::kLinear;
+  std::vector<std::uint8_t> wire;
+  {
+    ModbusBus bus("m", ModbusEndpoint::parse("modbus_rtu", name, 115200), acts, {0.0, 0.0, 0.0});
+    bus.set_enabled(true);
+    const std::vector<double> cmd{12.5 * kDeg, -4.0 * kDeg, 0.0035};
+    bus.write({now_ns(), 0.001}, cmd);
+    const auto end = std::chrono::steady_clock::now() + 300ms;
+    while (std::chrono::steady_clock::now() < end) {
+      pollfd p{master, POLLIN, 0};
+      if (poll(&p, 1, 10) <= 0) continue;
+      std::uint8_t buf[256];
+      const ssize_t n = ::read(master, buf, sizeof buf);
+      if (n > 0) wire.insert(wire.end(), buf, buf + n);
+    }
+  }
+  close(master);
+  close(slave);
+  const auto contains = [&](const std::vector<std::uint8_t>& frame) {
+    return std::search(wire.begin(), wire.end(), frame.begin(), frame.end()) != wire.end();
+  };
+  EXPECT_TRUE(contains({0x01, 0x06, 0x00, 0x0A, 0x00, 0x64, 0xA8, 0x23})) << "watchdog write";
+  EXPECT_TRUE(contains({0x01, 0x10, 0x00, 0x00, 0x00, 0x05, 0x0A, 0x00, 0x03, 0x00, 0x01, 0x04,
+                        0xE2, 0xFE, 0x70, 0x01, 0x5E, 0x4C, 0x01}))
+      << "first target write";
+  EXPECT_TRUE(contains({0x01, 0x04, 0x00, 0x00, 0x00, 0x07, 0xB1, 0xC8})) << "input read";
 }
 
 TEST(ModbusConfig, BadEndpointsAndAddressesAreRefusedWithTheirNames) {

@@ -73,6 +73,8 @@ sleep 0.3
 kill \$dump
 frames=\$(wc -l < /tmp/candump.log)
 echo "FACECTL-QEMU: candump recorded \$frames frames on vcan0"
+echo "FACECTL-QEMU: the first frames to and from drive 1:"
+grep -E " vcan0 (000|080|181|201|581|601|701|77F)#" /tmp/candump.log | head -n 40 | sed 's/^/FACECTL-QEMU: wire /'
 ok=PASS
 check() {
   if grep -q " vcan0 \$1" /tmp/candump.log; then
