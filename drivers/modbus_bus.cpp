@@ -6,15 +6,11 @@
 #include <ctime>
 #include <stdexcept>
 
+#include "drivers/monotonic_clock.hpp"
+
 namespace facectl {
 
 namespace {
-
-std::int64_t monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 void split_seconds(double s, std::uint32_t& sec, std::uint32_t& usec) {
   const auto us = static_cast<std::uint64_t>(s * 1e6 + 0.5);

@@ -12,15 +12,11 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "drivers/monotonic_clock.hpp"
+
 namespace facectl::sim {
 
 namespace {
-
-std::int64_t monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 std::uint16_t crc16(const std::uint8_t* p, std::size_t n) {
   std::uint16_t crc = 0xFFFF;
