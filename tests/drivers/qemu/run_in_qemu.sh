@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# Runs facectl's SocketCAN tests inside a QEMU guest, because this machine's
-# kernel has no CAN. The guest is Debian's own kernel (linux-image-amd64)
-# under software emulation (-accel tcg) with an initramfs holding busybox,
-# the guest test binary and its libraries, can-utils (candump, cansend) and
-# iproute2's ip, and the modules can, can-raw, can-dev and vcan.
+# Runs facectl's SocketCAN and HID tests inside a QEMU guest, because this
+# machine's kernel has neither CAN nor uhid. The guest is Debian's own kernel
+# (linux-image-amd64) under software emulation (-accel tcg) with an initramfs
+# holding busybox, the guest test binary and its libraries (hidapi, libudev),
+# can-utils (candump, cansend) and iproute2's ip, and the modules can,
+# can-raw, can-dev, vcan, hid, hid-generic and uhid.
 #
 # Inside: vcan0 is created, candump records the wire, the gtest binary runs
-# the real CAN buses against simulated drives and boards, and the recorded
-# frames are checked for the driver's own, byte for byte.
+# the real CAN buses against simulated drives and boards and a virtual uhid
+# gamepad against the hidapi reader, and the recorded frames are checked for
+# the driver's own, byte for byte.
 #
 # Usage: run_can_in_qemu.sh GUEST_TEST_BINARY WORK_DIR
 # Exit: 0 pass, 1 fail, 77 skipped (a tool is missing; scripts/setup.sh installs them).
@@ -47,7 +49,7 @@ ldd "$ip_bin" | grep -o '/[^ ]*' | while read -r lib; do
   mkdir -p "$root$(dirname "$lib")"
   cp -L "$lib" "$root$lib"
 done
-for m in can can-raw can-dev vcan; do
+for m in can can-raw can-dev vcan hid hid-generic uhid; do
   cp "$(modinfo -k "$kver" -n "$m")" "$root/lib/modules/$m.ko"
 done
 guest_test=$(basename "$test_bin")
@@ -59,7 +61,7 @@ mount -t proc proc /proc
 mount -t sysfs sys /sys
 mount -t devtmpfs dev /dev
 echo "FACECTL-QEMU: kernel \$(uname -r)"
-for m in can can-raw can-dev vcan; do
+for m in can can-raw can-dev vcan hid hid-generic uhid; do
   insmod /lib/modules/\$m.ko && echo "FACECTL-QEMU: loaded \$m" || echo "FACECTL-QEMU: insmod \$m FAILED"
 done
 /sbin/iproute2-ip link add dev vcan0 type vcan
@@ -104,11 +106,11 @@ echo "Booting $kernel in qemu-system-x86_64 -accel tcg with $(du -h "$work/initr
 start=$(date +%s)
 timeout 900 qemu-system-x86_64 -accel tcg -m 512 -smp 2 -nographic -no-reboot \
   -kernel "$kernel" -initrd "$work/initramfs.gz" \
-  -append "console=ttyS0 panic=-1 quiet" </dev/null | tee "$work/console.log" | grep -E "FACECTL|^\[|vcan\]" || true
+  -append "console=ttyS0 panic=-1 quiet" </dev/null | tee "$work/console.log" | grep -aE "FACECTL|^\[ |vcan\]|uhid\]" || true
 echo "QEMU ran $(( $(date +%s) - start )) s; console log: $work/console.log"
 result=$(grep -a "FACECTL-QEMU-RESULT" "$work/console.log" | tr -d '\r' || true)
 if [ "$result" = "FACECTL-QEMU-RESULT: tests=0 candump=PASS" ]; then
-  echo "PASS: SocketCAN tests in a QEMU guest on vcan0, and candump saw the driver's frames"
+  echo "PASS: SocketCAN tests on vcan0 and the hidraw gamepad test on uhid in a QEMU guest; candump saw the driver's frames"
   exit 0
 fi
 echo "FAIL: ${result:-the guest did not report a result}"
