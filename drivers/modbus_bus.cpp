@@ -3,6 +3,7 @@
 #include <modbus/modbus.h>
 
 #include <cerrno>
+#include <cmath>
 #include <ctime>
 #include <stdexcept>
 
@@ -117,7 +118,8 @@ ModbusBus::ModbusBus(std::string name, ModbusEndpoint endpoint,
   for (auto& bp : boards_) {
     Board& b = *bp;
     const std::string who = name_ + " board " + std::to_string(b.unit);
-    b.silent = who + ": not answering";
+    b.silent = who + ": not answering within " +
+               std::to_string(std::lround(timing_.response_timeout_s * 1000)) + " ms";
     b.exception = who + ": answers with exception responses";
     b.bad_reply = who + ": corrupt replies";
     b.link = who + ": connection lost";
@@ -268,7 +270,9 @@ bool ModbusBus::transact(Board& board, Request&& request) {
     }
     if (err >= EMBBADCRC && err <= EMBBADSLAVE) {
       stats_.bad_replies.fetch_add(1, std::memory_order_relaxed);
-      board.last_failure = Failure::kBadReply;
+      // Right after a timeout, a mismatched reply is most likely the late
+      // answer to the timed-out request: the board is slow, not corrupt.
+      if (board.last_failure != Failure::kSilent) board.last_failure = Failure::kBadReply;
       modbus_flush(ctx_);
       continue;
     }
