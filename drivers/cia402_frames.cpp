@@ -109,6 +109,16 @@ void encode_sdo_download(int node, std::uint16_t index, std::uint8_t subindex, s
   put_u32(&out.data[4], size == 4 ? value : (value & ((1u << (8 * size)) - 1)));
 }
 
+void encode_sdo_upload(int node, std::uint16_t index, std::uint8_t subindex, CanFrame& out) {
+  out.id = kSdoRxBase + static_cast<std::uint32_t>(node);
+  out.fd = false;
+  out.len = 8;
+  out.data.fill(0);
+  out.data[0] = 0x40;  // ccs=2: initiate upload
+  put_u16(&out.data[1], index);
+  out.data[3] = subindex;
+}
+
 std::optional<SdoReply> decode_sdo_reply(const CanFrame& f) {
   if (f.id <= kSdoTxBase || f.id > kSdoTxBase + 127 || f.len != 8) return std::nullopt;
   SdoReply r;
@@ -117,6 +127,12 @@ std::optional<SdoReply> decode_sdo_reply(const CanFrame& f) {
   r.subindex = f.data[3];
   if (f.data[0] == 0x60) {
     r.ok = true;
+  } else if ((f.data[0] & 0xE3) == 0x43) {  // scs=2, expedited, size indicated
+    const int unused = (f.data[0] >> 2) & 0x3;
+    r.ok = true;
+    r.upload = true;
+    r.value = get_u32(&f.data[4]);
+    if (unused > 0) r.value &= (1u << (8 * (4 - unused))) - 1;
   } else if (f.data[0] == 0x80) {
     r.abort_code = get_u32(&f.data[4]);
   } else {

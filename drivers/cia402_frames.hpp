@@ -85,11 +85,15 @@ std::optional<Heartbeat> decode_heartbeat(const CanFrame& f);
 // SDO expedited download (write of 1, 2 or 4 bytes) and its reply.
 void encode_sdo_download(int node, std::uint16_t index, std::uint8_t subindex, std::uint32_t value,
                          int size, CanFrame& out);
+// SDO expedited upload request (a read; `bus doctor` uses it: it changes nothing).
+void encode_sdo_upload(int node, std::uint16_t index, std::uint8_t subindex, CanFrame& out);
 struct SdoReply {
   int node = 0;
   std::uint16_t index = 0;
   std::uint8_t subindex = 0;
-  bool ok = false;  // download confirmed (0x60)
+  bool ok = false;      // download confirmed (0x60), or expedited upload data (0x4n)
+  bool upload = false;  // the reply carries `value`
+  std::uint32_t value = 0;
   std::uint32_t abort_code = 0;
 };
 std::optional<SdoReply> decode_sdo_reply(const CanFrame& f);

@@ -120,6 +120,20 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
     r.data[1] = f.data[1];
     r.data[2] = f.data[2];
     r.data[3] = sub;
+    if (f.data[0] == 0x40) {  // upload (a read)
+      std::uint32_t value = 0;
+      bool known = true;
+      if (index == 0x1000 && sub == 0)
+        value = 0x00020192;  // device type: CiA 402 servo
+      else if (index == 0x6041 && sub == 0)
+        value = statusword();
+      else
+        known = false;
+      r.data[0] = known ? 0x43 : 0x80;
+      put_u32(&r.data[4], known ? value : 0x06020000);
+      emit(r, now_ns);
+      return;
+    }
     bool ok = (f.data[0] & 0xE3) == 0x23;  // expedited download, size indicated
     if (ok) {
       if (index == 0x607D && sub == 1)

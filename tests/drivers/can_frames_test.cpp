@@ -116,6 +116,24 @@ TEST(Cia402Frames, SdoExpeditedDownloadsAndReplies) {
   EXPECT_EQ(abort->abort_code, 0x06090011u);
 }
 
+TEST(Cia402Frames, SdoExpeditedUploadsReadWithoutWriting) {
+  CanFrame f;
+  cia402::encode_sdo_upload(3, 0x1000, 0, f);
+  EXPECT_EQ(f.id, 0x603u);
+  EXPECT_EQ(bytes(f), (std::vector<int>{0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0}));
+  // Device type 0x00020192: CiA 402 drive profile, servo.
+  const auto r =
+      cia402::decode_sdo_reply(frame(0x583, {0x43, 0x00, 0x10, 0x00, 0x92, 0x01, 0x02, 0x00}));
+  ASSERT_TRUE(r);
+  EXPECT_TRUE(r->upload);
+  EXPECT_EQ(r->value, 0x00020192u);
+  // A 2-byte upload (0x4B: 2 bytes unused) masks the rest.
+  const auto w =
+      cia402::decode_sdo_reply(frame(0x583, {0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0xAA, 0xBB}));
+  ASSERT_TRUE(w);
+  EXPECT_EQ(w->value, 0x0237u);
+}
+
 TEST(Cia402StateMachine, StatuswordsDecodeToTheirStates) {
   using cia402::DriveState;
   EXPECT_EQ(cia402::decode_statusword(0x0250), DriveState::kSwitchOnDisabled);

@@ -11,6 +11,7 @@
 #include <functional>
 #include <thread>
 
+#include "drivers/bus_doctor.hpp"
 #include "drivers/cia402_bus.hpp"
 #include "drivers/custom_can_bus.hpp"
 #include "drivers/socketcan_transport.hpp"
@@ -186,6 +187,19 @@ TEST(Vcan, ASilentDriveIsAHeartbeatLossFault) {
   EXPECT_STREQ(bus.status().reason, "vcan0 drive 2: heartbeat lost");
   std::printf("[vcan] silent drive 2 -> '%s' after %.3f s (timeout %.3f s)\n", bus.status().reason,
               t, options.heartbeat_timeout_s);
+}
+
+TEST(Vcan, BusDoctorFindsTheDrivesOnARealSocket) {
+  SocketCanTransport host(kIf, false);
+  SocketCanTransport wire(kIf, false);
+  sim::Cia402DriveSim d1(1, fast_plant(), 1000.0, 0.0);
+  sim::Cia402DriveSim d2(2, fast_plant(), 1000.0, 0.0);
+  sim::CanDeviceNetwork net(wire, {&d1, &d2});
+  net.start(200);
+  const DoctorReport r =
+      diagnose_can("vcan0", host, "cia402", rotary(2), CanBusOptions{}, 250.0, 1'000'000, 0.5);
+  std::printf("[vcan] bus doctor:\n%s", r.to_text().c_str());
+  EXPECT_FALSE(r.has_problems());
 }
 
 TEST(Vcan, EncodeAndSendPerCycleThroughTheRealSocket) {
