@@ -138,7 +138,11 @@ DoctorReport diagnose_modbus(const std::string& bus, const ModbusEndpoint& ep,
     }
     const std::string who = "board " + std::to_string(unit) + ": ";
     if (rtt.ms.empty()) {
-      add(r, Level::kProblem, who + "does not answer (" + last_error + ")");
+      std::string text = who;
+      text += "does not answer (";
+      text += last_error;
+      text += ")";
+      add(r, Level::kProblem, std::move(text));
       continue;
     }
     cycle_ms += 2.0 * rtt.median();  // a write and a read per cycle

@@ -77,7 +77,6 @@ class Cia402Bus final : public ActuatorBus {
   std::vector<std::unique_ptr<Drive>> drives_;
   CanBusHealth health_;
   bool enabled_ = false;
-  bool enable_edge_ = false;
   std::uint64_t cycle_ = 0;
   std::int64_t last_host_heartbeat_ns_ = 0;
   std::atomic<std::uint64_t> bad_frames_{0};

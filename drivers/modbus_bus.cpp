@@ -14,7 +14,7 @@ namespace facectl {
 namespace {
 
 void split_seconds(double s, std::uint32_t& sec, std::uint32_t& usec) {
-  const auto us = static_cast<std::uint64_t>(s * 1e6 + 0.5);
+  const auto us = static_cast<std::uint64_t>(std::llround(s * 1e6));
   sec = static_cast<std::uint32_t>(us / 1'000'000);
   usec = static_cast<std::uint32_t>(us % 1'000'000);
 }
@@ -299,7 +299,7 @@ void ModbusBus::serve_board(Board& board, bool enabled, std::int64_t now_ns) {
       for (int ch = 0; ch < board.channels; ++ch) {
         const std::size_t a = board.actuator[static_cast<std::size_t>(ch)];
         // An unused channel gets 0 (its board ignores it).
-        regs[static_cast<std::size_t>(2 + ch)] =
+        regs[2 + static_cast<std::size_t>(ch)] =
             a == SIZE_MAX ? 0 : modbus_map::to_register(units_[a], current_.positions[a]);
       }
       if (transact(board, [&] {
@@ -333,7 +333,8 @@ void ModbusBus::serve_board(Board& board, bool enabled, std::int64_t now_ns) {
       const std::size_t a = board.actuator[static_cast<std::size_t>(ch)];
       if (a == SIZE_MAX) continue;
       measured_.positions[a] = modbus_map::from_register(
-          units_[a], in[static_cast<std::size_t>(modbus_map::kIrPosition0 + ch)]);
+          units_[a],
+          in[static_cast<std::size_t>(modbus_map::kIrPosition0) + static_cast<std::size_t>(ch)]);
     }
   }
   judge_board(board, monotonic_ns(), in[modbus_map::kIrStatus], answered);

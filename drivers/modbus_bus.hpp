@@ -1,5 +1,7 @@
 #pragma once
 
+#include <modbus/modbus.h>
+
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -12,8 +14,6 @@
 #include "control/controller_model.hpp"
 #include "control/latest_value_mailbox.hpp"
 #include "drivers/modbus_register_map.hpp"
-
-struct _modbus;
 
 namespace facectl {
 
@@ -139,7 +139,7 @@ class ModbusBus final : public ActuatorBus {
   std::atomic<bool> enabled_{false};
 
   // I/O thread side.
-  _modbus* ctx_ = nullptr;
+  modbus_t* ctx_ = nullptr;
   std::int64_t last_connect_attempt_ns_ = -1'000'000'000'000;
   Command current_;
   Feedback measured_;

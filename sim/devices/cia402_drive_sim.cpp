@@ -135,23 +135,30 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
       return;
     }
     bool ok = (f.data[0] & 0xE3) == 0x23;  // expedited download, size indicated
-    if (ok) {
-      if (index == 0x607D && sub == 1)
+    const std::uint32_t key = (static_cast<std::uint32_t>(index) << 8) | sub;
+    switch (ok ? key : 0) {
+      case 0x607D01:
         limit_min_ = static_cast<std::int32_t>(v);
-      else if (index == 0x607D && sub == 2)
+        break;
+      case 0x607D02:
         limit_max_ = static_cast<std::int32_t>(v);
-      else if (index == 0x607F && sub == 0) {
-      } else if (index == 0x6060 && sub == 0)
+        break;
+      case 0x606000:
         mode_ = static_cast<int>(v & 0xFF);
-      else if (index == 0x1017 && sub == 0)
+        break;
+      case 0x101700:
         heartbeat_ms_ = static_cast<int>(v & 0xFFFF);
-      else if (index == 0x1016 && sub == 1) {
+        break;
+      case 0x101601:
         consumer_node_ = static_cast<int>((v >> 16) & 0x7F);
         consumer_ms_ = static_cast<int>(v & 0xFFFF);
-      } else if (index == 0x6007 && sub == 0) {
-      } else {
+        break;
+      case 0x607F00:  // max profile velocity: accepted; the plant has its own slew limit
+      case 0x600700:  // abort connection option: this drive always faults
+        break;
+      default:
         ok = false;
-      }
+        break;
     }
     if (ok) {
       r.data[0] = 0x60;

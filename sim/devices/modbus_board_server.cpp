@@ -136,6 +136,11 @@ void ModbusBoardServer::handle(const std::uint8_t* query, int length) {
   ModbusActuatorBoard& board = *boards_[index];
   modbus_mapping_t* map = maps_[index];
 
+  const int only = faults_.only_unit.load();
+  if (only != 0 && only != unit) {
+    reply_normally(query, length, board, map, function, header);
+    return;
+  }
   if (faults_.silent.load()) return;
   const int drop = faults_.drop_every.load();
   if (drop > 0 && n % static_cast<std::uint64_t>(drop) == 0) return;
@@ -149,15 +154,21 @@ void ModbusBoardServer::handle(const std::uint8_t* query, int length) {
     return;
   }
 
+  if (faults_.corrupt_next.load() > 0) {
+    faults_.corrupt_next.fetch_sub(1);
+    send_corrupt(query);
+    return;
+  }
+  reply_normally(query, length, board, map, function, header);
+}
+
+void ModbusBoardServer::reply_normally(const std::uint8_t* query, int length,
+                                       ModbusActuatorBoard& board, modbus_mapping_t* map,
+                                       int function, int header) {
   const std::int64_t now = monotonic_ns();
   board.fill_inputs(now,
                     std::span<std::uint16_t>(map->tab_input_registers,
                                              static_cast<std::size_t>(modbus_map::kInputCount)));
-  if (faults_.corrupt_next.load() > 0) {
-    faults_.corrupt_next.fetch_sub(1);
-    send_corrupt(query, board);
-    return;
-  }
   if (modbus_reply(ctx_, query, length, map) < 0) return;
   if (function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ||
       function == MODBUS_FC_WRITE_SINGLE_REGISTER) {
@@ -177,8 +188,7 @@ void ModbusBoardServer::handle(const std::uint8_t* query, int length) {
 // A well-formed reply of the right length whose integrity check fails: a
 // wrong transaction id (TCP) or a wrong CRC (RTU). The client must read all of
 // it and reject it, not time out.
-void ModbusBoardServer::send_corrupt(const std::uint8_t* query, ModbusActuatorBoard& board) {
-  (void)board;
+void ModbusBoardServer::send_corrupt(const std::uint8_t* query) {
   const int header = modbus_get_header_length(ctx_);
   const int function = query[header];
   std::vector<std::uint8_t> pdu{static_cast<std::uint8_t>(function)};

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <modbus/modbus.h>
+
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -8,9 +10,6 @@
 #include <vector>
 
 #include "sim/devices/modbus_actuator_board.hpp"
-
-struct _modbus;
-struct _modbus_mapping_t;
 
 namespace facectl::sim {
 
@@ -22,6 +21,7 @@ struct ModbusServerFaults {
   std::atomic<int> drop_every{0};             // leave every Nth request unanswered
   std::atomic<int> corrupt_next{0};           // send the next N replies corrupted
   std::atomic<bool> close_connection{false};  // drop the TCP connection on the next request
+  std::atomic<int> only_unit{0};              // nonzero: the faults above hit this unit only
 };
 
 // A real libmodbus server (TCP on 127.0.0.1, or RTU on the master side of a
@@ -49,12 +49,14 @@ class ModbusBoardServer {
   void run();
   void serve_one();
   void handle(const std::uint8_t* query, int length);
-  void send_corrupt(const std::uint8_t* query, ModbusActuatorBoard& board);
+  void send_corrupt(const std::uint8_t* query);
+  void reply_normally(const std::uint8_t* query, int length, ModbusActuatorBoard& board,
+                      modbus_mapping_t* map, int function, int header);
   void close_client();
 
   std::vector<ModbusActuatorBoard*> boards_;
-  std::vector<_modbus_mapping_t*> maps_;
-  _modbus* ctx_ = nullptr;
+  std::vector<modbus_mapping_t*> maps_;
+  modbus_t* ctx_ = nullptr;
   bool tcp_ = true;
   int listen_fd_ = -1;
   int client_fd_ = -1;
