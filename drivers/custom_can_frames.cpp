@@ -1,5 +1,6 @@
 #include "drivers/custom_can_frames.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace facectl::custom_can {
@@ -45,13 +46,28 @@ void encode_command(const Command& c, Width width, std::span<const std::int32_t>
       put_u32(p, static_cast<std::uint32_t>(v));
     }
   }
-  out.len = static_cast<std::uint8_t>(2 + n * w);
+  std::size_t len = 2 + n * w;
+  if (fd && len > 8) {
+    // CAN FD carries 12, 16, 20, 24, 32, 48 or 64 bytes above 8: pad with zeros.
+    std::size_t padded = 64;
+    for (std::size_t size : {12, 16, 20, 24, 32, 48}) {
+      if (len <= size) {
+        padded = size;
+        break;
+      }
+    }
+    std::fill(out.data.begin() + static_cast<std::ptrdiff_t>(len),
+              out.data.begin() + static_cast<std::ptrdiff_t>(padded), 0);
+    len = padded;
+  }
+  out.len = static_cast<std::uint8_t>(len);
 }
 
 std::optional<Feedback> decode_feedback(const CanFrame& f, Width width) {
   const auto w = static_cast<std::size_t>(width);
   if (f.id <= kFeedbackBase || f.id > kFeedbackBase + 63) return std::nullopt;
-  if (f.len < 2 || (f.len - 2) % w != 0) return std::nullopt;
+  // Classic frames carry exactly whole channels; FD frames may be padded.
+  if (f.len < 2 || (!f.fd && (f.len - 2) % w != 0)) return std::nullopt;
   Feedback fb;
   fb.node = static_cast<int>(f.id - kFeedbackBase);
   fb.sequence_echo = f.data[0];

@@ -37,7 +37,8 @@ struct Command {
   std::uint8_t sequence = 0;
   std::uint8_t flags = 0;
 };
-// Writes a command frame: [seq][flags][value 0]...[value n-1].
+// Writes a command frame: [seq][flags][value 0]...[value n-1]; a CAN FD frame
+// longer than 8 bytes is zero-padded to the next valid FD length.
 // Each channel's unit may differ, so values arrive already in counts (to_counts).
 void encode_command(const Command& c, Width width, std::span<const std::int32_t> targets, bool fd,
                     CanFrame& out);
@@ -49,8 +50,10 @@ struct Feedback {
   int channels = 0;
   std::array<std::int32_t, 31> positions{};  // counts (from_counts)
 };
-// Decodes a feedback frame; nullopt when `f` is not a feedback frame or its
-// length is not 2 + k·width (the caller counts it as a bad frame).
+// Decodes a feedback frame; nullopt when `f` is not a feedback frame or a
+// classic frame's length is not 2 + k·width (the caller counts it as a bad
+// frame). A padded FD frame decodes to every whole channel it holds; the
+// caller uses the ones it has.
 std::optional<Feedback> decode_feedback(const CanFrame& f, Width width);
 
 }  // namespace facectl::custom_can

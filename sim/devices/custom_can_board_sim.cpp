@@ -40,7 +40,8 @@ void CustomCanBoardSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
   if (f.id != kCommandBase + static_cast<std::uint32_t>(node_)) return;
   std::lock_guard lock(mutex_);
   const auto w = static_cast<std::size_t>(width_);
-  if (f.len != 2 + plants_.size() * w) return;  // not for our channel count: ignore
+  const std::size_t need = 2 + plants_.size() * w;
+  if (fd_ ? f.len < need : f.len != need) return;  // not for our channel count: ignore
   commands_.fetch_add(1);
   if (any_command_ && f.data[0] != static_cast<std::uint8_t>(sequence_ + 1)) gaps_.fetch_add(1);
   any_command_ = true;

@@ -49,6 +49,21 @@ TEST(CustomCanFrames, Int32ChannelsAreTenThousandthsOfADegree) {
   EXPECT_EQ(custom_can::channels_per_frame(true, Width::kInt32), 15);
 }
 
+TEST(CustomCanFrames, CanFdFramesArePaddedToAValidLength) {
+  std::vector<std::int32_t> t(12, 0x0102);
+  CanFrame f;
+  custom_can::encode_command({1, 7, custom_can::kFlagEnable}, Width::kInt16, t, true, f);
+  EXPECT_EQ(f.len, 32);  // 2 + 24 = 26 bytes, padded to the FD length 32
+  EXPECT_EQ(f.data[24], 0x02);
+  EXPECT_EQ(f.data[25], 0x01);
+  for (int i = 26; i < 32; ++i) EXPECT_EQ(f.data[static_cast<std::size_t>(i)], 0) << i;
+  f.id = 0x181;
+  const auto fb = custom_can::decode_feedback(f, Width::kInt16);
+  ASSERT_TRUE(fb);
+  EXPECT_EQ(fb->channels, 15);  // whole channels in the padded frame; the bus uses its 12
+  EXPECT_EQ(fb->positions[11], 0x0102);
+}
+
 TEST(CustomCanFrames, FeedbackDecodesAndRejectsBadLengthsAndIds) {
   const auto fb = custom_can::decode_feedback(frame(0x182, {0x2A, 0x01, 0xE2, 0x04, 0x70, 0xFE}),
                                               Width::kInt16);

@@ -66,7 +66,10 @@ for m in can can-raw can-dev vcan hid hid-generic uhid; do
 done
 /sbin/iproute2-ip link add dev vcan0 type vcan
 /sbin/iproute2-ip link set up vcan0
-candump -L vcan0 > /tmp/candump.log 2>&1 &
+/sbin/iproute2-ip link add dev vcan1 type vcan
+/sbin/iproute2-ip link set vcan1 mtu 72
+/sbin/iproute2-ip link set up vcan1
+candump -L any > /tmp/candump.log 2>&1 &
 dump=\$!
 sleep 0.3
 /bin/$guest_test --gtest_color=no
@@ -74,28 +77,29 @@ rc=\$?
 sleep 0.3
 kill \$dump
 frames=\$(wc -l < /tmp/candump.log)
-echo "FACECTL-QEMU: candump recorded \$frames frames on vcan0"
+echo "FACECTL-QEMU: candump recorded \$frames frames on vcan0 and vcan1"
 echo "FACECTL-QEMU: the first frames to and from drive 1:"
 grep -E " vcan0 (000|080|181|201|581|601|701|77F)#" /tmp/candump.log | head -n 40 | sed 's/^/FACECTL-QEMU: wire /'
 ok=PASS
 check() {
-  if grep -q " vcan0 \$1" /tmp/candump.log; then
-    echo "FACECTL-QEMU: candump saw \$2: \$(grep -m1 " vcan0 \$1" /tmp/candump.log)"
+  if grep -q " \$1" /tmp/candump.log; then
+    echo "FACECTL-QEMU: candump saw \$2: \$(grep -m1 " \$1" /tmp/candump.log)"
   else
     echo "FACECTL-QEMU: candump did NOT see \$2 (\$1)"
     ok=FAIL
   fi
 }
-check '601#2F60600008000000' 'SDO: drive 1 mode of operation = 8 (CSP)'
-check '601#2B17100014000000' 'SDO: drive 1 producer heartbeat = 20 ms'
-check '000#0101\$' 'NMT start node 1'
-check '201#0F00' 'RPDO1 to drive 1 with controlword enable operation'
-check '080#\$' 'SYNC'
-check '77F#05\$' 'host heartbeat (node 127, operational)'
-check '181#3702' 'TPDO1 from drive 1, statusword operation enabled'
-check '101#' 'custom command frame to board 1'
-check '184#' 'custom feedback frame from board 4'
-check '083#1023040000000000' 'EMCY sent by cansend'
+check 'vcan0 601#2F60600008000000' 'SDO: drive 1 mode of operation = 8 (CSP)'
+check 'vcan0 601#2B17100014000000' 'SDO: drive 1 producer heartbeat = 20 ms'
+check 'vcan0 000#0101\$' 'NMT start node 1'
+check 'vcan0 201#0F00' 'RPDO1 to drive 1 with controlword enable operation'
+check 'vcan0 080#\$' 'SYNC'
+check 'vcan0 77F#05\$' 'host heartbeat (node 127, operational)'
+check 'vcan0 181#3702' 'TPDO1 from drive 1, statusword operation enabled'
+check 'vcan0 101#' 'custom command frame to board 1'
+check 'vcan0 184#' 'custom feedback frame from board 4'
+check 'vcan0 083#1023040000000000' 'EMCY sent by cansend'
+check 'vcan1 101##[0-9A-F]0103\\(9001\\)\\{12\\}000000000000\$' 'CAN FD command to board 1: seq 1, enable+reset, 12 x 4.00 deg, padded to 32 bytes'
 echo "FACECTL-QEMU-RESULT: tests=\$rc candump=\$ok"
 poweroff -f
 INIT

@@ -189,6 +189,30 @@ TEST(Vcan, ASilentDriveIsAHeartbeatLossFault) {
               t, options.heartbeat_timeout_s);
 }
 
+TEST(Vcan, ACanFdFramePacksTwelveChannelsForOneBoard) {
+  // vcan1 has a 72-byte MTU: CAN FD.
+  SocketCanTransport host("vcan1", true);
+  SocketCanTransport wire("vcan1", true);
+  std::vector<sim::BoardChannel> ch(12);
+  for (auto& c : ch) c.plant = fast_plant();
+  sim::CustomCanBoardSim board(1, ch, custom_can::Width::kInt16, true);
+  sim::CanDeviceNetwork net(wire, {&board});
+  net.start(200);
+  CanBusOptions fd;
+  fd.fd = true;
+  CustomCanBus bus("vcan1", host, rotary(12), std::vector<double>(12, 0.0), fd);
+  EXPECT_EQ(bus.board_count(), 1u);
+  bus.set_enabled(true);
+  run_ticks(
+      bus, 12, 0.5, [] { return false; }, [](double) { return 4 * kDeg; });
+  EXPECT_NEAR(board.position(11), 4 * kDeg, 0.1 * kDeg);
+  EXPECT_FALSE(bus.status().fault) << bus.status().reason;
+  std::printf(
+      "[vcan] CAN FD: 1 board, 12 channels in one FD frame (26 bytes, sent as 32), channel 12 at "
+      "%.3f deg\n",
+      board.position(11) / kDeg);
+}
+
 TEST(Vcan, BusDoctorFindsTheDrivesOnARealSocket) {
   SocketCanTransport host(kIf, false);
   SocketCanTransport wire(kIf, false);
