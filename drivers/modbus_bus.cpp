@@ -151,10 +151,16 @@ void ModbusBus::write(const TickTime& /*time*/, std::span<const double> position
     staging_.positions[i] = positions[i];
   }
   ++staging_.sequence;
+  staging_.epoch = epoch_.load(std::memory_order_relaxed);
   commands_.publish(staging_);
 }
 
 void ModbusBus::set_enabled(bool enabled) {
+  // A new epoch on each enable: a command written before it, even one the I/O
+  // thread has not sent yet, is never sent after it (bumpless enable).
+  if (enabled && !enabled_.load(std::memory_order_relaxed)) {
+    epoch_.fetch_add(1, std::memory_order_relaxed);
+  }
   enabled_.store(enabled, std::memory_order_release);
 }
 
@@ -289,7 +295,8 @@ void ModbusBus::serve_board(Board& board, bool enabled, std::int64_t now_ns) {
   std::array<std::uint16_t, modbus_map::kInputCount> in{};
   if (enabled) {
     board.disable_confirmed = false;
-    if (board.acked_sequence != current_.sequence && current_.sequence != 0) {
+    if (board.acked_sequence != current_.sequence && current_.sequence != 0 &&
+        current_.epoch == io_epoch_) {
       std::array<std::uint16_t, 2 + modbus_map::kChannelsPerBoard> regs{};
       regs[0] = modbus_map::kControlEnable;
       if (board.reset_pending) regs[0] |= modbus_map::kControlFaultReset;
@@ -382,6 +389,7 @@ void ModbusBus::io_loop() {
   while (!stop_.load(std::memory_order_acquire)) {
     std::int64_t now = monotonic_ns();
     const bool enabled = enabled_.load(std::memory_order_acquire);
+    io_epoch_ = epoch_.load(std::memory_order_relaxed);
     if (enabled && !was_enabled_) {
       for (auto& b : boards_) {
         b->reset_pending = true;  // clear a latched watchdog on the enable edge

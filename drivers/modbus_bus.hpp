@@ -91,6 +91,7 @@ class ModbusBus final : public ActuatorBus {
   struct Command {
     std::array<double, kMaxActuators> positions{};
     std::uint64_t sequence = 0;
+    std::uint32_t epoch = 0;  // enable count when written: older ones are never sent
   };
   struct Feedback {
     std::array<double, kMaxActuators> positions{};
@@ -137,6 +138,7 @@ class ModbusBus final : public ActuatorBus {
   Command staging_;
   Feedback last_feedback_;
   std::atomic<bool> enabled_{false};
+  std::atomic<std::uint32_t> epoch_{0};  // +1 on every enable
 
   // I/O thread side.
   modbus_t* ctx_ = nullptr;
@@ -144,6 +146,7 @@ class ModbusBus final : public ActuatorBus {
   Command current_;
   Feedback measured_;
   bool was_enabled_ = false;
+  std::uint32_t io_epoch_ = 0;
 
   struct AtomicStats {
     std::atomic<std::uint64_t> transactions{0}, failures{0}, timeouts{0}, exceptions{0},

@@ -279,6 +279,27 @@ TEST_F(ModbusTcp, NoTargetIsSentOnceDisabledAsInEstop) {
   EXPECT_FALSE(bus_->status().fault);
 }
 
+TEST_F(ModbusTcp, ACommandWrittenBeforeADisableIsNeverSentAfterTheNextEnable) {
+  bus_->set_enabled(true);
+  std::vector<double> cmd(14, 1.0 * kDeg);
+  for (int i = 0; i < 50; ++i) {
+    bus_->write({now_ns(), 0.001}, cmd);
+    std::this_thread::sleep_for(1ms);
+  }
+  ASSERT_NEAR(board1_.target(0), 1.0 * kDeg, 0.01 * kDeg);
+  server_->faults().silent = true;  // the next write cannot get through
+  std::this_thread::sleep_for(5ms);
+  std::fill(cmd.begin(), cmd.end(), 10.0 * kDeg);
+  bus_->write({now_ns(), 0.001}, cmd);
+  bus_->set_enabled(false);
+  bus_->set_enabled(true);  // re-enabled before the I/O thread noticed, and no write since
+  std::this_thread::sleep_for(50ms);
+  server_->faults().silent = false;
+  std::this_thread::sleep_for(300ms);
+  EXPECT_NEAR(board1_.target(0), 1.0 * kDeg, 0.01 * kDeg)
+      << "the 10 degree command from before the disable reached the board";
+}
+
 TEST_F(ModbusTcp, ADeadTickStopsTheHeartbeatAndTheBoardWatchdogTrips) {
   bus_->set_enabled(true);
   start_tick();
