@@ -34,6 +34,9 @@ class ActuatorBus {
   // Commanded positions (SI); only called while outputs are enabled.
   virtual void write(const TickTime& time, std::span<const double> positions) = 0;
   // Enables or disables the actuators' outputs (drive enable, torque on/off).
+  // On enable a backend must hold each actuator where it is until the first
+  // write (e.g. CiA 402: target := actual before "enable operation"), never
+  // resume an older target: that is what makes enabling bumpless.
   virtual void set_enabled(bool enabled) = 0;
   virtual BusStatus status() const = 0;
 };

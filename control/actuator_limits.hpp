@@ -22,7 +22,10 @@ enum LimitFlag : std::uint8_t {
   kLimitAcceleration = 1 << 2,  // max acceleration capped the motion
   kLimitJerk = 1 << 3,          // max jerk capped the motion
   kLimitApproach = 1 << 4,      // braking curve toward a soft limit capped the motion
-  kLimitBreach = 1 << 5,        // the final backstop had to act (should never fire)
+  kLimitBreach = 1 << 5,        // the backstop clamped a command outside the hardware range
+  kLimitInvalid = 1 << 6,       // NaN/inf target or a non-positive dt: held, not moved
+  kLimitJerkYielded = 1 << 7,   // a hard bound overrode the jerk limit on this tick
 };
+inline constexpr int kLimitFlagCount = 8;
 
 }  // namespace facectl

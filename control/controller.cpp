@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 namespace facectl {
@@ -28,7 +27,37 @@ Controller::Controller(const ControllerModel& model, std::span<ActuatorBus* cons
     command_[i] = model.actuators[i].rest;
     measured_[i] = model.actuators[i].rest;
   }
+  // IDLE means disabled: make it true of the hardware too, whatever a crashed
+  // previous run left enabled.
+  for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
+  io_.set_power_enable(false);
 }
+
+namespace {
+
+// Bounded copy into a fixed buffer (no formatting machinery in the tick).
+void copy_text(char* out, std::size_t size, const char* text) {
+  std::size_t i = 0;
+  for (; i + 1 < size && text[i] != '\0'; ++i) out[i] = text[i];
+  out[i] = '\0';
+}
+
+// "N missed deadlines", written without printf.
+void write_count(char* out, std::size_t size, int n, const char* suffix) {
+  char digits[16];
+  int len = 0;
+  unsigned v = n < 0 ? 0u : static_cast<unsigned>(n);
+  do {
+    digits[len++] = static_cast<char>('0' + v % 10);
+    v /= 10;
+  } while (v != 0 && len < 15);
+  std::size_t i = 0;
+  while (len > 0 && i + 1 < size) out[i++] = digits[--len];
+  out[i] = '\0';
+  copy_text(out + i, size - i, suffix);
+}
+
+}  // namespace
 
 void Controller::read_inputs(const TickTiming& timing) {
   // Step 1: the latest face command, if a new one arrived.
@@ -51,55 +80,86 @@ void Controller::read_inputs(const TickTiming& timing) {
   }
 }
 
-void Controller::limit_actuators(double dt, std::uint8_t* flags) {
+void Controller::choose_targets() {
+  // ENABLING blends from where the actuators were to the live target;
+  // STOPPING heads for rest whatever the input says (the show is over).
   const SafetyState state = safety_.state();
   const double blend = safety_.enable_blend();
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
-    const ActuatorModel& act = model_.actuators[i];
     double target = mapped_[i];
     if (state == SafetyState::kEnabling) {
       target = enable_start_[i] + blend * (mapped_[i] - enable_start_[i]);
     } else if (state == SafetyState::kStopping) {
-      target = act.rest;
+      target = model_.actuators[i].rest;
     }
     target_[i] = target;
-    flags[i] = limit_step(act.limits, limiter_[i], target, dt);
-    command_[i] = limiter_[i].position;
-    // Independent check of the result against the hardware range.
-    if (command_[i] < act.limits.position_min || command_[i] > act.limits.position_max) {
-      flags[i] |= kLimitBreach;
-    }
-    for (int bit = 0; bit < 6; ++bit) {
-      if ((flags[i] & (1u << bit)) != 0) ++counters_.limit_hits[i][static_cast<std::size_t>(bit)];
-    }
-    if ((flags[i] & kLimitBreach) != 0) ++counters_.limit_breaches;
   }
 }
 
-bool Controller::at_rest() const {
+bool Controller::limit_actuators(double dt, std::uint8_t* flags) {
+  bool breach = false;
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     const ActuatorLimits& l = model_.actuators[i].limits;
-    const double tol = model_.rest_tolerance_fraction * (l.soft_max - l.soft_min);
-    if (std::fabs(limiter_[i].position - model_.actuators[i].rest) > tol ||
-        std::fabs(limiter_[i].velocity) > 0.01 * l.max_velocity) {
-      return false;
+    flags[i] = limit_step(l, limiter_[i], target_[i], dt);
+    command_[i] = limiter_[i].position;
+    // Independent backstop against the hardware range, NaN included: such a
+    // command is never sent, and the state machine faults on it.
+    if (!(l.position_min <= command_[i] && command_[i] <= l.position_max)) {
+      flags[i] |= kLimitBreach;
+      command_[i] = std::isfinite(command_[i])
+                        ? std::clamp(command_[i], l.position_min, l.position_max)
+                        : std::clamp(measured_[i], l.position_min, l.position_max);
+      limiter_[i] = {command_[i], 0.0, 0.0};
+      breach = true;
+      ++counters_.limit_breaches;
+    }
+    for (int bit = 0; bit < kLimitFlagCount; ++bit) {
+      if ((flags[i] & (1u << bit)) != 0) ++counters_.limit_hits[i][static_cast<std::size_t>(bit)];
     }
   }
-  return true;
+  return breach;
 }
 
-void Controller::enter_state(SafetyState state, const TickTime& time) {
-  (void)time;
+bool Controller::feedback_out_of_range() const {
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    const ActuatorLimits& l = model_.actuators[i].limits;
+    if (!(l.position_min <= measured_[i] && measured_[i] <= l.position_max)) return true;
+  }
+  return false;
+}
+
+bool Controller::at_rest(double dt) {
+  // Both the command and the measured position must have settled at rest,
+  // and stayed there, before outputs drop: a jaw or neck under gravity is
+  // not let go while it is still moving.
+  bool settled = true;
+  for (std::size_t i = 0; i < model_.actuators.size() && settled; ++i) {
+    const ActuatorLimits& l = model_.actuators[i].limits;
+    const double range = l.soft_max - l.soft_min;
+    const double rest = model_.actuators[i].rest;
+    settled = std::fabs(limiter_[i].position - rest) <= model_.rest_tolerance_fraction * range &&
+              std::fabs(limiter_[i].velocity) <= 0.01 * l.max_velocity &&
+              std::fabs(measured_[i] - rest) <= model_.rest_measured_tolerance_fraction * range;
+  }
+  settled_time_ = settled ? settled_time_ + dt : 0.0;
+  return settled_time_ >= model_.rest_dwell_s;
+}
+
+void Controller::enter_state(SafetyState state) {
   const bool outputs = state == SafetyState::kEnabling || state == SafetyState::kRunning ||
                        state == SafetyState::kStopping;
   if (state == SafetyState::kEnabling) {
-    // Bumpless: the commanded trajectory starts where the actuators are.
+    // Bumpless: the commanded trajectory starts where the actuators are
+    // (inside their hardware range: the state machine refused otherwise), and
+    // the backends hold there until the first write (ActuatorBus::set_enabled).
     for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
       const ActuatorLimits& l = model_.actuators[i].limits;
-      enable_start_[i] = std::clamp(measured_[i], l.soft_min, l.soft_max);
-      limiter_[i] = {measured_[i], 0.0, 0.0};
-      command_[i] = measured_[i];
+      const double here = std::clamp(measured_[i], l.position_min, l.position_max);
+      enable_start_[i] = std::clamp(here, l.soft_min, l.soft_max);
+      limiter_[i] = {here, 0.0, 0.0};
+      command_[i] = here;
     }
+    settled_time_ = 0.0;
   }
   if (!outputs) {
     for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
@@ -111,6 +171,7 @@ void Controller::enter_state(SafetyState state, const TickTime& time) {
   if (state == SafetyState::kFault || state == SafetyState::kEstop) {
     faults_seen_.fetch_add(1, std::memory_order_relaxed);
   }
+  if (state == SafetyState::kStopping) settled_time_ = 0.0;
   state_mirror_.store(state, std::memory_order_relaxed);
 }
 
@@ -134,9 +195,11 @@ void Controller::log_transition(const TickTiming& timing, SafetyState from,
   ev->reason = reason;
   ev->detail[0] = '\0';
   if (reason == TransitionReason::kBusFault) {
-    std::snprintf(ev->detail, sizeof ev->detail, "%s", bus_fault_reason_);
+    copy_text(ev->detail, sizeof ev->detail, bus_fault_reason_);
   } else if (reason == TransitionReason::kOverrunStorm) {
-    std::snprintf(ev->detail, sizeof ev->detail, "%d in a row", timing.consecutive_overruns);
+    write_count(ev->detail, sizeof ev->detail, timing.consecutive_overruns, " missed deadlines");
+  } else if (reason == TransitionReason::kStopTimeout) {
+    stop_timed_out_.store(true, std::memory_order_relaxed);
   }
   channels_.events->commit_push();
 }
@@ -156,6 +219,8 @@ void Controller::publish_telemetry(const TickTiming& timing, TransitionReason tr
   rec->transition = transition;
   rec->input_stale = input_stale_;
   rec->envelope_flags = envelope_flags;
+  rec->coupled_flags = coupled_flags_;
+  rec->coupled_violation = coupled_violation_;
   rec->rejected_values = rejected;
   rec->overruns = static_cast<std::uint32_t>(timing.consecutive_overruns);
   rec->signal_count = static_cast<std::uint16_t>(model_.layout.size());
@@ -182,17 +247,31 @@ void Controller::tick(const TickTiming& timing) {
   // 4. Face envelope: mandible limits and admissible rigid ranges.
   const std::uint8_t envelope_flags = envelope_.apply(face_);
   if (envelope_flags != 0) ++counters_.envelope_clamps;
+  //    Coupled face limits: a deterministic, bounded projection.
+  coupled_flags_ = model_.face_constraints.project(face_.data(), &coupled_violation_);
+  if (coupled_flags_ != 0) {
+    ++counters_.coupled_projections;
+    for (std::size_t c = 0; c < model_.face_constraints.size(); ++c) {
+      if ((coupled_flags_ & (1u << c)) != 0) ++counters_.coupled_hits[c];
+    }
+  }
   // 5. Reduced face model: no control-point sources in the linear mapping yet.
   // 6. Map to actuators.
   model_.mapping.apply(face_, mapped_);
   // 7. Actuator limits, only while outputs are live.
   std::array<std::uint8_t, kMaxActuators> flags{};
-  if (safety_.outputs_enabled()) limit_actuators(dt, flags.data());
+  bool breach = false;
+  if (safety_.outputs_enabled()) {
+    choose_targets();
+    breach = limit_actuators(dt, flags.data());
+  }
 
   // 8. Safety state machine.
   SafetyInputs in;
   in.estop = io_.estop_active();
   in.io_fault = io_.fault();
+  in.limit_breach = breach;
+  in.feedback_out_of_range = feedback_out_of_range();
   for (std::size_t b = 0; b < bus_count_; ++b) {
     const BusStatus st = buses_[b]->status();
     if (st.fault && !in.bus_fault) {
@@ -204,12 +283,12 @@ void Controller::tick(const TickTiming& timing) {
   in.enable_request = enable_request_.exchange(false, std::memory_order_relaxed);
   in.shutdown_request = shutdown_request_.load(std::memory_order_relaxed);
   in.reset_request = reset_request_.exchange(false, std::memory_order_relaxed);
-  in.at_rest = safety_.state() == SafetyState::kStopping && at_rest();
+  in.at_rest = safety_.state() == SafetyState::kStopping && at_rest(dt);
   const SafetyState before = safety_.state();
   const TransitionReason transition = safety_.step(in, dt);
   const TickTime time{timing.now_ns, dt};
   if (transition != TransitionReason::kNone) {
-    enter_state(safety_.state(), time);
+    enter_state(safety_.state());
     log_transition(timing, before, transition);
   }
   if (!safety_.outputs_enabled()) {

@@ -10,6 +10,7 @@
 #include "control/command_shaper.hpp"
 #include "control/controller_model.hpp"
 #include "control/face_command.hpp"
+#include "control/face_envelope.hpp"
 #include "control/latest_value_mailbox.hpp"
 #include "control/mandible_envelope.hpp"
 #include "control/safety_state_machine.hpp"
@@ -43,8 +44,11 @@ struct ControllerCounters {
   std::uint64_t ticks = 0;
   std::uint64_t stale_ticks = 0;
   std::uint64_t envelope_clamps = 0;
+  std::uint64_t coupled_projections = 0;
+  std::array<std::uint64_t, CoupledConstraints::kMaxConstraints> coupled_hits{};
   std::uint64_t limit_breaches = 0;
-  std::array<std::array<std::uint64_t, 6>, kMaxActuators> limit_hits{};  // per LimitFlag bit
+  std::array<std::array<std::uint64_t, kLimitFlagCount>, kMaxActuators>
+      limit_hits{};  // per LimitFlag bit
 };
 
 // The real-time core: one call of tick() runs the steps of DESIGN.md "One
@@ -59,12 +63,18 @@ class Controller {
   void tick(const TickTiming& timing);
 
   // Requests from other threads (signal handlers included): lock-free flags.
-  void request_enable() { enable_request_.store(true, std::memory_order_relaxed); }
+  // Enabling again after a shutdown withdraws the shutdown.
+  void request_enable() {
+    shutdown_request_.store(false, std::memory_order_relaxed);
+    enable_request_.store(true, std::memory_order_relaxed);
+  }
   void request_shutdown() { shutdown_request_.store(true, std::memory_order_relaxed); }
   void request_reset() { reset_request_.store(true, std::memory_order_relaxed); }
 
   SafetyState state() const { return state_mirror_.load(std::memory_order_relaxed); }
   std::uint64_t faults_seen() const { return faults_seen_.load(std::memory_order_relaxed); }
+  // True if a shutdown disabled the outputs before rest was reached.
+  bool stop_timed_out() const { return stop_timed_out_.load(std::memory_order_relaxed); }
 
   const ControllerModel& model() const { return model_; }
   const ControllerCounters& counters() const { return counters_; }
@@ -77,13 +87,17 @@ class Controller {
 
  private:
   void read_inputs(const TickTiming& timing);
-  void limit_actuators(double dt, std::uint8_t* flags);
-  bool at_rest() const;
-  void enter_state(SafetyState state, const TickTime& time);
+  void choose_targets();
+  bool limit_actuators(double dt, std::uint8_t* flags);  // true if the backstop acted
+  bool feedback_out_of_range() const;
+  bool at_rest(double dt);
+  void enter_state(SafetyState state);
   void write_outputs(const TickTime& time);
   void publish_telemetry(const TickTiming& timing, TransitionReason transition,
                          std::uint32_t rejected, std::uint8_t envelope_flags,
                          const std::uint8_t* flags);
+  std::uint32_t coupled_flags_ = 0;
+  double coupled_violation_ = 0.0;
   void log_transition(const TickTiming& timing, SafetyState from, TransitionReason reason);
 
   const ControllerModel& model_;
@@ -118,6 +132,8 @@ class Controller {
   std::atomic<bool> reset_request_{false};
   std::atomic<SafetyState> state_mirror_{SafetyState::kIdle};
   std::atomic<std::uint64_t> faults_seen_{0};
+  std::atomic<bool> stop_timed_out_{false};
+  double settled_time_ = 0.0;
   const char* bus_fault_reason_ = "";
 };
 

@@ -7,6 +7,7 @@
 #include "control/actuator_limits.hpp"
 #include "control/capacity.hpp"
 #include "control/command_shaper.hpp"
+#include "control/coupled_constraints.hpp"
 #include "control/face_layout.hpp"
 #include "control/linear_mapping.hpp"
 #include "control/mandible_envelope.hpp"
@@ -41,14 +42,21 @@ struct ControllerModel {
   std::array<Range, kMaxFaceSignals> admissible{};
   MandibleEnvelope envelope = MandibleEnvelope::design_default();
   bool envelope_widened = false;  // set only through the explicit override
+  // Linear inequalities over the face signals (antagonists, jaw against lips,
+  // yaw band by pitch), projected in step 4 after the envelope.
+  CoupledConstraints face_constraints;
   ShapingParams shaping;
   SafetyParams safety;
   LinearMapping mapping;
   std::vector<ActuatorModel> actuators;  // ordered by bus
   std::vector<BusModel> buses;
   double rate_hz = 1000.0;
-  // Fraction of an actuator's soft range within which it counts as at rest.
+  // STOPPING ends when, for every actuator, the command is within this
+  // fraction of its soft range of rest (and nearly still), the measured
+  // position within the second fraction (it carries noise), for rest_dwell_s.
   double rest_tolerance_fraction = 0.002;
+  double rest_measured_tolerance_fraction = 0.01;
+  double rest_dwell_s = 0.05;
 };
 
 }  // namespace facectl

@@ -70,6 +70,18 @@ FaceLayout::FaceLayout(const std::vector<std::string>& muscle_names)
   }
 }
 
+std::string yaml_key(const SignalInfo& info) {
+  const std::string_view unit = yaml_unit(info.kind);
+  return unit.empty() ? info.name : info.name + "_" + std::string(unit);
+}
+
+std::optional<std::size_t> FaceLayout::find_yaml_key(std::string_view key) const {
+  for (std::size_t i = 0; i < signals_.size(); ++i) {
+    if (yaml_key(signals_[i]) == key) return i;
+  }
+  return std::nullopt;
+}
+
 std::optional<std::size_t> FaceLayout::find(std::string_view name) const {
   for (std::size_t i = 0; i < signals_.size(); ++i) {
     if (signals_[i].name == name) return i;

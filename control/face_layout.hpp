@@ -24,6 +24,9 @@ struct SignalInfo {
   double domain_max = 1.0;
 };
 
+// The YAML key of a signal: its name, plus "_deg" or "_mm" where the unit is not SI.
+std::string yaml_key(const SignalInfo& info);
+
 // Factor from the YAML unit of a kind to SI (deg -> rad, mm -> m, else 1).
 double yaml_to_si(SignalKind kind);
 // The YAML unit suffix of a kind: "deg", "mm" or "" for dimensionless.
@@ -45,6 +48,9 @@ class FaceLayout {
   std::size_t muscle_count() const { return muscle_count_; }
   const SignalInfo& signal(std::size_t i) const { return signals_[i]; }
   std::optional<std::size_t> find(std::string_view name) const;
+  // Finds a signal by its YAML key: the name plus its unit suffix
+  // (zygomaticus_major_l, jaw_pitch_deg, jaw_protrusion_mm, eyelid_closure_l).
+  std::optional<std::size_t> find_yaml_key(std::string_view key) const;
 
   std::size_t jaw_pitch() const { return muscle_count_; }
   std::size_t jaw_yaw() const { return muscle_count_ + 1; }

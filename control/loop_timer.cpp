@@ -47,7 +47,6 @@ double LoopTimer::finish() {
     // The next deadline has already passed: an overrun. Skip to the first
     // deadline still ahead instead of running a burst of late ticks.
     ++overruns_;
-    ++consecutive_overruns_;
     while (deadline_ns_ < done) {
       deadline_ns_ += period_ns_;
       ++skipped_;

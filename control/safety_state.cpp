@@ -42,6 +42,10 @@ std::string_view to_string(TransitionReason reason) {
       return "consecutive deadline overruns";
     case TransitionReason::kSafetyIoFault:
       return "safety I/O fault";
+    case TransitionReason::kFeedbackOutOfRange:
+      return "actuator measured outside its hardware range";
+    case TransitionReason::kLimitBreach:
+      return "limit breach: a command outside the hardware range was stopped";
     case TransitionReason::kFaultReset:
       return "reset";
   }

@@ -25,6 +25,8 @@ enum class TransitionReason : std::uint8_t {
   kBusFault,
   kOverrunStorm,
   kSafetyIoFault,
+  kFeedbackOutOfRange,
+  kLimitBreach,
   kFaultReset,
 };
 

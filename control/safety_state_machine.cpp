@@ -5,7 +5,6 @@
 namespace facectl {
 
 TransitionReason SafetyStateMachine::go(SafetyState next, TransitionReason reason) {
-  previous_ = state_;
   state_ = next;
   time_in_state_ = 0.0;
   return reason;
@@ -39,13 +38,22 @@ TransitionReason SafetyStateMachine::step(const SafetyInputs& in, double dt) {
 
   // Faults, from any state that may drive outputs or wants to.
   if (in.io_fault) return go(SafetyState::kFault, TransitionReason::kSafetyIoFault);
+  if (in.limit_breach) return go(SafetyState::kFault, TransitionReason::kLimitBreach);
   if (in.bus_fault) return go(SafetyState::kFault, TransitionReason::kBusFault);
   if (params_.overrun_fault_count > 0 && in.consecutive_overruns >= params_.overrun_fault_count) {
     return go(SafetyState::kFault, TransitionReason::kOverrunStorm);
   }
 
+  if (in.feedback_out_of_range && state_ != SafetyState::kIdle) {
+    return go(SafetyState::kFault, TransitionReason::kFeedbackOutOfRange);
+  }
+
   switch (state_) {
     case SafetyState::kIdle:
+      // Never enable onto an actuator that is already beyond its range.
+      if (in.enable_request && !in.shutdown_request && in.feedback_out_of_range) {
+        return go(SafetyState::kFault, TransitionReason::kFeedbackOutOfRange);
+      }
       if (in.enable_request && !in.shutdown_request) {
         return go(SafetyState::kEnabling, TransitionReason::kEnableRequested);
       }

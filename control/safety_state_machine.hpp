@@ -16,6 +16,8 @@ struct SafetyInputs {
   bool estop = false;
   bool bus_fault = false;
   bool io_fault = false;
+  bool feedback_out_of_range = false;  // a measured position is outside its hardware range
+  bool limit_breach = false;           // the command backstop acted on this tick
   int consecutive_overruns = 0;
   bool enable_request = false;
   bool shutdown_request = false;
@@ -33,7 +35,6 @@ class SafetyStateMachine {
   TransitionReason step(const SafetyInputs& in, double dt);
 
   SafetyState state() const { return state_; }
-  SafetyState previous() const { return previous_; }
   double time_in_state() const { return time_in_state_; }
   bool outputs_enabled() const {
     return state_ == SafetyState::kEnabling || state_ == SafetyState::kRunning ||
@@ -47,7 +48,6 @@ class SafetyStateMachine {
 
   SafetyParams params_;
   SafetyState state_ = SafetyState::kIdle;
-  SafetyState previous_ = SafetyState::kIdle;
   double time_in_state_ = 0.0;
 };
 

@@ -20,6 +20,8 @@ struct TelemetryRecord {
   TransitionReason transition = TransitionReason::kNone;  // set on the tick that changed state
   bool input_stale = false;
   std::uint8_t envelope_flags = 0;    // FaceEnvelope::Flag bits
+  std::uint32_t coupled_flags = 0;    // bit i: face coupled limit i was violated and projected
+  double coupled_violation = 0.0;     // the largest violation before projection
   std::uint32_t rejected_values = 0;  // sanitiser rejections on this tick
   std::uint32_t overruns = 0;         // consecutive overruns before this tick
   std::uint16_t signal_count = 0;

@@ -19,11 +19,18 @@ double braking_speed(double distance, double max_acceleration, double dt) {
   return a * (std::sqrt(dt * dt + 2.0 * distance / a) - dt);
 }
 
-std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target, double dt,
-                        double velocity_scale) {
+std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target,
+                        double dt) {
   std::uint8_t flags = 0;
+  if (!(dt > 0.0) || !std::isfinite(dt)) return kLimitInvalid;  // no time passed: no motion
+  if (!std::isfinite(target)) {
+    // A non-finite target cannot reach here through the sanitiser, but a
+    // mapping can overflow: brake to a stop where we are instead.
+    target = state.position;
+    flags |= kLimitInvalid;
+  }
   const double a_max = limits.max_acceleration;
-  const double v_max = limits.max_velocity * velocity_scale;
+  const double v_max = limits.max_velocity;
   const double x = state.position;
   const double v = state.velocity;
 
@@ -32,12 +39,11 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
 
   // Goal velocity: the fastest approach to the target that can still stop on it.
   const double error = r - x;
-  double distance = std::fabs(error);
-  if (limits.max_jerk > 0.0 && v * error > 0.0) {
-    // Under a jerk limit, deceleration ramps in over A/J: start braking earlier.
-    distance = std::max(0.0, distance - std::fabs(v) * a_max / limits.max_jerk);
-  }
-  const double goal_speed = braking_speed(distance, a_max, dt);
+  const double distance = std::fabs(error);
+  // Under a jerk limit, deceleration ramps in over A/J, which adds about
+  // v·A/(2J) to the stopping distance: plan the approach with that delay.
+  const double ramp = limits.max_jerk > 0.0 ? a_max / (2.0 * limits.max_jerk) : 0.0;
+  const double goal_speed = braking_speed(distance, a_max, dt + ramp);
   double v_goal = std::copysign(std::min(goal_speed, v_max), error);
   if (goal_speed > v_max * (1.0 + kFireTolerance) && std::fabs(error) > 0.0) {
     flags |= kLimitVelocity;
@@ -74,7 +80,7 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
       if (a_jerk != a_want) flags |= kLimitJerk;
       v_new = v_jerk;
     } else {
-      flags |= kLimitApproach;  // a hard bound overrode the jerk limit
+      flags |= kLimitJerkYielded;
     }
   }
 

@@ -15,7 +15,7 @@ struct LimiterState {
 
 // Advances `state` one tick of real duration `dt` toward `target`, so that the
 // commanded trajectory never leaves the soft range and never exceeds the
-// velocity (scaled by `velocity_scale`) or acceleration bounds. Returns the
+// velocity or acceleration bounds. Returns the
 // LimitFlag bits of the limits that shaped the motion.
 //
 // Integration is semi-implicit Euler: x' = x + v'·dt, so the finite
@@ -23,9 +23,10 @@ struct LimiterState {
 // acceleration. The braking bound v'²/(2A) + v'·dt ≤ d toward every boundary is
 // solved with this tick's dt; decelerating at A always satisfies it on the next
 // tick whatever that tick's dt is, so late and early ticks stay inside the
-// range (docs/SAFETY.md derives this).
-std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target, double dt,
-                        double velocity_scale = 1.0);
+// range (docs/SAFETY.md derives this). A NaN/inf target brakes to a stop; a
+// non-positive dt moves nothing (both flagged kLimitInvalid).
+std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target,
+                        double dt);
 
 // Highest speed v' that can still stop within `distance` after moving v'·dt.
 double braking_speed(double distance, double max_acceleration, double dt);

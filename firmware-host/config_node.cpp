@@ -157,6 +157,14 @@ long ConfigNode::integer() const {
   return value;
 }
 
+long ConfigNode::integer_in(long lo, long hi) const {
+  const long v = integer();
+  if (v < lo || v > hi) {
+    fail("an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+  return v;
+}
+
 std::string ConfigNode::string() const {
   if (!node_.IsScalar()) fail("a string");
   return node_.Scalar();

@@ -46,6 +46,7 @@ class ConfigNode {
   double positive() const;
   double non_negative() const;
   long integer() const;
+  long integer_in(long lo, long hi) const;
   std::string string() const;
   bool boolean() const;
   std::vector<std::string> string_list() const;

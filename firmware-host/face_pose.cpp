@@ -63,16 +63,9 @@ FacePose parse_pose(const ConfigNode& node, const FaceLayout& layout,
   }
   if (auto rigid = node.get("rigid")) {
     for (const auto& [key, value] : rigid->entries()) {
-      bool matched = false;
-      for (std::size_t i = layout.jaw_protrusion() + 1; i < layout.size() && !matched; ++i) {
-        const SignalInfo& info = layout.signal(i);
-        const std::string_view unit = yaml_unit(info.kind);
-        const std::string expected = unit.empty() ? info.name : info.name + "_" + std::string(unit);
-        if (key == expected) {
-          set_value(pose, i, value, info);
-          matched = true;
-        }
-      }
+      const auto index = layout.find_yaml_key(key);
+      const bool matched = index && *index > layout.jaw_protrusion();
+      if (matched) set_value(pose, *index, value, layout.signal(*index));
       if (!matched) {
         value.fail("a rigid DOF key such as eye_yaw_l_deg, eyelid_closure_l or neck_pan_deg",
                    "unknown key '" + key + "'");

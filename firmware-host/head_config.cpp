@@ -12,9 +12,11 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 Range parse_range(const ConfigNode& node, double scale) {
   node.expect_keys({"min", "max"});
-  Range r{node["min"].number() * scale, node["max"].number() * scale};
-  if (!(r.min <= r.max)) node.fail("min <= max", "min > max");
-  return r;
+  const double lo = node["min"].number();
+  const double hi = node["max"].number();
+  if (!(lo <= hi))
+    node.fail("min <= max", "min " + std::to_string(lo) + " > max " + std::to_string(hi));
+  return {lo * scale, hi * scale};
 }
 
 }  // namespace
@@ -23,17 +25,23 @@ EnvelopeSpec parse_envelope(const ConfigNode& node) {
   node.expect_keys({"pitch_deg", "yaw_deg", "protrusion_mm", "widen_override"});
   EnvelopeSpec spec;
   spec.where = node.where();
-  spec.envelope = MandibleEnvelope::design_default();
-  if (auto n = node.get("pitch_deg")) spec.envelope.pitch = parse_range(*n, kDeg);
-  if (auto n = node.get("yaw_deg")) spec.envelope.yaw = parse_range(*n, kDeg);
-  if (auto n = node.get("protrusion_mm")) spec.envelope.protrusion = parse_range(*n, 1e-3);
   if (auto n = node.get("widen_override")) spec.widen_override = n->boolean();
-  if (!spec.envelope.within(MandibleEnvelope::design_default()) && !spec.widen_override) {
-    node.fail(
-        "an envelope inside pitch -4..18 deg, yaw -5..5 deg, protrusion 0..8 mm "
-        "(widening needs `widen_override: true`)",
-        "a wider envelope");
-  }
+  const MandibleEnvelope design = MandibleEnvelope::design_default();
+  auto axis = [&](const char* key, double scale, const Range& limit, const char* text) {
+    std::optional<Range> r;
+    if (auto n = node.get(key)) {
+      r = parse_range(*n, scale);
+      if (!limit.contains(*r) && !spec.widen_override) {
+        n->fail(std::string("a range inside the design envelope ") + text +
+                    " (widening needs `widen_override: true`)",
+                "[" + std::to_string(r->min / scale) + ", " + std::to_string(r->max / scale) + "]");
+      }
+    }
+    return r;
+  };
+  spec.pitch = axis("pitch_deg", kDeg, design.pitch, "-4..18 deg");
+  spec.yaw = axis("yaw_deg", kDeg, design.yaw, "-5..5 deg");
+  spec.protrusion = axis("protrusion_mm", 1e-3, design.protrusion, "0..8 mm");
   return spec;
 }
 
@@ -83,7 +91,16 @@ HeadConfig load_head_config(const std::string& path) {
       if (auto n = rigid->get(key)) {
         const double scale = key.ends_with("_deg") ? kDeg : 1.0;
         const Range r = parse_range(*n, scale);
-        for (const auto& s : signals) cfg.rigid_ranges[s] = r;
+        const FaceLayout rigid_layout({});
+        for (const auto& s : signals) {
+          const SignalInfo& info = rigid_layout.signal(*rigid_layout.find(s));
+          if (r.min < info.domain_min || r.max > info.domain_max) {
+            n->fail("a range inside the signal's domain [" +
+                    std::to_string(info.domain_min / scale) + ", " +
+                    std::to_string(info.domain_max / scale) + "]");
+          }
+          cfg.rigid_ranges[s] = r;
+        }
       }
     }
   }

@@ -13,8 +13,11 @@
 namespace facectl {
 
 // An envelope as a head or rig file states it, with where it was stated.
+// Axes the block does not state are absent, so they neither narrow nor widen.
 struct EnvelopeSpec {
-  MandibleEnvelope envelope;
+  std::optional<Range> pitch;
+  std::optional<Range> yaw;
+  std::optional<Range> protrusion;
   bool widen_override = false;
   std::string where;  // file:line:column of the block
 };

@@ -3,9 +3,12 @@
 #include <cstdio>
 
 #include "firmware-host/bench_command.hpp"
+#include "firmware-host/plot_command.hpp"
 #include "firmware-host/run_command.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_cli(int argc, char** argv) {
   CLI::App app{"facectl: real-time controller for animatronic robot faces"};
   app.require_subcommand(1);
   int exit_code = 0;
@@ -36,15 +39,33 @@ int main(int argc, char** argv) {
   bench_loop->add_option("--rate", bench.rate_hz, "Loop rate in Hz");
   bench_loop->callback([&] { exit_code = facectl::bench_loop_command(bench); });
 
+  facectl::PlotOptions plot;
+  CLI::App* plot_cmd = app.add_subcommand(
+      "plot", "Plot each actuator's command and feedback against its limits from telemetry (SVG)");
+  plot_cmd->add_option("telemetry", plot.telemetry, "Telemetry CSV from `facectl run --record`")
+      ->required();
+  plot_cmd->add_option("--config", plot.config, "Runtime config naming the rig");
+  plot_cmd->add_option("--actuator", plot.actuators, "Only these actuators (repeatable)");
+  plot_cmd->add_option("--out", plot.out_dir, "Output folder (default: .)");
+  plot_cmd->callback([&] { exit_code = facectl::plot_command(plot); });
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;  // usage errors are exit code 2
+  }
+  return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_cli(argc, argv);
   } catch (const std::exception& e) {
     // Anything unforeseen (e.g. a thread that cannot start): say so, never abort silently.
     std::fprintf(stderr, "facectl: %s\n", e.what());
     return 2;
   }
-  return exit_code;
 }

@@ -5,10 +5,6 @@
 namespace facectl {
 namespace {
 
-// A stalled thread still advances the trajectory with the real dt, but a
-// single dt is never taken as longer than this (the overrun storm faults first).
-constexpr double kMaxDt = 0.1;
-
 void record_wake(LoopStats& stats, const LoopTimer::Wake& w) {
   if (w.tick == 0) stats.first_wake_ns.store(w.now_ns, std::memory_order_relaxed);
   stats.last_wake_ns.store(w.now_ns, std::memory_order_relaxed);
@@ -38,11 +34,13 @@ void RealtimeLoop::run(const std::atomic<bool>& stop) {
     t.tick = w.tick;
     t.now_ns = w.now_ns;
     t.time_s = static_cast<double>(w.now_ns - t0) * 1e-9;
-    t.dt_s = w.tick == 0 ? period : std::min(w.dt_s, kMaxDt);
+    t.dt_s = w.tick == 0 ? period : w.dt_s;  // the real dt, a late tick's included
     t.wake_latency_s = w.wake_latency_s;
     t.compute_s = compute;
     t.consecutive_overruns = timer.consecutive_overruns();
     controller_.tick(t);
+    // Fault rehearsal only (`--inject overrun_storm`, simulated hardware):
+    // one relaxed load per tick when unused.
     while (monotonic_ns() < stall_until_ns_.load(std::memory_order_relaxed)) {
     }
     compute = timer.finish();

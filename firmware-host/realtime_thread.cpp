@@ -6,6 +6,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <future>
@@ -76,35 +77,43 @@ std::thread start_realtime_thread(const RealtimeSettings& settings, std::functio
   }
   std::promise<void> ready;
   std::future<void> applied = ready.get_future();
-  std::thread thread([&settings, &report, &ready, body = std::move(body)] {
-    if (settings.priority > 0) {
-      sched_param param{};
-      param.sched_priority = settings.priority;
-      const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
-      if (rc == 0) {
-        report.fifo = true;
-      } else {
-        report.warnings.push_back(std::string("SCHED_FIFO priority ") +
-                                  std::to_string(settings.priority) + " refused (" +
-                                  std::strerror(rc) + "): running with normal scheduling");
-      }
-    }
-    if (settings.cpu >= 0) {
-      cpu_set_t set;
-      CPU_ZERO(&set);
-      CPU_SET(static_cast<unsigned>(settings.cpu), &set);
-      const int rc = pthread_setaffinity_np(pthread_self(), sizeof set, &set);
-      if (rc == 0) {
-        report.pinned = true;
-      } else {
-        report.warnings.push_back("CPU affinity to CPU " + std::to_string(settings.cpu) +
-                                  " refused (" + std::strerror(rc) + "): not pinned");
-      }
-    }
-    prefault_stack();
-    ready.set_value();
-    body();
-  });
+  // The promise moves into the thread, so it outlives set_value() there.
+  std::thread thread(
+      [&settings, &report, ready = std::move(ready), body = std::move(body)]() mutable {
+        // Signals are for the other threads: the loop is never interrupted by them.
+        sigset_t block;
+        sigemptyset(&block);
+        sigaddset(&block, SIGINT);
+        sigaddset(&block, SIGTERM);
+        pthread_sigmask(SIG_BLOCK, &block, nullptr);
+        if (settings.priority > 0) {
+          sched_param param{};
+          param.sched_priority = settings.priority;
+          const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
+          if (rc == 0) {
+            report.fifo = true;
+          } else {
+            report.warnings.push_back(std::string("SCHED_FIFO priority ") +
+                                      std::to_string(settings.priority) + " refused (" +
+                                      std::strerror(rc) + "): running with normal scheduling");
+          }
+        }
+        if (settings.cpu >= 0) {
+          cpu_set_t set;
+          CPU_ZERO(&set);
+          CPU_SET(static_cast<unsigned>(settings.cpu), &set);
+          const int rc = pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+          if (rc == 0) {
+            report.pinned = true;
+          } else {
+            report.warnings.push_back("CPU affinity to CPU " + std::to_string(settings.cpu) +
+                                      " refused (" + std::strerror(rc) + "): not pinned");
+          }
+        }
+        prefault_stack();
+        ready.set_value();
+        body();
+      });
   applied.wait();
   return thread;
 }

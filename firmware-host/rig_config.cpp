@@ -43,9 +43,11 @@ BusConfig parse_bus(const ConfigNode& node) {
 
 Range parse_limit_range(const ConfigNode& node, double to_si) {
   node.expect_keys({"min", "max"});
-  Range r{node["min"].number() * to_si, node["max"].number() * to_si};
-  if (!(r.min < r.max)) node.fail("min < max", "min >= max");
-  return r;
+  const double lo = node["min"].number();
+  const double hi = node["max"].number();
+  if (!(lo < hi))
+    node.fail("min < max", "min " + std::to_string(lo) + " >= max " + std::to_string(hi));
+  return {lo * to_si, hi * to_si};
 }
 
 ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
@@ -79,7 +81,12 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   Range soft = hard;
   if (auto n = node.get("soft_position" + s)) {
     soft = parse_limit_range(*n, u.to_si);
-    if (!hard.contains(soft)) n->fail("a soft range inside position" + s, "a wider range");
+    if (!hard.contains(soft)) {
+      n->fail("a soft range inside position" + s + " [" + std::to_string(hard.min / u.to_si) +
+                  ", " + std::to_string(hard.max / u.to_si) + "]",
+              "[" + std::to_string(soft.min / u.to_si) + ", " + std::to_string(soft.max / u.to_si) +
+                  "]");
+    }
   }
   l.soft_min = soft.min;
   l.soft_max = soft.max;
@@ -104,19 +111,15 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
     cfg.plant.max_velocity = 1.5 * l.max_velocity;
   }
 
+  cfg.plant_where = node.get("plant") ? node["plant"].where() : cfg.where;
   const ConfigNode map = node["map"];
+  cfg.map_where = map["terms"].where();
   map.expect_keys({"offset" + s, "terms"});
   if (auto n = map.get("offset" + s)) cfg.map_offset_si = n->number() * u.to_si;
   for (const auto& [signal_key, gain] : map["terms"].entries()) {
     // Terms name the signal with its YAML unit: zygomaticus_major_l, jaw_pitch_deg,
     // jaw_protrusion_mm.
-    std::optional<std::size_t> index;
-    for (std::size_t i = 0; i < layout.size() && !index; ++i) {
-      const SignalInfo& info = layout.signal(i);
-      const std::string_view unit = yaml_unit(info.kind);
-      const std::string key = unit.empty() ? info.name : info.name + "_" + std::string(unit);
-      if (key == signal_key) index = i;
-    }
+    const std::optional<std::size_t> index = layout.find_yaml_key(signal_key);
     if (!index) {
       gain.fail("a face signal of the head (muscle name, jaw_pitch_deg, jaw_protrusion_mm, ...)",
                 "unknown signal '" + signal_key + "'");
@@ -128,13 +131,35 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   return cfg;
 }
 
+CoupledLimitConfig parse_coupled_limit(const ConfigNode& node, const FaceLayout& layout) {
+  node.expect_keys({"name", "face", "max"});
+  CoupledLimitConfig out;
+  out.where = node.where();
+  CoupledConstraints::Constraint& c = out.constraint;
+  c.name = node["name"].string();
+  for (const auto& [key, coeff] : node["face"].entries()) {
+    const auto index = layout.find_yaml_key(key);
+    if (!index) coeff.fail("a face signal of the head (with its unit suffix)", "'" + key + "'");
+    if (c.terms == CoupledConstraints::kMaxTerms) {
+      coeff.fail("at most " + std::to_string(CoupledConstraints::kMaxTerms) + " terms");
+    }
+    c.index[c.terms] = *index;
+    // Coefficient per YAML unit -> per SI unit, so the bound keeps its YAML meaning.
+    c.coeff[c.terms] = coeff.number() / yaml_to_si(layout.signal(*index).kind);
+    ++c.terms;
+  }
+  if (c.terms == 0) node["face"].fail("at least one term", "an empty mapping");
+  c.bound = node["max"].number();
+  return out;
+}
+
 }  // namespace
 
 RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
   const ConfigNode root = ConfigNode::load_file(path, "");
   root.expect_keys({"rig"});
   const ConfigNode rig = root["rig"];
-  rig.expect_keys({"name", "buses", "actuators", "mandible_envelope"});
+  rig.expect_keys({"name", "buses", "actuators", "mandible_envelope", "coupled_limits"});
 
   RigConfig cfg;
   cfg.file = path;
@@ -150,6 +175,7 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
     rig["buses"].fail("at most " + std::to_string(kMaxBuses) + " buses");
 
   std::set<std::string> names;
+  std::set<std::pair<std::string, int>> addresses;
   const auto items = rig["actuators"].items();
   if (items.empty()) rig["actuators"].fail("at least one actuator", "an empty list");
   if (items.size() > kMaxActuators) {
@@ -158,9 +184,20 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
   for (const ConfigNode& a : items) {
     ActuatorConfig act = parse_actuator(a, layout, bus_names);
     if (!names.insert(act.model.name).second) a["name"].fail("a unique actuator name");
+    if (!addresses.insert({act.model.bus, act.model.address}).second) {
+      a["address"].fail("an address not used by another actuator on bus " + act.model.bus);
+    }
     cfg.actuators.push_back(std::move(act));
   }
   if (auto env = rig.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);
+  if (auto limits = rig.get("coupled_limits")) {
+    const auto rows = limits->items();
+    if (rows.size() > CoupledConstraints::kMaxConstraints) {
+      limits->fail("at most " + std::to_string(CoupledConstraints::kMaxConstraints) +
+                   " coupled limits");
+    }
+    for (const ConfigNode& c : rows) cfg.coupled_limits.push_back(parse_coupled_limit(c, layout));
+  }
   return cfg;
 }
 

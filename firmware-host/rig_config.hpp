@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "control/controller_model.hpp"
+#include "control/coupled_constraints.hpp"
 #include "firmware-host/config_node.hpp"
 #include "firmware-host/head_config.hpp"
 #include "sim/plant/servo_plant.hpp"
@@ -32,6 +33,14 @@ struct ActuatorConfig {
   std::vector<MappingTerm> terms;
   sim::ServoPlantParams plant;  // the simulated twin
   std::string where;
+  std::string map_where;    // position of its `map.terms`
+  std::string plant_where;  // position of its `plant` block, or of the actuator
+};
+
+// A coupled limit as written: Σ coeff · signal (YAML units) <= max.
+struct CoupledLimitConfig {
+  CoupledConstraints::Constraint constraint;  // SI coefficients
+  std::string where;
 };
 
 struct RigConfig {
@@ -40,6 +49,7 @@ struct RigConfig {
   std::vector<BusConfig> buses;
   std::vector<ActuatorConfig> actuators;  // in file order
   std::optional<EnvelopeSpec> envelope;
+  std::vector<CoupledLimitConfig> coupled_limits;
 };
 
 // Loads a rig against the head's face layout (mapping terms name its signals).

@@ -178,7 +178,8 @@ int run_command(const RunOptions& options) {
   }
   if (tty) std::fputs("\r\033[K", stdout);
 
-  RunSummaryInput in{model, controller, stats, rt, writer.get(), cfg->rig.name, cfg->head.name};
+  RunSummaryInput in{model,        controller,    stats,          rt,
+                     writer.get(), cfg->rig.name, cfg->head.name, events.dropped()};
   return print_run_summary(in);
 }
 

@@ -42,6 +42,8 @@ int print_run_summary(const RunSummaryInput& in) {
       static_cast<unsigned long long>(hits[0]), static_cast<unsigned long long>(hits[1]),
       static_cast<unsigned long long>(hits[2]), static_cast<unsigned long long>(hits[3]),
       static_cast<unsigned long long>(hits[4]));
+  std::printf("  coupled face limits projected on %llu ticks\n",
+              static_cast<unsigned long long>(c.coupled_projections));
   std::printf("  envelope clamps %llu ticks, rejected input values %llu, stale-input ticks %llu\n",
               static_cast<unsigned long long>(c.envelope_clamps),
               static_cast<unsigned long long>(in.controller.sanitizer().rejected_total()),
@@ -50,18 +52,30 @@ int print_run_summary(const RunSummaryInput& in) {
 
   bool lost = false;
   if (in.writer != nullptr) {
-    lost = in.writer->dropped() > 0;
+    lost = in.writer->dropped() > 0 || in.writer->write_failed();
+    if (in.writer->write_failed()) {
+      std::printf("  TELEMETRY WRITE FAILED: %s is incomplete (disk full or I/O error)\n",
+                  in.writer->path().c_str());
+    }
     std::printf("  telemetry: %llu rows written to %s, %llu dropped\n",
                 static_cast<unsigned long long>(in.writer->written()), in.writer->path().c_str(),
                 static_cast<unsigned long long>(in.writer->dropped()));
+  }
+  if (in.events_dropped > 0) {
+    std::printf("  %llu STATE TRANSITIONS NOT LOGGED (event ring full)\n",
+                static_cast<unsigned long long>(in.events_dropped));
+    lost = true;
   }
   const SafetyState final_state = in.controller.state();
   const bool faulted = in.controller.faults_seen() > 0;
   std::printf("  final state %s, faults %s\n", std::string(to_string(final_state)).c_str(),
               faulted ? "YES" : "none");
 
+  if (in.controller.stop_timed_out()) {
+    std::printf("  STOP TIMEOUT: outputs were disabled before every actuator reached rest\n");
+  }
   if (faulted) return 3;
-  if (c.limit_breaches > 0 || lost) return 1;
+  if (c.limit_breaches > 0 || lost || in.controller.stop_timed_out()) return 1;
   return 0;
 }
 

@@ -17,6 +17,7 @@ struct RunSummaryInput {
   const TelemetryWriter* writer;  // may be null
   std::string rig_name;
   std::string head_name;
+  std::uint64_t events_dropped = 0;  // state transitions the event ring refused
 };
 
 // Prints the end-of-run summary to stdout and returns the exit code

@@ -22,19 +22,19 @@ RuntimeConfig load_runtime_config(const std::string& path) {
     if (auto r = rt->get("realtime")) {
       r->expect_keys({"priority", "cpu", "lock_memory", "cpu_dma_latency_us"});
       if (auto n = r->get("cpu_dma_latency_us")) {
-        cfg.realtime.cpu_dma_latency_us = static_cast<int>(n->number_in(-1, 1e6));
+        cfg.realtime.cpu_dma_latency_us = static_cast<int>(n->integer_in(-1, 1'000'000));
       }
       if (auto n = r->get("priority"))
-        cfg.realtime.priority = static_cast<int>(n->number_in(0, 99));
-      if (auto n = r->get("cpu")) cfg.realtime.cpu = static_cast<int>(n->number_in(-1, 1023));
+        cfg.realtime.priority = static_cast<int>(n->integer_in(0, 99));
+      if (auto n = r->get("cpu")) cfg.realtime.cpu = static_cast<int>(n->integer_in(-1, 1023));
       if (auto n = r->get("lock_memory")) cfg.realtime.lock_memory = n->boolean();
     }
     if (auto n = rt->get("input_timeout_ms")) cfg.safety.input_timeout_s = n->positive() * 1e-3;
     if (auto n = rt->get("overrun_fault_count")) {
-      cfg.safety.overrun_fault_count = static_cast<int>(n->number_in(1, 1e6));
+      cfg.safety.overrun_fault_count = static_cast<int>(n->integer_in(1, 100'000));
     }
     if (auto n = rt->get("enable_ramp_s")) cfg.safety.enable_ramp_s = n->number_in(0.0, 60.0);
-    if (auto n = rt->get("stop_timeout_s")) cfg.safety.stop_timeout_s = n->number_in(0.0, 60.0);
+    if (auto n = rt->get("stop_timeout_s")) cfg.safety.stop_timeout_s = n->number_in(0.1, 60.0);
     if (auto s = rt->get("shaping")) {
       s->expect_keys({"activation_ms", "deactivation_ms", "smoothing_ms", "neutral_ease_s"});
       if (auto n = s->get("activation_ms")) {
@@ -49,9 +49,16 @@ RuntimeConfig load_runtime_config(const std::string& path) {
       if (auto n = s->get("neutral_ease_s")) cfg.shaping.neutral_ease_time_s = n->number_in(0, 60);
     }
     if (auto n = rt->get("telemetry_ring")) {
-      cfg.telemetry_ring = static_cast<std::size_t>(n->number_in(64, 1 << 20));
+      // At most 65536 records (about 150 MB, locked in memory).
+      cfg.telemetry_ring = static_cast<std::size_t>(n->integer_in(64, 65536));
     }
     if (auto n = rt->get("show_rate_hz")) cfg.show_rate_hz = n->number_in(1.0, 1000.0);
+    // The show must refresh the command well inside the input watchdog.
+    if (2.0 / cfg.show_rate_hz > cfg.safety.input_timeout_s) {
+      const ConfigNode at = rt->get("show_rate_hz") ? (*rt)["show_rate_hz"] : *rt;
+      at.fail("show_rate_hz of at least " + std::to_string(2.0 / cfg.safety.input_timeout_s) +
+              " Hz (two commands per input_timeout_ms)");
+    }
   }
   return cfg;
 }

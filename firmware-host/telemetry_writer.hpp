@@ -27,6 +27,8 @@ class TelemetryWriter {
 
   std::uint64_t written() const { return written_.load(std::memory_order_relaxed); }
   std::uint64_t dropped() const { return ring_.dropped(); }
+  // True if writing the file failed (e.g. a full disk): its rows are lost.
+  bool write_failed() const { return write_failed_.load(std::memory_order_relaxed); }
   const std::string& path() const { return path_; }
 
   static void write_header(std::FILE* out, const ControllerModel& model);
@@ -43,6 +45,7 @@ class TelemetryWriter {
   std::thread thread_;
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> written_{0};
+  std::atomic<bool> write_failed_{false};
 };
 
 }  // namespace facectl

@@ -11,6 +11,14 @@ ServoPlant::ServoPlant(const ServoPlantParams& params, double initial_position)
       position_(initial_position),
       rng_(params.seed) {}
 
+void ServoPlant::set_enabled(bool enabled) {
+  if (enabled != enabled_) {
+    delay_size_ = 0;
+    active_command_ = position_;
+  }
+  enabled_ = enabled;
+}
+
 void ServoPlant::command(std::int64_t now_ns, double position) {
   if (delay_size_ == kDelaySlots) {
     // Full: the oldest pending command is overtaken by newer ones anyway.

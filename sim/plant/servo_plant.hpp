@@ -23,7 +23,9 @@ class ServoPlant {
   explicit ServoPlant(const ServoPlantParams& params, double initial_position = 0.0);
 
   void command(std::int64_t now_ns, double position);
-  void set_enabled(bool enabled) { enabled_ = enabled; }
+  // Enabling or disabling drops pending commands and holds the current
+  // position, as a drive does (see ActuatorBus::set_enabled).
+  void set_enabled(bool enabled);
   // Advances the plant to `now_ns`.
   void advance(std::int64_t now_ns);
   double measured();  // true position plus noise
@@ -31,7 +33,8 @@ class ServoPlant {
   bool enabled() const { return enabled_; }
 
  private:
-  // Commands waiting out their latency; large enough for 64 ticks of delay.
+  // Commands waiting out their latency: 64 slots, so latency × command rate
+  // must stay below 64 (checked when the rig is loaded).
   struct Timed {
     std::int64_t at_ns = 0;
     double value = 0.0;

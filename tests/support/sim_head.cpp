@@ -4,8 +4,11 @@
 
 namespace facectl::testing {
 
-SimHead::SimHead(const std::string& config, std::size_t telemetry)
+SimHead::SimHead(const std::string& config, std::size_t telemetry, bool noiseless)
     : config_(std::make_unique<LoadedConfig>(load_config(config))) {
+  if (noiseless) {
+    for (auto& a : config_->rig.actuators) a.plant.noise_stddev = 0.0;
+  }
   hardware_ = make_sim_hardware(model(), config_->rig);
   if (telemetry > 0) telemetry_ = std::make_unique<SpscRing<TelemetryRecord>>(telemetry);
   controller_ =

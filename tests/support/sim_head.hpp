@@ -13,7 +13,10 @@ namespace facectl::testing {
 // the same Controller the real-time loop runs, driven tick by tick.
 class SimHead {
  public:
-  explicit SimHead(const std::string& config = default_config_path(), std::size_t telemetry = 0);
+  // `noiseless` zeroes the simulated measurement noise, for tests that
+  // compare positions more finely than the noise.
+  explicit SimHead(const std::string& config = default_config_path(), std::size_t telemetry = 0,
+                   bool noiseless = false);
 
   // Advances simulated time by dt and runs one tick.
   void step(double dt, int consecutive_overruns = 0);

@@ -104,7 +104,7 @@ TEST(ConfigErrors, ASoftRangeOutsideTheHardwareRangeIsRefused) {
       rig_error(rig(kGoodActuator + "      soft_position_deg: { min: -8, max: 18 }\n"));
   EXPECT_EQ(e,
             "RIG:15:26: rig.actuators[0].soft_position_deg: expected a soft range inside "
-            "position_deg, found a wider range");
+            "position_deg [-6.000000, 20.000000], found [-8.000000, 18.000000]");
 }
 
 TEST(ConfigErrors, AnUnknownBusOrSignalIsNamed) {
@@ -131,9 +131,68 @@ TEST(ConfigErrors, AnActuatorThatNothingDrivesIsRefused) {
   std::string a = kGoodActuator;
   a.replace(a.find("jaw_pitch_deg: 1"), 16, "jaw_pitch_deg: 0");
   const std::string e = rig_error(rig(a));
-  EXPECT_NE(e.find("RIG:6:7: rig.actuators 'jaw': expected at least one non-zero mapping term"),
+  EXPECT_NE(e.find("RIG:14:21: rig.actuators 'jaw'.map.terms: expected at least one non-zero "
+                   "mapping term"),
             std::string::npos)
       << e;
+}
+
+TEST(ConfigErrors, TwoActuatorsOnOneAddressAreRefused) {
+  std::string text = rig(kGoodActuator);
+  text +=
+      "    - name: jaw2\n      kind: rotary\n      bus: can0\n      address: 1\n" + kGoodActuator;
+  EXPECT_EQ(rig_error(text),
+            "RIG:18:16: rig.actuators[1].address: expected an address not used by another "
+            "actuator on bus can0, found '1'");
+}
+
+TEST(ConfigErrors, AMappingThatCanOverflowIsRefused) {
+  std::string a = kGoodActuator;
+  a.replace(a.find("jaw_pitch_deg: 1"), 16, "jaw_pitch_deg: 1e306, jaw_yaw_deg: -1e306");
+  const std::string e = rig_error(rig(a));
+  EXPECT_NE(e.find("'jaw'.map: expected gains and offset that keep the command finite"),
+            std::string::npos)
+      << e;
+}
+
+TEST(ConfigErrors, APlantLatencyLongerThanItsDelayLineIsRefused) {
+  TempFile f(rig(kGoodActuator + "      plant: { latency_ms: 40 }\n"));
+  const RigConfig r = load_rig_config(f.path(), head().layout);
+  RuntimeConfig rt;
+  rt.rate_hz = 2000;  // 40 ms is 80 ticks at 2 kHz
+  try {
+    build_model(head(), r, rt);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              f.path() +
+                  ":15:14: rig.actuators 'jaw'.plant.latency_ms: expected less than 60 "
+                  "ticks of latency at 2000.000000 Hz, found 40.000000 ms");
+  }
+}
+
+TEST(ConfigErrors, RuntimeSettingsAreCheckedAgainstEachOther) {
+  TempFile f(
+      "runtime: { input_timeout_ms: 20, show_rate_hz: 50 }\nhead: h\nrig: r\nexpressions: e\n");
+  try {
+    load_runtime_config(f.path());
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), f.path() +
+                                         ":1:48: runtime.show_rate_hz: expected show_rate_hz "
+                                         "of at least 100.000000 Hz (two commands per "
+                                         "input_timeout_ms), found '50'");
+  }
+  TempFile g("runtime: { realtime: { priority: 80.5 } }\nhead: h\nrig: r\nexpressions: e\n");
+  try {
+    load_runtime_config(g.path());
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("runtime.realtime.priority: expected an integer, found '80.5'"),
+        std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ConfigErrors, DuplicateMusclesInAHeadAreRefused) {

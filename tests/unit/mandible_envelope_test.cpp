@@ -4,8 +4,11 @@
 
 #include <numbers>
 
+#include "control/face_envelope.hpp"
 #include "firmware-host/config_node.hpp"
 #include "firmware-host/head_config.hpp"
+#include "firmware-host/loaded_config.hpp"
+#include "firmware-host/model_builder.hpp"
 #include "tests/support/temp_file.hpp"
 
 namespace facectl {
@@ -44,7 +47,9 @@ TEST(EnvelopeConfig, NarrowingIsAcceptedSilently) {
   testing::TempFile f("mandible_envelope: { pitch_deg: { min: -2, max: 12 } }\n");
   const ConfigNode root = ConfigNode::load_file(f.path(), "");
   const EnvelopeSpec spec = parse_envelope(root["mandible_envelope"]);
-  EXPECT_DOUBLE_EQ(spec.envelope.pitch.max, 12 * kDeg);
+  ASSERT_TRUE(spec.pitch.has_value());
+  EXPECT_DOUBLE_EQ(spec.pitch->max, 12 * kDeg);
+  EXPECT_FALSE(spec.yaw.has_value());
   EXPECT_FALSE(spec.widen_override);
 }
 
@@ -56,8 +61,10 @@ TEST(EnvelopeConfig, WideningWithoutTheOverrideIsRefusedWithItsPosition) {
     FAIL() << "a widened envelope was accepted";
   } catch (const ConfigError& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find(f.path() + ":4:3"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("widen_override"), std::string::npos) << msg;
+    EXPECT_EQ(msg, f.path() +
+                       ":4:12: mandible_envelope.yaw_deg: expected a range inside the design "
+                       "envelope -5..5 deg (widening needs `widen_override: true`), found "
+                       "[-8.000000, 8.000000]");
   }
 }
 
@@ -67,7 +74,45 @@ TEST(EnvelopeConfig, WideningWithTheOverrideIsAccepted) {
   const ConfigNode root = ConfigNode::load_file(f.path(), "");
   const EnvelopeSpec spec = parse_envelope(root["mandible_envelope"]);
   EXPECT_TRUE(spec.widen_override);
-  EXPECT_DOUBLE_EQ(spec.envelope.pitch.max, 22 * kDeg);
+  EXPECT_DOUBLE_EQ(spec.pitch->max, 22 * kDeg);
+}
+
+// Head and rig envelopes combine axis by axis.
+class EnvelopeMerge : public ::testing::Test {
+ protected:
+  LoadedConfig cfg_ = load_config(default_config_path());
+  EnvelopeSpec spec(std::optional<Range> pitch, bool widen) {
+    EnvelopeSpec s;
+    s.pitch = pitch;
+    s.widen_override = widen;
+    s.where = "here:1:1";
+    return s;
+  }
+};
+
+TEST_F(EnvelopeMerge, ARigOverrideBlockThatStatesNoAxisKeepsTheHeadsNarrowing) {
+  cfg_.head.envelope = spec(Range{0, 10 * kDeg}, false);
+  cfg_.rig.envelope = spec(std::nullopt, true);
+  const BuiltModel b = build_model(cfg_.head, cfg_.rig, cfg_.runtime);
+  EXPECT_DOUBLE_EQ(b.model.envelope.pitch.max, 10 * kDeg);
+  EXPECT_FALSE(b.model.envelope_widened);
+  EXPECT_TRUE(b.warnings.empty());
+}
+
+TEST_F(EnvelopeMerge, ARigNarrowsTheHeadAndAnOverrideWidensLoudly) {
+  cfg_.head.envelope = spec(Range{-2 * kDeg, 10 * kDeg}, false);
+  cfg_.rig.envelope = spec(Range{0, 12 * kDeg}, false);
+  BuiltModel b = build_model(cfg_.head, cfg_.rig, cfg_.runtime);
+  EXPECT_DOUBLE_EQ(b.model.envelope.pitch.min, 0.0);
+  EXPECT_DOUBLE_EQ(b.model.envelope.pitch.max, 10 * kDeg);
+
+  cfg_.rig.envelope = spec(Range{-4 * kDeg, 20 * kDeg}, true);
+  b = build_model(cfg_.head, cfg_.rig, cfg_.runtime);
+  EXPECT_DOUBLE_EQ(b.model.envelope.pitch.max, 20 * kDeg);
+  EXPECT_TRUE(b.model.envelope_widened);
+  ASSERT_EQ(b.warnings.size(), 2u);
+  EXPECT_NE(b.warnings[0].find("WIDENED beyond the design default by here:1:1"), std::string::npos);
+  EXPECT_NE(b.warnings[1].find("the rig WIDENS the head's mandible envelope"), std::string::npos);
 }
 
 }  // namespace

@@ -5,15 +5,20 @@
 
 #include <Eigen/Core>
 #include <atomic>
+#include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <new>
+#include <thread>
 
+#include "firmware-host/realtime_loop.hpp"
 #include "tests/support/sim_head.hpp"
 
 extern "C" void* __libc_malloc(std::size_t);
 extern "C" void* __libc_calloc(std::size_t, std::size_t);
 extern "C" void* __libc_realloc(void*, std::size_t);
 extern "C" void __libc_free(void*);
+extern "C" void* __libc_memalign(std::size_t, std::size_t);
 
 namespace {
 thread_local bool g_counting = false;
@@ -69,6 +74,17 @@ TEST(NoAllocation, TheCountingHookSeesAnAllocation) {
   EXPECT_GE(seen, 1);
 }
 
+TEST(NoAllocation, EigensRuntimeCheckIsLiveInThisBinary) {
+  // With NDEBUG compiled out here, a forbidden Eigen allocation aborts.
+  EXPECT_DEATH(
+      {
+        Eigen::internal::set_is_malloc_allowed(false);
+        Eigen::VectorXd v(1000);
+        v.setZero();
+      },
+      "heap allocation is forbidden");
+}
+
 TEST(NoAllocation, TicksInEveryStateAllocateNothing) {
   testing::SimHead head(default_config_path(), 1 << 14);
   auto cmd = head.model().neutral;
@@ -104,7 +120,48 @@ TEST(NoAllocation, TicksInEveryStateAllocateNothing) {
   head.controller().request_shutdown();
   run(1.0);  // STOPPING then IDLE
   EXPECT_EQ(head.controller().state(), SafetyState::kIdle);
+  // The fault paths: a bus fault, then an overrun storm, each logged with its detail.
+  head.controller().request_enable();
+  run(1.5);
+  head.hardware().find("can0")->inject_fault("bus-off");
+  run(0.05);
+  EXPECT_EQ(head.controller().state(), SafetyState::kFault);
+  head.hardware().find("can0")->clear_fault();
+  head.controller().request_reset();
+  head.controller().request_enable();
+  run(1.5);
+  for (int k = 1; k <= head.model().safety.overrun_fault_count; ++k) {
+    AllocationGuard guard;
+    head.step(head.period(), k);
+    total += g_allocations.load();
+    ++ticks;
+  }
+  EXPECT_EQ(head.controller().state(), SafetyState::kFault);
   EXPECT_EQ(total, 0) << "allocations in " << ticks << " ticks";
+}
+
+// The whole real-time loop (timer, histograms, tick) on a real thread.
+TEST(NoAllocation, TheRealTimeLoopAllocatesNothing) {
+  testing::SimHead head(default_config_path(), 1 << 14);
+  head.controller().request_enable();
+  LoopStats stats;
+  RealtimeLoop loop(head.controller(), head.model().rate_hz, stats);
+  std::atomic<bool> stop{false};
+  long seen = -1;
+  std::thread rt([&] {
+    Eigen::internal::set_is_malloc_allowed(false);
+    g_allocations = 0;
+    g_counting = true;
+    loop.run(stop);
+    g_counting = false;
+    seen = g_allocations.load();
+    Eigen::internal::set_is_malloc_allowed(true);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  stop = true;
+  rt.join();
+  EXPECT_GT(stats.ticks.load(), 100u);
+  EXPECT_EQ(seen, 0);
 }
 
 }  // namespace

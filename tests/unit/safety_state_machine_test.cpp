@@ -85,6 +85,37 @@ TEST(SafetyStateMachine, NConsecutiveOverrunsMeanFault) {
   EXPECT_EQ(sm.step(in, kDt), TransitionReason::kOverrunStorm);
 }
 
+TEST(SafetyStateMachine, RefusesToEnableOntoAnActuatorOutsideItsRange) {
+  SafetyStateMachine sm({});
+  SafetyInputs in;
+  in.enable_request = true;
+  in.feedback_out_of_range = true;
+  EXPECT_EQ(sm.step(in, kDt), TransitionReason::kFeedbackOutOfRange);
+  EXPECT_EQ(sm.state(), SafetyState::kFault);
+}
+
+TEST(SafetyStateMachine, ALimitBreachOrFeedbackOutOfRangeWhileRunningMeansFault) {
+  SafetyStateMachine sm = running_machine();
+  SafetyInputs in;
+  in.limit_breach = true;
+  EXPECT_EQ(sm.step(in, kDt), TransitionReason::kLimitBreach);
+  SafetyStateMachine sm2 = running_machine();
+  SafetyInputs in2;
+  in2.feedback_out_of_range = true;
+  EXPECT_EQ(sm2.step(in2, kDt), TransitionReason::kFeedbackOutOfRange);
+}
+
+TEST(SafetyStateMachine, AFaultDuringStoppingCutsOutputsAtOnce) {
+  SafetyStateMachine sm = running_machine();
+  SafetyInputs in;
+  in.shutdown_request = true;
+  sm.step(in, kDt);
+  ASSERT_EQ(sm.state(), SafetyState::kStopping);
+  in.bus_fault = true;
+  EXPECT_EQ(sm.step(in, kDt), TransitionReason::kBusFault);
+  EXPECT_FALSE(sm.outputs_enabled());
+}
+
 TEST(SafetyStateMachine, ShutdownStopsAtRestOrOnTimeout) {
   SafetyParams p;
   p.stop_timeout_s = 0.1;
