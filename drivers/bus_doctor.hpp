@@ -1,0 +1,52 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control/controller_model.hpp"
+#include "drivers/can_bus_options.hpp"
+#include "drivers/can_transport.hpp"
+#include "drivers/modbus_bus.hpp"
+
+namespace facectl {
+
+// What `facectl bus doctor` says about one bus. It only reads: no enable, no
+// target, no configuration write reaches a device.
+struct DoctorFinding {
+  enum class Level { kOk, kWarning, kProblem };
+  Level level = Level::kOk;
+  std::string text;
+};
+struct DoctorReport {
+  std::string bus;
+  std::vector<DoctorFinding> findings;
+  bool has_problems() const;
+  std::string to_text() const;  // one line per finding: "  ok  ...", "  WARN ...", "  FAIL ..."
+};
+
+// A USB serial adapter's latency timer in ms (FTDI's default is 16 ms, which
+// adds up to 16 ms to every Modbus RTU reply), or nullopt when `device` is not
+// such an adapter. `sysfs` is the sysfs root (tests point it elsewhere).
+std::optional<int> usb_serial_latency_timer_ms(const std::string& device,
+                                               const std::string& sysfs = "/sys");
+
+// Modbus: connects with `timing`, reads every board's input registers
+// `samples` times and reports round-trip times, failures, the board's own
+// status and channel count, and known bad defaults (libmodbus's 500 ms
+// timeout, a USB latency timer above 1 ms, a cycle that cannot fit the
+// configured period).
+DoctorReport diagnose_modbus(const std::string& bus, const ModbusEndpoint& endpoint,
+                             const std::vector<ActuatorModel>& actuators,
+                             const ModbusTiming& timing, int samples = 20);
+
+// CAN: the bus load at the tick rate, then `listen_s` of listening for the
+// devices: CiA 402 drives are asked for their device type (an SDO upload,
+// which changes nothing) and timed; custom boards are heard through their
+// periodic feedback frames. Error frames seen are reported.
+DoctorReport diagnose_can(const std::string& bus, CanTransport& transport,
+                          const std::string& protocol, const std::vector<ActuatorModel>& actuators,
+                          const CanBusOptions& options, double tick_hz, long bitrate,
+                          double listen_s = 0.5);
+
+}  // namespace facectl

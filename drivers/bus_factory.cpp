@@ -1,0 +1,54 @@
+#include "drivers/bus_factory.hpp"
+
+#include <stdexcept>
+
+#include "drivers/cia402_bus.hpp"
+#include "drivers/custom_can_bus.hpp"
+#include "drivers/socketcan_transport.hpp"
+
+namespace facectl {
+
+RealBus make_bus(const BusSpec& spec, const std::vector<ActuatorModel>& actuators,
+                 const std::vector<double>& initial, double tick_hz) {
+  RealBus out;
+  if (spec.type == "modbus_rtu" || spec.type == "modbus_tcp") {
+    out.bus = std::make_unique<ModbusBus>(
+        spec.name, ModbusEndpoint::parse(spec.type, spec.endpoint, spec.bitrate), actuators,
+        initial, spec.modbus);
+    return out;
+  }
+  if (spec.type != "can") {
+    throw std::invalid_argument("bus " + spec.name + ": unknown type '" + spec.type + "'");
+  }
+  if (spec.can_protocol != "cia402" && spec.can_protocol != "custom") {
+    throw std::invalid_argument("bus " + spec.name + ": CAN protocol '" + spec.can_protocol +
+                                "', expected cia402 or custom");
+  }
+  // The budget is checked before the interface is opened: a rig that cannot
+  // fit is refused without touching the bus.
+  CanBusBudget budget;
+  {
+    struct NullTransport final : CanTransport {
+      bool send(const CanFrame&) override { return false; }
+      bool receive(CanFrame&, CanError&) override { return false; }
+    } null;
+    budget =
+        spec.can_protocol == "cia402"
+            ? Cia402Bus(spec.name, null, actuators, initial, spec.can).budget(tick_hz, spec.bitrate)
+            : CustomCanBus(spec.name, null, actuators, initial, spec.can)
+                  .budget(tick_hz, spec.bitrate);
+  }
+  out.budget = budget.describe(spec.name);
+  out.warning = budget.warned();
+  if (budget.refused()) throw std::invalid_argument("bus load too high: " + out.budget);
+  out.transport = std::make_unique<SocketCanTransport>(spec.endpoint, spec.can.fd);
+  if (spec.can_protocol == "cia402") {
+    out.bus = std::make_unique<Cia402Bus>(spec.name, *out.transport, actuators, initial, spec.can);
+  } else {
+    out.bus =
+        std::make_unique<CustomCanBus>(spec.name, *out.transport, actuators, initial, spec.can);
+  }
+  return out;
+}
+
+}  // namespace facectl

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "control/actuator_bus.hpp"
+#include "control/controller_model.hpp"
+#include "drivers/can_bus_options.hpp"
+#include "drivers/can_transport.hpp"
+#include "drivers/modbus_bus.hpp"
+
+namespace facectl {
+
+// What a rig's `buses[]` entry says about a real bus.
+struct BusSpec {
+  std::string name;
+  std::string type;                     // can | modbus_rtu | modbus_tcp
+  std::string endpoint;                 // CAN interface, serial device, or host[:port]
+  long bitrate = 0;                     // CAN bitrate or serial baud
+  std::string can_protocol = "custom";  // cia402 | custom
+  CanBusOptions can;
+  ModbusTiming modbus;
+};
+
+// A real bus and what it owns. The bus is declared last so that it goes
+// before the transport it talks through.
+struct RealBus {
+  std::unique_ptr<CanTransport> transport;  // CAN only
+  std::unique_ptr<ActuatorBus> bus;
+  std::string budget;    // CAN: the bus-load line, always worth printing
+  bool warning = false;  // CAN: load above 50%
+};
+
+// Opens the real backend for one bus. `actuators` are the bus's slice in
+// controller order; `initial` their positions until the hardware reports.
+// Throws std::invalid_argument (bad spec, or a CAN load above 70%, with the
+// budget line) or std::runtime_error (the interface or device cannot be
+// opened), each naming the bus. Nothing is enabled here.
+RealBus make_bus(const BusSpec& spec, const std::vector<ActuatorModel>& actuators,
+                 const std::vector<double>& initial, double tick_hz);
+
+}  // namespace facectl

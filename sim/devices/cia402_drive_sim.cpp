@@ -1,0 +1,239 @@
+#include "sim/devices/cia402_drive_sim.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facectl::sim {
+
+using namespace cia402;
+
+Cia402DriveSim::Cia402DriveSim(int node, ServoPlantParams plant, double counts_per_si,
+                               double initial_si)
+    : node_(node), counts_per_si_(counts_per_si), plant_(plant, initial_si) {
+  pending_target_ = static_cast<std::int32_t>(std::lround(initial_si * counts_per_si));
+}
+
+std::uint16_t Cia402DriveSim::statusword() const {
+  switch (ds_) {
+    case DriveState::kSwitchOnDisabled:
+      return 0x0250;
+    case DriveState::kReadyToSwitchOn:
+      return 0x0231;
+    case DriveState::kSwitchedOn:
+      return 0x0233;
+    case DriveState::kOperationEnabled:
+      return 0x0237;
+    case DriveState::kQuickStopActive:
+      return 0x0217;
+    case DriveState::kFaultReactionActive:
+      return 0x021F;
+    case DriveState::kFault:
+      return 0x0218;
+    case DriveState::kNotReadyToSwitchOn:
+      return 0x0200;
+  }
+  return 0;
+}
+
+void Cia402DriveSim::fault(std::uint16_t code, std::int64_t now_ns) {
+  if (ds_ == DriveState::kFault) return;
+  ds_ = DriveState::kFault;
+  plant_.set_enabled(false);
+  CanFrame e;
+  e.id = kEmcyBase + static_cast<std::uint32_t>(node_);
+  e.len = 8;
+  put_u16(&e.data[0], code);
+  e.data[2] = 0x01;  // error register: generic error
+  emit(e, now_ns);
+}
+
+void Cia402DriveSim::apply_controlword(std::uint16_t cw) {
+  const bool edge_reset = (cw & kCwFaultReset) != 0 && (controlword_ & kCwFaultReset) == 0;
+  controlword_ = cw;
+  const bool voltage = (cw & 0x02) != 0;
+  const bool quick = (cw & 0x04) != 0;  // active low: 0 = quick stop
+  switch (ds_) {
+    case DriveState::kFault:
+      if (edge_reset) ds_ = DriveState::kSwitchOnDisabled;
+      break;
+    case DriveState::kSwitchOnDisabled:
+      if ((cw & 0x87) == 0x06) ds_ = DriveState::kReadyToSwitchOn;
+      break;
+    case DriveState::kReadyToSwitchOn:
+      if (!voltage || !quick)
+        ds_ = DriveState::kSwitchOnDisabled;
+      else if ((cw & 0x8F) == 0x0F)
+        ds_ = DriveState::kOperationEnabled;
+      else if ((cw & 0x8F) == 0x07)
+        ds_ = DriveState::kSwitchedOn;
+      break;
+    case DriveState::kSwitchedOn:
+    case DriveState::kOperationEnabled:
+      if (!voltage || !quick)
+        ds_ = DriveState::kSwitchOnDisabled;
+      else if ((cw & 0x8F) == 0x06)
+        ds_ = DriveState::kReadyToSwitchOn;
+      else if ((cw & 0x8F) == 0x07)
+        ds_ = DriveState::kSwitchedOn;
+      else if ((cw & 0x8F) == 0x0F)
+        ds_ = DriveState::kOperationEnabled;
+      break;
+    default:
+      break;
+  }
+  plant_.set_enabled(ds_ == DriveState::kOperationEnabled);
+}
+
+void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
+  std::lock_guard lock(mutex_);
+  const auto self = static_cast<std::uint32_t>(node_);
+  if (f.id == kNmt && f.len == 2 && (f.data[1] == 0 || f.data[1] == node_)) {
+    switch (static_cast<NmtCommand>(f.data[0])) {
+      case NmtCommand::kStart:
+        nmt_ = NmtState::kOperational;
+        break;
+      case NmtCommand::kStop:
+        nmt_ = NmtState::kStopped;
+        break;
+      case NmtCommand::kPreOperational:
+        nmt_ = NmtState::kPreOperational;
+        break;
+      default:
+        nmt_ = NmtState::kPreOperational;
+        booted_ = false;
+        break;  // resets
+    }
+    return;
+  }
+  if (f.id == kHeartbeatBase + static_cast<std::uint32_t>(consumer_node_) && consumer_ms_ > 0) {
+    consumer_armed_ = true;
+    last_host_heartbeat_ns_ = now_ns;
+    return;
+  }
+  if (f.id == kSdoRxBase + self && f.len == 8 && nmt_ != NmtState::kStopped) {
+    const std::uint16_t index = get_u16(&f.data[1]);
+    const std::uint8_t sub = f.data[3];
+    const std::uint32_t v = get_u32(&f.data[4]);
+    CanFrame r;
+    r.id = kSdoTxBase + self;
+    r.len = 8;
+    r.data[1] = f.data[1];
+    r.data[2] = f.data[2];
+    r.data[3] = sub;
+    if (f.data[0] == 0x40) {  // upload (a read)
+      std::uint32_t value = 0;
+      bool known = true;
+      if (index == 0x1000 && sub == 0)
+        value = 0x00020192;  // device type: CiA 402 servo
+      else if (index == 0x6041 && sub == 0)
+        value = statusword();
+      else
+        known = false;
+      r.data[0] = known ? 0x43 : 0x80;
+      put_u32(&r.data[4], known ? value : 0x06020000);
+      emit(r, now_ns);
+      return;
+    }
+    bool ok = (f.data[0] & 0xE3) == 0x23;  // expedited download, size indicated
+    const std::uint32_t key = (static_cast<std::uint32_t>(index) << 8) | sub;
+    switch (ok ? key : 0) {
+      case 0x607D01:
+        limit_min_ = static_cast<std::int32_t>(v);
+        break;
+      case 0x607D02:
+        limit_max_ = static_cast<std::int32_t>(v);
+        break;
+      case 0x606000:
+        mode_ = static_cast<int>(v & 0xFF);
+        break;
+      case 0x101700:
+        heartbeat_ms_ = static_cast<int>(v & 0xFFFF);
+        break;
+      case 0x101601:
+        consumer_node_ = static_cast<int>((v >> 16) & 0x7F);
+        consumer_ms_ = static_cast<int>(v & 0xFFFF);
+        break;
+      case 0x607F00:  // max profile velocity: accepted; the plant has its own slew limit
+      case 0x600700:  // abort connection option: this drive always faults
+        break;
+      default:
+        ok = false;
+        break;
+    }
+    if (ok) {
+      r.data[0] = 0x60;
+      sdo_writes_.fetch_add(1);
+    } else {
+      r.data[0] = 0x80;
+      put_u32(&r.data[4], 0x06020000);  // object does not exist
+    }
+    emit(r, now_ns);
+    return;
+  }
+  if (nmt_ != NmtState::kOperational) return;  // PDOs only when operational
+  if (f.id == kRpdo1Base + self && f.len == 6) {
+    rpdos_.fetch_add(1);
+    apply_controlword(get_u16(&f.data[0]));
+    pending_target_ = static_cast<std::int32_t>(get_u32(&f.data[2]));
+    return;
+  }
+  if (f.id == kSync && f.len == 0) {
+    plant_.advance(now_ns);
+    if (ds_ == DriveState::kOperationEnabled && mode_.load() == 8) {
+      const std::int32_t t = std::clamp(pending_target_, limit_min_.load(), limit_max_.load());
+      plant_.command(now_ns, static_cast<double>(t) / counts_per_si_);
+    }
+    CanFrame t;
+    t.id = kTpdo1Base + self;
+    t.len = 6;
+    put_u16(&t.data[0], statusword());
+    put_u32(&t.data[2],
+            static_cast<std::uint32_t>(std::lround(plant_.measured() * counts_per_si_)));
+    emit(t, now_ns);
+  }
+}
+
+void Cia402DriveSim::step(std::int64_t now_ns) {
+  std::lock_guard lock(mutex_);
+  plant_.advance(now_ns);
+  if (!booted_) {
+    booted_ = true;
+    CanFrame b;
+    b.id = kHeartbeatBase + static_cast<std::uint32_t>(node_);
+    b.len = 1;
+    b.data[0] = static_cast<std::uint8_t>(NmtState::kBootUp);
+    emit(b, now_ns);
+    last_heartbeat_sent_ns_ = now_ns;
+  }
+  if (heartbeat_ms_ > 0 &&
+      now_ns - last_heartbeat_sent_ns_ >= static_cast<std::int64_t>(heartbeat_ms_) * 1'000'000) {
+    CanFrame h;
+    h.id = kHeartbeatBase + static_cast<std::uint32_t>(node_);
+    h.len = 1;
+    h.data[0] = static_cast<std::uint8_t>(nmt_);
+    emit(h, now_ns);
+    last_heartbeat_sent_ns_ = now_ns;
+  }
+  // Communication watchdog: the host's heartbeat stopped.
+  if (consumer_armed_ &&
+      now_ns - last_host_heartbeat_ns_ > static_cast<std::int64_t>(consumer_ms_) * 1'000'000) {
+    consumer_armed_ = false;
+    if (ds_ != DriveState::kSwitchOnDisabled) fault(0x8130, now_ns);  // heartbeat error
+  }
+  if (const std::uint16_t code = injected_.exchange(0); code != 0) fault(code, now_ns);
+}
+
+DriveState Cia402DriveSim::state() const {
+  std::lock_guard lock(mutex_);
+  return ds_;
+}
+NmtState Cia402DriveSim::nmt() const {
+  std::lock_guard lock(mutex_);
+  return nmt_;
+}
+double Cia402DriveSim::position() const {
+  std::lock_guard lock(mutex_);
+  return plant_.position();
+}
+
+}  // namespace facectl::sim

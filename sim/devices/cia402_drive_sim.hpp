@@ -1,0 +1,63 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+
+#include "drivers/cia402_frames.hpp"
+#include "sim/devices/can_device.hpp"
+#include "sim/plant/servo_plant.hpp"
+
+namespace facectl::sim {
+
+// A simulated CiA 402 servo drive: NMT, SDO expedited download of the objects
+// facectl writes, RPDO1/TPDO1 on SYNC in cyclic synchronous position mode, the
+// controlword state machine, heartbeat producer and consumer (its
+// communication watchdog), EMCY on faults, and its own position limits.
+class Cia402DriveSim final : public CanDevice {
+ public:
+  Cia402DriveSim(int node, ServoPlantParams plant, double counts_per_si, double initial_si);
+
+  void on_frame(const CanFrame& f, std::int64_t now_ns) override;
+  void step(std::int64_t now_ns) override;
+
+  // Raises a drive fault with this EMCY error code (e.g. 0x2310 overcurrent).
+  void inject_fault(std::uint16_t emcy_code) { injected_.store(emcy_code); }
+
+  // Test observation (thread-safe).
+  cia402::DriveState state() const;
+  cia402::NmtState nmt() const;
+  double position() const;  // true plant position, SI
+  std::uint64_t rpdos_received() const { return rpdos_.load(); }
+  std::uint64_t sdo_writes() const { return sdo_writes_.load(); }
+  std::int32_t limit_min() const { return limit_min_.load(); }
+  std::int32_t limit_max() const { return limit_max_.load(); }
+  int mode() const { return mode_.load(); }
+
+ private:
+  void fault(std::uint16_t code, std::int64_t now_ns);
+  std::uint16_t statusword() const;
+  void apply_controlword(std::uint16_t cw);
+
+  const int node_;
+  const double counts_per_si_;
+  mutable std::mutex mutex_;
+  ServoPlant plant_;
+  cia402::NmtState nmt_ = cia402::NmtState::kPreOperational;
+  cia402::DriveState ds_ = cia402::DriveState::kSwitchOnDisabled;
+  std::uint16_t controlword_ = 0;
+  std::int32_t pending_target_ = 0;
+  bool booted_ = false;
+  int heartbeat_ms_ = 0;         // 0x1017
+  int consumer_node_ = 0;        // 0x1016:01 bits 16..22
+  int consumer_ms_ = 0;          // 0x1016:01 bits 0..15
+  bool consumer_armed_ = false;  // active from the first heartbeat it sees
+  std::int64_t last_host_heartbeat_ns_ = 0;
+  std::int64_t last_heartbeat_sent_ns_ = 0;
+  std::atomic<std::int32_t> limit_min_{-2147483647}, limit_max_{2147483647};
+  std::atomic<int> mode_{0};
+  std::atomic<std::uint16_t> injected_{0};
+  std::atomic<std::uint64_t> rpdos_{0}, sdo_writes_{0};
+};
+
+}  // namespace facectl::sim

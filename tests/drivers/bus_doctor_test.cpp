@@ -1,0 +1,107 @@
+// `bus doctor` against real peers: the libmodbus server with simulated boards,
+// and simulated CAN devices on the in-process wire.
+#include "drivers/bus_doctor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "drivers/memory_can_link.hpp"
+#include "sim/devices/can_device_network.hpp"
+#include "sim/devices/cia402_drive_sim.hpp"
+#include "sim/devices/custom_can_board_sim.hpp"
+#include "sim/devices/modbus_board_server.hpp"
+#include "tests/drivers/can_test_axes.hpp"
+
+namespace facectl {
+namespace {
+
+bool has(const DoctorReport& r, DoctorFinding::Level level, const std::string& text) {
+  for (const auto& f : r.findings) {
+    if (f.level == level && f.text.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+using L = DoctorFinding::Level;
+
+TEST(BusDoctor, ModbusReportsRoundTripsAndNamesABoardThatDoesNotAnswer) {
+  sim::ModbusActuatorBoard board1(1, std::vector<sim::BoardChannel>(8));
+  auto server = sim::ModbusBoardServer::tcp({&board1});  // board 2 is missing
+  ModbusEndpoint ep;
+  ep.port = server->port();
+  const DoctorReport r =
+      diagnose_modbus("modbus0", ep, testing::rotary_axes(14), ModbusTiming{}, 10);
+  std::printf("%s", r.to_text().c_str());
+  EXPECT_TRUE(has(r, L::kOk, "board 1: round trip min"));
+  EXPECT_TRUE(has(r, L::kProblem, "board 2: does not answer"));
+  EXPECT_TRUE(r.has_problems());
+  EXPECT_TRUE(has(r, L::kOk, "response timeout 20 ms"));
+  EXPECT_EQ(board1.target_writes() + board1.target_writes_while_disabled(), 0u) << "doctor wrote";
+}
+
+TEST(BusDoctor, ModbusFlagsKnownBadDefaultsAndBoardState) {
+  sim::ModbusActuatorBoard board1(1, std::vector<sim::BoardChannel>(4));
+  board1.inject_fault(modbus_map::FaultCode::kOverTemperature);
+  auto server = sim::ModbusBoardServer::tcp({&board1});
+  ModbusEndpoint ep;
+  ep.port = server->port();
+  ModbusTiming slow;
+  slow.response_timeout_s = 0.5;
+  const DoctorReport r = diagnose_modbus("modbus0", ep, testing::rotary_axes(6), slow, 5);
+  SCOPED_TRACE(r.to_text());
+  EXPECT_TRUE(has(r, L::kWarning, "libmodbus's 500 ms default"));
+  EXPECT_TRUE(has(r, L::kWarning, "board 1: reports fault code 2"));
+  EXPECT_TRUE(has(r, L::kProblem, "board 1: has 4 channels, the rig uses 6"));
+}
+
+TEST(BusDoctor, TheUsbSerialLatencyTimerIsReadFromSysfs) {
+  const auto root = std::filesystem::temp_directory_path() / "facectl_sysfs_test";
+  std::filesystem::create_directories(root / "class/tty/ttyUSB0/device");
+  std::ofstream(root / "class/tty/ttyUSB0/device/latency_timer") << "16\n";
+  EXPECT_EQ(usb_serial_latency_timer_ms("/dev/ttyUSB0", root.string()), 16);
+  EXPECT_FALSE(usb_serial_latency_timer_ms("/dev/ttyS0", root.string()));
+  std::filesystem::remove_all(root);
+}
+
+TEST(BusDoctor, Cia402DrivesAreReadByTypeAndAMissingOneIsNamed) {
+  MemoryCanLink link;
+  sim::Cia402DriveSim d1(1, testing::fast_plant(), 1000.0, 0.0);
+  sim::Cia402DriveSim d2(2, testing::fast_plant(), 1000.0, 0.0);
+  sim::CanDeviceNetwork net(link.devices(), {&d1, &d2});
+  net.start(200);
+  const DoctorReport r = diagnose_can("can0", link.host(), "cia402", testing::rotary_axes(3),
+                                      CanBusOptions{}, 200.0, 1'000'000, 0.3);
+  std::printf("%s", r.to_text().c_str());
+  EXPECT_TRUE(has(r, L::kOk, "drive 1: SDO round trip"));
+  EXPECT_TRUE(has(r, L::kOk, "device type 0x00020192 (CiA 402)"));
+  EXPECT_TRUE(has(r, L::kProblem, "drive 3: no answer"));
+  EXPECT_TRUE(has(r, L::kOk, "load: can0: 9 frames per cycle at 200 Hz"));
+  EXPECT_EQ(d1.state(), cia402::DriveState::kSwitchOnDisabled) << "the doctor changed a drive";
+  EXPECT_EQ(d1.sdo_writes(), 0u);
+}
+
+TEST(BusDoctor, CustomBoardsAreHeardAndErrorFramesAndOverloadAreProblems) {
+  MemoryCanLink link;
+  std::vector<std::unique_ptr<sim::CustomCanBoardSim>> boards;
+  std::vector<sim::CanDevice*> devices;
+  for (int n = 1; n <= 3; ++n) {  // board 4 is missing
+    boards.push_back(std::make_unique<sim::CustomCanBoardSim>(n, std::vector<sim::BoardChannel>(3),
+                                                              custom_can::Width::kInt16));
+    devices.push_back(boards.back().get());
+  }
+  sim::CanDeviceNetwork net(link.devices(), devices);
+  net.start(200);
+  link.host().inject_error(CanError::kBusOff);
+  const DoctorReport r = diagnose_can("can0", link.host(), "custom", testing::rotary_axes(12),
+                                      CanBusOptions{}, 1000.0, 1'000'000, 0.2);
+  SCOPED_TRACE(r.to_text());
+  EXPECT_TRUE(has(r, L::kOk, "board 3: heartbeat"));
+  EXPECT_TRUE(has(r, L::kProblem, "board 4: not heard"));
+  EXPECT_TRUE(has(r, L::kProblem, "error frames: bus-off x1"));
+  EXPECT_TRUE(has(r, L::kProblem, "108.0% of 1000000 bit/s (refused"));
+}
+
+}  // namespace
+}  // namespace facectl

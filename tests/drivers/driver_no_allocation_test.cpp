@@ -1,0 +1,149 @@
+// The drivers' seam calls allocate nothing: this binary counts every malloc,
+// calloc and realloc made on the calling thread while the tick's calls run
+// (read, write, set_enabled, status), through enabling, running, faults and
+// disabling. The devices and the Modbus I/O thread are not counted: they are
+// not the tick.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "drivers/cia402_bus.hpp"
+#include "drivers/custom_can_bus.hpp"
+#include "drivers/memory_can_link.hpp"
+#include "drivers/modbus_bus.hpp"
+#include "sim/devices/can_device_network.hpp"
+#include "sim/devices/cia402_drive_sim.hpp"
+#include "sim/devices/custom_can_board_sim.hpp"
+#include "sim/devices/modbus_board_server.hpp"
+#include "tests/drivers/can_test_axes.hpp"
+
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* __libc_calloc(std::size_t, std::size_t);
+extern "C" void* __libc_realloc(void*, std::size_t);
+
+namespace {
+thread_local bool g_counting = false;
+std::atomic<long> g_allocations{0};
+void count() {
+  if (g_counting) g_allocations.fetch_add(1, std::memory_order_relaxed);
+}
+}  // namespace
+
+extern "C" void* malloc(std::size_t n) {
+  count();
+  return __libc_malloc(n);
+}
+extern "C" void* calloc(std::size_t a, std::size_t b) {
+  count();
+  return __libc_calloc(a, b);
+}
+extern "C" void* realloc(void* p, std::size_t n) {
+  count();
+  return __libc_realloc(p, n);
+}
+
+namespace facectl {
+namespace {
+
+using testing::fast_plant;
+using testing::kDeg;
+
+// Runs `tick` with allocation counting on for this thread only.
+template <typename F>
+long allocations_in(F&& tick) {
+  g_allocations = 0;
+  g_counting = true;
+  tick();
+  g_counting = false;
+  return g_allocations.load();
+}
+
+TEST(DriverNoAllocation, TheCountingHookSeesAnAllocation) {
+  EXPECT_GT(allocations_in([] { delete new std::vector<int>(100); }), 0);
+}
+
+TEST(DriverNoAllocation, CanBusesAllocateNothingInTheTick) {
+  MemoryCanLink link(1024);
+  std::vector<std::unique_ptr<sim::Cia402DriveSim>> drives;
+  std::vector<sim::CanDevice*> devices;
+  for (int n = 1; n <= 3; ++n) {
+    drives.push_back(std::make_unique<sim::Cia402DriveSim>(n, fast_plant(), 20000.0, 0.0));
+    devices.push_back(drives.back().get());
+  }
+  sim::CanDeviceNetwork net(link.devices(), devices);
+  Cia402Bus bus("can0", link.host(), testing::rotary_axes(3), std::vector<double>(3, 0.0));
+  std::vector<double> cmd(3, 5 * kDeg), meas(3);
+  std::int64_t now = 1'000'000'000;
+  long total = 0;
+  bool ran = false;
+  for (int k = 0; k < 400; ++k) {
+    now += 1'000'000;
+    if (k == 299) ran = drives[0]->state() == cia402::DriveState::kOperationEnabled;
+    if (k == 300) drives[1]->inject_fault(0x2310);  // a fault, then the disable of FAULT
+    total += allocations_in([&] {
+      if (k == 1) bus.set_enabled(true);
+      bus.read({now, 0.001}, meas);
+      if (bus.status().fault && k > 300) bus.set_enabled(false);
+      bus.write({now, 0.001}, cmd);
+    });
+    net.poll(now);
+  }
+  EXPECT_TRUE(ran) << "the drives never reached operation enabled";
+  EXPECT_EQ(total, 0);
+}
+
+TEST(DriverNoAllocation, CustomCanBusAllocatesNothingInTheTick) {
+  MemoryCanLink link(1024);
+  std::vector<sim::BoardChannel> ch(3);
+  for (auto& c : ch) c.plant = fast_plant();
+  sim::CustomCanBoardSim board(1, ch, custom_can::Width::kInt16);
+  sim::CanDeviceNetwork net(link.devices(), {&board});
+  CustomCanBus bus("can0", link.host(), testing::rotary_axes(3), std::vector<double>(3, 0.0));
+  std::vector<double> cmd(3, 5 * kDeg), meas(3);
+  std::int64_t now = 1'000'000'000;
+  long total = 0;
+  for (int k = 0; k < 200; ++k) {
+    now += 1'000'000;
+    if (k == 100) link.host().inject_error(CanError::kBusOff);
+    total += allocations_in([&] {
+      if (k == 1) bus.set_enabled(true);
+      if (k == 150) bus.set_enabled(false);
+      bus.read({now, 0.001}, meas);
+      bus.write({now, 0.001}, cmd);
+      (void)bus.status();
+    });
+    net.poll(now);
+  }
+  EXPECT_GT(board.commands(), 100u);
+  EXPECT_EQ(total, 0);
+}
+
+TEST(DriverNoAllocation, ModbusBusAllocatesNothingInTheTick) {
+  std::vector<sim::BoardChannel> ch(4);
+  sim::ModbusActuatorBoard board(1, ch);
+  auto server = sim::ModbusBoardServer::tcp({&board});
+  std::vector<ActuatorModel> acts = testing::rotary_axes(4);
+  ModbusEndpoint ep;
+  ep.port = server->port();
+  ModbusBus bus("modbus0", ep, acts, std::vector<double>(4, 0.0));
+  std::vector<double> cmd(4, 2 * kDeg), meas(4);
+  long total = 0;
+  for (int k = 0; k < 300; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (k == 200) server->faults().silent = true;
+    total += allocations_in([&] {
+      if (k == 1) bus.set_enabled(true);
+      bus.read({0, 0.001}, meas);
+      bus.write({0, 0.001}, cmd);
+      (void)bus.status();
+      if (k == 299) bus.set_enabled(false);
+    });
+  }
+  EXPECT_GT(board.target_writes(), 50u);
+  EXPECT_EQ(total, 0);
+}
+
+}  // namespace
+}  // namespace facectl
