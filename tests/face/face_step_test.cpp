@@ -106,12 +106,18 @@ TEST(Soak, RandomContractionsNeverProduceNaNAtTwoScales) {
   EXPECT_GE(soak(build_face_model(default_spec(), 1500), 1000, 6), 0);
 }
 
-// KNOWN FAILURE (docs/FACE_MODEL.md, "Known issues"): under random contractions and jaw
-// motion, small triangles around the mouth corners and nostrils invert transiently
-// (about 7 triangle-frames per frame on the base mesh). Kept, disabled, as the target.
-TEST(Soak, DISABLED_RandomContractionsNeverInvertATriangleAtTwoScales) {
-  EXPECT_EQ(soak(default_model(), 2000, 5), 0);
-  EXPECT_EQ(soak(build_face_model(default_spec(), 1500), 1000, 6), 0);
+// KNOWN FAILURE (docs/FACE_MODEL.md, "Known issues"; issue 3 stays open on it):
+// under random contractions and jaw motion, small triangles around the mouth
+// corners and nostrils invert transiently. The soak runs and prints what it
+// counted; it skips, saying so, while inversions remain, and passes once none do.
+TEST(Soak, RandomContractionsNeverInvertATriangleAtTwoScales) {
+  const int base = soak(default_model(), 2000, 5);
+  const int fine = soak(build_face_model(default_spec(), 1500), 1000, 6);
+  if (base + fine > 0) {
+    GTEST_SKIP() << "known failure, issue 3 open: " << base << " inverted triangle-frames in 2000 "
+                 << "frames at 468 vertices and " << fine
+                 << " in 1000 frames at 1500 vertices (docs/FACE_MODEL.md, Known issues)";
+  }
 }
 
 TEST(FaceStep, DeterministicBitForBit) {
