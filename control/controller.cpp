@@ -132,6 +132,12 @@ bool Controller::at_rest(double dt) {
   // Both the command and the measured position must have settled at rest,
   // and stayed there, before outputs drop: a jaw or neck under gravity is
   // not let go while it is still moving.
+  // Measurements carry noise: judge a low-passed position (20 ms), so that
+  // noise does not keep a settled actuator "moving" forever.
+  const double alpha = 1.0 - std::exp(-dt / 0.02);
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    settling_[i] += alpha * (measured_[i] - settling_[i]);
+  }
   bool settled = true;
   for (std::size_t i = 0; i < model_.actuators.size() && settled; ++i) {
     const ActuatorLimits& l = model_.actuators[i].limits;
@@ -139,7 +145,7 @@ bool Controller::at_rest(double dt) {
     const double rest = model_.actuators[i].rest;
     settled = std::fabs(limiter_[i].position - rest) <= model_.rest_tolerance_fraction * range &&
               std::fabs(limiter_[i].velocity) <= 0.01 * l.max_velocity &&
-              std::fabs(measured_[i] - rest) <= model_.rest_measured_tolerance_fraction * range;
+              std::fabs(settling_[i] - rest) <= model_.rest_measured_tolerance_fraction * range;
   }
   settled_time_ = settled ? settled_time_ + dt : 0.0;
   return settled_time_ >= model_.rest_dwell_s;
@@ -171,7 +177,10 @@ void Controller::enter_state(SafetyState state) {
   if (state == SafetyState::kFault || state == SafetyState::kEstop) {
     faults_seen_.fetch_add(1, std::memory_order_relaxed);
   }
-  if (state == SafetyState::kStopping) settled_time_ = 0.0;
+  if (state == SafetyState::kStopping) {
+    settled_time_ = 0.0;
+    std::copy_n(measured_.begin(), model_.actuators.size(), settling_.begin());
+  }
   state_mirror_.store(state, std::memory_order_relaxed);
 }
 

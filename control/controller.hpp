@@ -134,6 +134,7 @@ class Controller {
   std::atomic<std::uint64_t> faults_seen_{0};
   std::atomic<bool> stop_timed_out_{false};
   double settled_time_ = 0.0;
+  std::array<double, kMaxActuators> settling_{};  // low-passed measured positions in STOPPING
   const char* bus_fault_reason_ = "";
 };
 

@@ -50,8 +50,8 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
   }
 
   // Never head into a soft limit faster than one can stop before it.
-  const double v_hi = braking_speed(limits.soft_max - x, a_max, dt);
-  const double v_lo = -braking_speed(x - limits.soft_min, a_max, dt);
+  const double v_hi = braking_speed(limits.soft_max - x, a_max, dt + ramp);
+  const double v_lo = -braking_speed(x - limits.soft_min, a_max, dt + ramp);
   if (v_goal > v_hi || v_goal < v_lo) {
     v_goal = std::clamp(v_goal, v_lo, v_hi);
     flags |= kLimitApproach;

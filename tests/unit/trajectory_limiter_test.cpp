@@ -113,7 +113,10 @@ TEST(TrajectoryLimiter, JerkLimitedMotionSettlesFromAnyMovingState) {
   for (int trial = 0; trial < 300; ++trial) {
     LimiterState s{l.soft_min + (l.soft_max - l.soft_min) * u(rng),
                    l.max_velocity * (2 * u(rng) - 1), l.max_acceleration * (2 * u(rng) - 1)};
-    const double target = l.soft_min + (l.soft_max - l.soft_min) * u(rng);
+    // Every third target sits on a soft limit, as a rest position often does.
+    const double target = trial % 3 == 0   ? l.soft_min
+                          : trial % 3 == 1 ? l.soft_min + (l.soft_max - l.soft_min) * u(rng)
+                                           : l.soft_max;
     for (int i = 0; i < 2000; ++i) limit_step(l, s, target, 0.001);
     ASSERT_NEAR(s.position, target, 1e-6) << "trial " << trial;
     ASSERT_NEAR(s.velocity, 0.0, 1e-4) << "trial " << trial;
