@@ -18,31 +18,7 @@
 #include "sim/devices/custom_can_board_sim.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "tests/drivers/can_test_axes.hpp"
-
-extern "C" void* __libc_malloc(std::size_t);
-extern "C" void* __libc_calloc(std::size_t, std::size_t);
-extern "C" void* __libc_realloc(void*, std::size_t);
-
-namespace {
-thread_local bool g_counting = false;
-std::atomic<long> g_allocations{0};
-void count() {
-  if (g_counting) g_allocations.fetch_add(1, std::memory_order_relaxed);
-}
-}  // namespace
-
-extern "C" void* malloc(std::size_t n) {
-  count();
-  return __libc_malloc(n);
-}
-extern "C" void* calloc(std::size_t a, std::size_t b) {
-  count();
-  return __libc_calloc(a, b);
-}
-extern "C" void* realloc(void* p, std::size_t n) {
-  count();
-  return __libc_realloc(p, n);
-}
+#include "tests/support/allocation_counter.hpp"
 
 namespace facectl {
 namespace {
@@ -53,11 +29,9 @@ using testing::kDeg;
 // Runs `tick` with allocation counting on for this thread only.
 template <typename F>
 long allocations_in(F&& tick) {
-  g_allocations = 0;
-  g_counting = true;
+  testing::begin_counting_allocations();
   tick();
-  g_counting = false;
-  return g_allocations.load();
+  return testing::end_counting_allocations();
 }
 
 TEST(DriverNoAllocation, TheCountingHookSeesAnAllocation) {

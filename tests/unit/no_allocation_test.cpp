@@ -5,72 +5,48 @@
 
 #include <Eigen/Core>
 #include <atomic>
-#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <new>
 #include <thread>
 
 #include "firmware-host/realtime_loop.hpp"
+#include "tests/support/allocation_counter.hpp"
 #include "tests/support/sim_head.hpp"
-
-extern "C" void* __libc_malloc(std::size_t);
-extern "C" void* __libc_calloc(std::size_t, std::size_t);
-extern "C" void* __libc_realloc(void*, std::size_t);
-extern "C" void __libc_free(void*);
-extern "C" void* __libc_memalign(std::size_t, std::size_t);
-
-namespace {
-thread_local bool g_counting = false;
-std::atomic<long> g_allocations{0};
-void count() {
-  if (g_counting) g_allocations.fetch_add(1, std::memory_order_relaxed);
-}
-}  // namespace
-
-// Interpose the C allocator for the whole process: operator new, std::string,
-// std::vector and Eigen all end up here.
-extern "C" void* malloc(std::size_t n) {
-  count();
-  return __libc_malloc(n);
-}
-extern "C" void* calloc(std::size_t a, std::size_t b) {
-  count();
-  return __libc_calloc(a, b);
-}
-extern "C" void* realloc(void* p, std::size_t n) {
-  count();
-  return __libc_realloc(p, n);
-}
-extern "C" void free(void* p) {
-  __libc_free(p);
-}
 
 namespace facectl {
 namespace {
 
+using testing::begin_counting_allocations;
+using testing::end_counting_allocations;
+
+// Counts this thread's allocations while alive, with Eigen's check armed too.
 class AllocationGuard {
  public:
   AllocationGuard() {
-    g_allocations = 0;
     Eigen::internal::set_is_malloc_allowed(false);
-    g_counting = true;
+    begin_counting_allocations();
   }
   ~AllocationGuard() {
-    g_counting = false;
+    counted_ = end_counting_allocations();
     Eigen::internal::set_is_malloc_allowed(true);
   }
+  static long last() { return counted_; }
+
+ private:
+  static inline long counted_ = 0;
 };
 
 TEST(NoAllocation, TheCountingHookSeesAnAllocation) {
   // The hook itself works: otherwise the test below could never fail.
   long seen = 0;
+  std::vector<int>* p = nullptr;
   {
     AllocationGuard guard;
-    auto* p = new std::vector<int>(100);
-    seen = g_allocations.load();
-    delete p;
+    p = new std::vector<int>(100);
   }
+  seen = AllocationGuard::last();
+  delete p;
   EXPECT_GE(seen, 1);
 }
 
@@ -101,9 +77,11 @@ TEST(NoAllocation, TicksInEveryStateAllocateNothing) {
       cmd[static_cast<std::size_t>(i) % head.model().layout.muscle_count()] =
           static_cast<double>(i % 7) / 7.0;
       head.send(cmd);
-      AllocationGuard guard;
-      head.step(head.period());
-      total += g_allocations.load();
+      {
+        AllocationGuard guard;
+        head.step(head.period());
+      }
+      total += AllocationGuard::last();
       ++ticks;
     }
     while (head.telemetry()->front() != nullptr) head.telemetry()->pop();
@@ -131,9 +109,11 @@ TEST(NoAllocation, TicksInEveryStateAllocateNothing) {
   head.controller().request_enable();
   run(1.5);
   for (int k = 1; k <= head.model().safety.overrun_fault_count; ++k) {
-    AllocationGuard guard;
-    head.step(head.period(), k);
-    total += g_allocations.load();
+    {
+      AllocationGuard guard;
+      head.step(head.period(), k);
+    }
+    total += AllocationGuard::last();
     ++ticks;
   }
   EXPECT_EQ(head.controller().state(), SafetyState::kFault);
@@ -150,11 +130,9 @@ TEST(NoAllocation, TheRealTimeLoopAllocatesNothing) {
   long seen = -1;
   std::thread rt([&] {
     Eigen::internal::set_is_malloc_allowed(false);
-    g_allocations = 0;
-    g_counting = true;
+    begin_counting_allocations();
     loop.run(stop);
-    g_counting = false;
-    seen = g_allocations.load();
+    seen = end_counting_allocations();
     Eigen::internal::set_is_malloc_allowed(true);
   });
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
