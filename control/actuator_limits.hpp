@@ -16,7 +16,7 @@ struct ActuatorLimits {
 };
 
 // Which limit shaped an actuator's command on a tick (bit set, telemetry).
-enum LimitFlag : std::uint8_t {
+enum LimitFlag : std::uint16_t {
   kLimitPosition = 1 << 0,      // target outside the soft range: clamped
   kLimitVelocity = 1 << 1,      // max velocity capped the motion
   kLimitAcceleration = 1 << 2,  // max acceleration capped the motion
@@ -25,7 +25,10 @@ enum LimitFlag : std::uint8_t {
   kLimitBreach = 1 << 5,        // the backstop clamped a command outside the hardware range
   kLimitInvalid = 1 << 6,       // NaN/inf target or a non-positive dt: held, not moved
   kLimitJerkYielded = 1 << 7,   // a hard bound overrode the jerk limit on this tick
+  kLimitCoupled = 1 << 8,       // an actuator coupled limit shortened the step
+  kLimitMapping = 1 << 9,       // the mapping held a calibration/linkage/mechanism end
 };
-inline constexpr int kLimitFlagCount = 8;
+inline constexpr int kLimitFlagCount = 10;
+using LimitFlags = std::uint16_t;
 
 }  // namespace facectl

@@ -21,6 +21,10 @@ class CalibrationCurve {
   bool empty() const { return n_ == 0; }
   std::size_t size() const { return n_; }
   bool increasing() const { return n_ < 2 || y_[n_ - 1] > y_[0]; }
+  double x_min() const { return x_[0]; }
+  double x_max() const { return x_[n_ == 0 ? 0 : n_ - 1]; }
+  double x(std::size_t i) const { return x_[i]; }
+  double y(std::size_t i) const { return y_[i]; }
   double evaluate(double x) const;
   // The x with y(x) = y; nullopt outside the curve's y range.
   std::optional<double> inverse(double y) const;

@@ -14,7 +14,8 @@ Controller::Controller(const ControllerModel& model, std::span<ActuatorBus* cons
       sanitizer_(model.layout),
       shaper_(model.layout, model.shaping, model.neutral),
       envelope_(model.layout, model.envelope, model.admissible),
-      safety_(model.safety) {
+      safety_(model.safety),
+      mapping_ws_(make_mapping_workspace(model.mapping)) {
   if (buses.size() != model.buses.size() || buses.size() > kMaxBuses) {
     throw std::invalid_argument("controller: one backend per configured bus is required");
   }
@@ -26,6 +27,11 @@ Controller::Controller(const ControllerModel& model, std::span<ActuatorBus* cons
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     command_[i] = model.actuators[i].rest;
     measured_[i] = model.actuators[i].rest;
+    mapped_[i] = model.actuators[i].rest;
+  }
+  for (std::size_t c = 0; c < model.actuator_constraints.size(); ++c) {
+    const CoupledConstraints::Constraint& k = model.actuator_constraints.constraint(c);
+    for (std::size_t t = 0; t < k.terms; ++t) constrained_[k.index[t]] = true;
   }
   // IDLE means disabled: make it true of the hardware too, whatever a crashed
   // previous run left enabled.
@@ -96,12 +102,39 @@ void Controller::choose_targets() {
   }
 }
 
-bool Controller::limit_actuators(double dt, std::uint8_t* flags) {
+void Controller::keep_actuator_constraints(double dt, LimitFlags* flags) {
+  // Each actuator's limiter moves on its own; the joint step may cut a corner
+  // of an actuator coupled limit even though both ends are admissible.
+  // Shorten the step of every constrained actuator by the same fraction, so
+  // the commands stay on the admissible side (a convex set).
+  std::uint32_t limiting = 0;
+  const double a =
+      model_.actuator_constraints.feasible_fraction(previous_.data(), command_.data(), &limiting);
+  if (a >= 1.0) return;
+  ++counters_.actuator_coupled_steps;
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    if (!constrained_[i]) continue;
+    const double position = previous_[i] + a * (command_[i] - previous_[i]);
+    const double velocity = dt > 0.0 ? (position - previous_[i]) / dt : 0.0;
+    limiter_[i].acceleration = dt > 0.0 ? (velocity - limiter_[i].velocity) / dt : 0.0;
+    limiter_[i].velocity = velocity;
+    limiter_[i].position = position;
+    command_[i] = position;
+    flags[i] |= kLimitCoupled;
+  }
+}
+
+bool Controller::limit_actuators(double dt, LimitFlags* flags) {
   bool breach = false;
+  std::copy_n(command_.begin(), model_.actuators.size(), previous_.begin());
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    flags[i] = limit_step(model_.actuators[i].limits, limiter_[i], target_[i], dt);
+    if ((mapping_clamps_ >> i) & 1u) flags[i] |= kLimitMapping;
+    command_[i] = limiter_[i].position;
+  }
+  if (model_.actuator_constraints.size() != 0) keep_actuator_constraints(dt, flags);
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     const ActuatorLimits& l = model_.actuators[i].limits;
-    flags[i] = limit_step(l, limiter_[i], target_[i], dt);
-    command_[i] = limiter_[i].position;
     // Independent backstop against the hardware range, NaN included: such a
     // command is never sent, and the state machine faults on it.
     if (!(l.position_min <= command_[i] && command_[i] <= l.position_max)) {
@@ -215,7 +248,7 @@ void Controller::log_transition(const TickTiming& timing, SafetyState from,
 
 void Controller::publish_telemetry(const TickTiming& timing, TransitionReason transition,
                                    std::uint32_t rejected, std::uint8_t envelope_flags,
-                                   const std::uint8_t* flags) {
+                                   const LimitFlags* flags) {
   if (channels_.telemetry == nullptr) return;
   TelemetryRecord* rec = channels_.telemetry->begin_push();
   if (rec == nullptr) return;  // the ring counts the drop; the writer reports it
@@ -230,6 +263,8 @@ void Controller::publish_telemetry(const TickTiming& timing, TransitionReason tr
   rec->envelope_flags = envelope_flags;
   rec->coupled_flags = coupled_flags_;
   rec->coupled_violation = coupled_violation_;
+  rec->actuator_coupled_flags = actuator_coupled_flags_;
+  rec->actuator_coupled_violation = actuator_coupled_violation_;
   rec->rejected_values = rejected;
   rec->overruns = static_cast<std::uint32_t>(timing.consecutive_overruns);
   rec->signal_count = static_cast<std::uint16_t>(model_.layout.size());
@@ -264,11 +299,23 @@ void Controller::tick(const TickTiming& timing) {
       if ((coupled_flags_ & (1u << c)) != 0) ++counters_.coupled_hits[c];
     }
   }
-  // 5. Reduced face model: no control-point sources in the linear mapping yet.
-  // 6. Map to actuators.
-  model_.mapping.apply(face_, mapped_);
+  // 5-6. Reduced face model (control points), then the rig mapping.
+  mapping_clamps_ = map_to_actuators(model_.mapping, mapping_ws_, face_, mapped_);
+  //    Actuator coupled limits on the mapped targets (rest is admissible).
+  actuator_coupled_flags_ = 0;
+  actuator_coupled_violation_ = 0.0;
+  if (model_.actuator_constraints.size() != 0) {
+    actuator_coupled_flags_ =
+        model_.actuator_constraints.project(mapped_.data(), &actuator_coupled_violation_);
+    if (actuator_coupled_flags_ != 0) {
+      ++counters_.actuator_coupled_projections;
+      for (std::size_t c = 0; c < model_.actuator_constraints.size(); ++c) {
+        if ((actuator_coupled_flags_ & (1u << c)) != 0) ++counters_.actuator_coupled_hits[c];
+      }
+    }
+  }
   // 7. Actuator limits, only while outputs are live.
-  std::array<std::uint8_t, kMaxActuators> flags{};
+  std::array<LimitFlags, kMaxActuators> flags{};
   bool breach = false;
   if (safety_.outputs_enabled()) {
     choose_targets();

@@ -46,6 +46,9 @@ struct ControllerCounters {
   std::uint64_t envelope_clamps = 0;
   std::uint64_t coupled_projections = 0;
   std::array<std::uint64_t, CoupledConstraints::kMaxConstraints> coupled_hits{};
+  std::uint64_t actuator_coupled_projections = 0;  // ticks the mapped targets were projected
+  std::array<std::uint64_t, CoupledConstraints::kMaxConstraints> actuator_coupled_hits{};
+  std::uint64_t actuator_coupled_steps = 0;  // ticks a limited step was shortened
   std::uint64_t limit_breaches = 0;
   std::array<std::array<std::uint64_t, kLimitFlagCount>, kMaxActuators>
       limit_hits{};  // per LimitFlag bit
@@ -88,16 +91,19 @@ class Controller {
  private:
   void read_inputs(const TickTiming& timing);
   void choose_targets();
-  bool limit_actuators(double dt, std::uint8_t* flags);  // true if the backstop acted
+  bool limit_actuators(double dt, LimitFlags* flags);  // true if the backstop acted
+  void keep_actuator_constraints(double dt, LimitFlags* flags);
   bool feedback_out_of_range() const;
   bool at_rest(double dt);
   void enter_state(SafetyState state);
   void write_outputs(const TickTime& time);
   void publish_telemetry(const TickTiming& timing, TransitionReason transition,
                          std::uint32_t rejected, std::uint8_t envelope_flags,
-                         const std::uint8_t* flags);
+                         const LimitFlags* flags);
   std::uint32_t coupled_flags_ = 0;
   double coupled_violation_ = 0.0;
+  std::uint32_t actuator_coupled_flags_ = 0;
+  double actuator_coupled_violation_ = 0.0;
   void log_transition(const TickTiming& timing, SafetyState from, TransitionReason reason);
 
   const ControllerModel& model_;
@@ -119,6 +125,10 @@ class Controller {
   bool input_stale_ = true;
 
   std::array<double, kMaxFaceSignals> face_{};
+  MappingWorkspace mapping_ws_;
+  std::uint64_t mapping_clamps_ = 0;
+  std::array<bool, kMaxActuators> constrained_{};  // appears in an actuator coupled limit
+  std::array<double, kMaxActuators> previous_{};   // last tick's commands
   std::array<double, kMaxActuators> mapped_{};
   std::array<double, kMaxActuators> target_{};
   std::array<double, kMaxActuators> command_{};

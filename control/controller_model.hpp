@@ -9,13 +9,26 @@
 #include "control/command_shaper.hpp"
 #include "control/coupled_constraints.hpp"
 #include "control/face_layout.hpp"
-#include "control/linear_mapping.hpp"
+#include "control/rig_mapping.hpp"
 #include "control/mandible_envelope.hpp"
 #include "control/safety_state_machine.hpp"
 
 namespace facectl {
 
 enum class ActuatorKind { kRotary, kLinear };
+
+// What an actuator does when the controller faults (not on e-stop, which cuts
+// everything at once): see docs/SAFETY.md, "Fault reaction".
+enum class FaultReaction { kRelax, kHold, kRest };
+
+// How positions travel on the wire: raw = round(value · scale + offset), value
+// in the actuator's YAML unit (deg or mm), for command and feedback alike.
+struct ActuatorEncoding {
+  enum class Raw { kInt16, kUint16, kInt32 };
+  Raw raw = Raw::kInt16;
+  double scale = 100.0;  // counts per deg or mm
+  double offset = 0.0;   // counts
+};
 
 struct ActuatorModel {
   std::string name;
@@ -24,6 +37,9 @@ struct ActuatorModel {
   int address = 0;
   ActuatorLimits limits;
   double rest = 0.0;  // SI
+  FaultReaction fault_reaction = FaultReaction::kRelax;
+  ActuatorEncoding encoding;
+  double max_current_a = 0.0;  // 0 = not monitored; where the bus reports current
 };
 
 // A bus owns a contiguous slice of the actuators.
@@ -47,7 +63,11 @@ struct ControllerModel {
   CoupledConstraints face_constraints;
   ShapingParams shaping;
   SafetyParams safety;
-  LinearMapping mapping;
+  RigMapping mapping;
+  // Linear inequalities over actuator positions (e.g. jaw against lip
+  // actuators that collide at their extremes): mapped targets are projected,
+  // and each limited step is shortened so the commands stay admissible.
+  CoupledConstraints actuator_constraints;
   std::vector<ActuatorModel> actuators;  // ordered by bus
   std::vector<BusModel> buses;
   double rate_hz = 1000.0;

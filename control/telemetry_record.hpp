@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 
+#include "control/actuator_limits.hpp"
 #include "control/capacity.hpp"
 #include "control/safety_state.hpp"
 
@@ -22,6 +23,8 @@ struct TelemetryRecord {
   std::uint8_t envelope_flags = 0;    // FaceEnvelope::Flag bits
   std::uint32_t coupled_flags = 0;    // bit i: face coupled limit i was violated and projected
   double coupled_violation = 0.0;     // the largest violation before projection
+  std::uint32_t actuator_coupled_flags = 0;  // bit i: actuator coupled limit i fired
+  double actuator_coupled_violation = 0.0;   // its largest violation of the mapped targets
   std::uint32_t rejected_values = 0;  // sanitiser rejections on this tick
   std::uint32_t overruns = 0;         // consecutive overruns before this tick
   std::uint16_t signal_count = 0;
@@ -29,7 +32,7 @@ struct TelemetryRecord {
   std::array<double, kMaxFaceSignals> face{};        // shaped, enveloped command (SI)
   std::array<double, kMaxActuators> command{};       // limited actuator command (SI)
   std::array<double, kMaxActuators> feedback{};      // measured position (SI)
-  std::array<std::uint8_t, kMaxActuators> limits{};  // LimitFlag bits
+  std::array<LimitFlags, kMaxActuators> limits{};    // LimitFlag bits
 };
 
 }  // namespace facectl

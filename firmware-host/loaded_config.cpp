@@ -22,6 +22,7 @@ LoadedConfig load_config(const std::string& runtime_path, const ConfigOverrides&
     cfg.runtime.rate_hz = *overrides.rate_hz;
   }
   if (overrides.show_path) cfg.runtime.show_path = *overrides.show_path;
+  if (overrides.rig_path) cfg.runtime.rig_path = *overrides.rig_path;
   cfg.head = load_head_config(cfg.runtime.head_path);
   cfg.rig = load_rig_config(cfg.runtime.rig_path, cfg.head.layout);
   cfg.expressions = ExpressionLibrary::load(cfg.runtime.expressions_path, cfg.head.layout);
@@ -30,6 +31,11 @@ LoadedConfig load_config(const std::string& runtime_path, const ConfigOverrides&
         Show::load(cfg.runtime.show_path, cfg.head.layout, cfg.head.neutral, cfg.expressions);
   }
   cfg.built = build_model(cfg.head, cfg.rig, cfg.runtime);
+  if (!overrides.keep_problems && !cfg.built.problems.empty()) {
+    std::string all;
+    for (const std::string& p : cfg.built.problems) all += (all.empty() ? "" : "\n") + p;
+    throw ConfigError(all + "\n(`facectl verify` checks a rig in full before power-up)");
+  }
   return cfg;
 }
 

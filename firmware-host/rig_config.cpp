@@ -1,5 +1,6 @@
 #include "firmware-host/rig_config.hpp"
 
+#include <algorithm>
 #include <numbers>
 #include <set>
 
@@ -68,7 +69,8 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   const std::string s = "_" + u.suffix;
   node.expect_keys({"name", "kind", "bus", "address", "position" + s, "soft_position" + s,
                     "max_velocity" + s + "_s", "max_acceleration" + s + "_s2",
-                    "max_jerk" + s + "_s3", "rest" + s, "plant", "map"});
+                    "max_jerk" + s + "_s3", "rest" + s, "plant", "map", "fault_reaction",
+                    "encoding", "max_current_a"});
 
   m.bus = node["bus"].string();
   if (bus_names.count(m.bus) == 0) node["bus"].fail("the name of a bus of this rig");
@@ -112,43 +114,80 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   }
 
   cfg.plant_where = node.get("plant") ? node["plant"].where() : cfg.where;
-  const ConfigNode map = node["map"];
-  cfg.map_where = map["terms"].where();
-  map.expect_keys({"offset" + s, "terms"});
-  if (auto n = map.get("offset" + s)) cfg.map_offset_si = n->number() * u.to_si;
-  for (const auto& [signal_key, gain] : map["terms"].entries()) {
-    // Terms name the signal with its YAML unit: zygomaticus_major_l, jaw_pitch_deg,
-    // jaw_protrusion_mm.
-    const std::optional<std::size_t> index = layout.find_yaml_key(signal_key);
-    if (!index) {
-      gain.fail("a face signal of the head (muscle name, jaw_pitch_deg, jaw_protrusion_mm, ...)",
-                "unknown signal '" + signal_key + "'");
+  cfg.map = parse_mapping(node["map"], layout, u.suffix);
+
+  if (auto r = node.get("fault_reaction")) {
+    const std::string reaction = r->string();
+    if (reaction == "relax") {
+      m.fault_reaction = FaultReaction::kRelax;
+    } else if (reaction == "hold") {
+      m.fault_reaction = FaultReaction::kHold;
+    } else if (reaction == "rest") {
+      m.fault_reaction = FaultReaction::kRest;
+    } else {
+      r->fail("one of: relax, hold, rest");
     }
-    const SignalInfo& info = layout.signal(*index);
-    // Gain is in actuator YAML units per signal YAML unit.
-    cfg.terms.push_back({*index, gain.number() * u.to_si / yaml_to_si(info.kind)});
   }
+  cfg.encoding_where = cfg.where;
+  if (auto e = node.get("encoding")) {
+    e->expect_keys({"raw", "scale", "offset"});
+    cfg.encoding_where = e->where();
+    const std::string raw = (*e)["raw"].string();
+    if (raw == "int16") {
+      m.encoding.raw = ActuatorEncoding::Raw::kInt16;
+    } else if (raw == "uint16") {
+      m.encoding.raw = ActuatorEncoding::Raw::kUint16;
+    } else if (raw == "int32") {
+      m.encoding.raw = ActuatorEncoding::Raw::kInt32;
+    } else {
+      (*e)["raw"].fail("one of: int16, uint16, int32");
+    }
+    if (auto n = e->get("scale")) {
+      m.encoding.scale = n->number();
+      if (m.encoding.scale == 0.0) n->fail("a non-zero scale (counts per " + u.suffix + ")");
+    }
+    if (auto n = e->get("offset")) m.encoding.offset = n->number();
+  }
+  if (auto c = node.get("max_current_a")) m.max_current_a = c->positive();
   return cfg;
 }
 
-CoupledLimitConfig parse_coupled_limit(const ConfigNode& node, const FaceLayout& layout) {
-  node.expect_keys({"name", "face", "max"});
+CoupledLimitConfig parse_coupled_limit(const ConfigNode& node, const FaceLayout& layout,
+                                       const std::vector<ActuatorConfig>& actuators) {
+  node.expect_keys({"name", "face", "actuators", "max"});
   CoupledLimitConfig out;
   out.where = node.where();
   CoupledConstraints::Constraint& c = out.constraint;
   c.name = node["name"].string();
-  for (const auto& [key, coeff] : node["face"].entries()) {
-    const auto index = layout.find_yaml_key(key);
-    if (!index) coeff.fail("a face signal of the head (with its unit suffix)", "'" + key + "'");
+  if (node.has("face") == node.has("actuators")) {
+    node.fail("either `face:` (face signals) or `actuators:` (actuator positions)");
+  }
+  out.over_actuators = node.has("actuators");
+  const ConfigNode terms = out.over_actuators ? node["actuators"] : node["face"];
+  for (const auto& [key, coeff] : terms.entries()) {
+    std::size_t index = 0;
+    double to_si = 1.0;
+    if (out.over_actuators) {
+      auto it = std::find_if(actuators.begin(), actuators.end(),
+                             [&](const ActuatorConfig& a) { return a.model.name == key; });
+      if (it == actuators.end()) coeff.fail("the name of an actuator of this rig", "'" + key + "'");
+      index = static_cast<std::size_t>(it - actuators.begin());
+      to_si = units_of(it->model.kind).to_si;
+    } else {
+      const auto found = layout.find_yaml_key(key);
+      if (!found) coeff.fail("a face signal of the head (with its unit suffix)", "'" + key + "'");
+      index = *found;
+      to_si = yaml_to_si(layout.signal(index).kind);
+    }
     if (c.terms == CoupledConstraints::kMaxTerms) {
       coeff.fail("at most " + std::to_string(CoupledConstraints::kMaxTerms) + " terms");
     }
-    c.index[c.terms] = *index;
+    c.index[c.terms] = index;
     // Coefficient per YAML unit -> per SI unit, so the bound keeps its YAML meaning.
-    c.coeff[c.terms] = coeff.number() / yaml_to_si(layout.signal(*index).kind);
+    c.coeff[c.terms] = coeff.number() / to_si;
     ++c.terms;
   }
-  if (c.terms == 0) node["face"].fail("at least one term", "an empty mapping");
+  if (c.terms == 0) terms.fail("at least one term", "an empty mapping");
   c.bound = node["max"].number();
   return out;
 }
@@ -196,7 +235,9 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
       limits->fail("at most " + std::to_string(CoupledConstraints::kMaxConstraints) +
                    " coupled limits");
     }
-    for (const ConfigNode& c : rows) cfg.coupled_limits.push_back(parse_coupled_limit(c, layout));
+    for (const ConfigNode& c : rows) {
+      cfg.coupled_limits.push_back(parse_coupled_limit(c, layout, cfg.actuators));
+    }
   }
   return cfg;
 }

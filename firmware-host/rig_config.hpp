@@ -9,6 +9,7 @@
 #include "control/coupled_constraints.hpp"
 #include "firmware-host/config_node.hpp"
 #include "firmware-host/head_config.hpp"
+#include "firmware-host/rig_mapping_config.hpp"
 #include "sim/plant/servo_plant.hpp"
 
 namespace facectl {
@@ -21,25 +22,20 @@ struct BusConfig {
   std::string where;
 };
 
-// One mapping term: gain from a face signal to the actuator, SI per SI.
-struct MappingTerm {
-  std::size_t signal = 0;
-  double gain_si = 0.0;
-};
-
 struct ActuatorConfig {
   ActuatorModel model;
-  double map_offset_si = 0.0;
-  std::vector<MappingTerm> terms;
+  MappingConfig map;
   sim::ServoPlantParams plant;  // the simulated twin
   std::string where;
-  std::string map_where;    // position of its `map.terms`
-  std::string plant_where;  // position of its `plant` block, or of the actuator
+  std::string plant_where;     // position of its `plant` block, or of the actuator
+  std::string encoding_where;  // position of its `encoding` block, or of the actuator
 };
 
-// A coupled limit as written: Σ coeff · signal (YAML units) <= max.
+// A coupled limit as written: Σ coeff · signal (YAML units) <= max, over
+// face signals (`face:`) or over actuator positions (`actuators:`).
 struct CoupledLimitConfig {
   CoupledConstraints::Constraint constraint;  // SI coefficients
+  bool over_actuators = false;  // indices are file-order actuator indices
   std::string where;
 };
 

@@ -29,7 +29,8 @@ void TelemetryWriter::start() {
 void TelemetryWriter::write_header(std::FILE* out, const ControllerModel& model) {
   std::fputs(
       "tick,time_s,dt_s,wake_latency_us,compute_us,state,transition,input_stale,envelope_flags,"
-      "coupled_flags,coupled_violation,rejected,overruns",
+      "coupled_flags,coupled_violation,actuator_coupled_flags,actuator_coupled_violation,"
+      "rejected,overruns",
       out);
   for (std::size_t i = 0; i < model.layout.size(); ++i) {
     std::fprintf(out, ",face.%s", model.layout.signal(i).name.c_str());
@@ -42,12 +43,12 @@ void TelemetryWriter::write_header(std::FILE* out, const ControllerModel& model)
 
 void TelemetryWriter::write_row(std::FILE* out, const TelemetryRecord& r) {
   std::fprintf(
-      out, "%llu,%.6f,%.9f,%.3f,%.3f,%s,%s,%d,%u,%u,%.9g,%u,%u",
+      out, "%llu,%.6f,%.9f,%.3f,%.3f,%s,%s,%d,%u,%u,%.9g,%u,%.9g,%u,%u",
       static_cast<unsigned long long>(r.tick), r.time_s, r.dt_s, r.wake_latency_s * 1e6,
       r.compute_s * 1e6, std::string(to_string(r.state)).c_str(),
       r.transition == TransitionReason::kNone ? "" : std::string(to_string(r.transition)).c_str(),
       r.input_stale ? 1 : 0, r.envelope_flags, r.coupled_flags, r.coupled_violation,
-      r.rejected_values, r.overruns);
+      r.actuator_coupled_flags, r.actuator_coupled_violation, r.rejected_values, r.overruns);
   for (std::size_t i = 0; i < r.signal_count; ++i) std::fprintf(out, ",%.9g", r.face[i]);
   for (std::size_t i = 0; i < r.actuator_count; ++i) std::fprintf(out, ",%.9g", r.command[i]);
   for (std::size_t i = 0; i < r.actuator_count; ++i) std::fprintf(out, ",%.9g", r.feedback[i]);

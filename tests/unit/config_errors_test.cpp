@@ -46,7 +46,8 @@ std::string rig_error(const std::string& text) {
   try {
     const RigConfig r = load_rig_config(f.path(), head().layout);
     RuntimeConfig rt;
-    build_model(head(), r, rt);
+    const BuiltModel b = build_model(head(), r, rt);
+    if (!b.problems.empty()) throw ConfigError(b.problems.front());
   } catch (const ConfigError& e) {
     std::string msg = e.what();
     const auto at = msg.find(f.path());
@@ -131,8 +132,7 @@ TEST(ConfigErrors, AnActuatorThatNothingDrivesIsRefused) {
   std::string a = kGoodActuator;
   a.replace(a.find("jaw_pitch_deg: 1"), 16, "jaw_pitch_deg: 0");
   const std::string e = rig_error(rig(a));
-  EXPECT_NE(e.find("RIG:14:21: rig.actuators 'jaw'.map.terms: expected at least one non-zero "
-                   "mapping term"),
+  EXPECT_NE(e.find("RIG:14:12: actuator 'jaw': nothing drives it (no non-zero term or point"),
             std::string::npos)
       << e;
 }

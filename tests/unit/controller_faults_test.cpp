@@ -63,7 +63,8 @@ class ControllerFaults : public ::testing::Test {
 TEST_F(ControllerFaults, InputTimeoutEasesToNeutralWithinTheDocumentedTime) {
   const ControllerModel& m = head_.model();
   std::array<double, kMaxActuators> neutral_targets{};
-  m.mapping.apply(m.neutral, neutral_targets);
+  MappingWorkspace w = make_mapping_workspace(m.mapping);
+  map_to_actuators(m.mapping, w, m.neutral, neutral_targets);
   // The input stops. Documented bound: timeout + neutral ease + 0.5 s to settle.
   const double bound = m.safety.input_timeout_s + m.shaping.neutral_ease_time_s + 0.5;
   double stale_at = -1.0;

@@ -1,0 +1,81 @@
+#include "control/rig_mapping.hpp"
+
+#include <algorithm>
+#include <span>
+
+namespace facectl {
+
+bool RigMapping::drives(std::size_t actuator) const {
+  if (linear.drives(actuator)) return true;
+  return std::any_of(points.begin(), points.end(),
+                     [&](const PointTerm& p) { return p.actuator == actuator && p.gain != 0.0; });
+}
+
+MappingWorkspace make_mapping_workspace(const RigMapping& mapping) {
+  MappingWorkspace w;
+  if (mapping.reduced) w.reduced = face::make_reduced_workspace(*mapping.reduced);
+  return w;
+}
+
+void evaluate_control_points(const RigMapping& m, MappingWorkspace& w,
+                             const std::array<double, kMaxFaceSignals>& face) {
+  if (!m.reduced) return;
+  const std::size_t outputs = 3 * m.reduced->control_points.size();
+  face::evaluate(*m.reduced, w.reduced, std::span<const double>(face.data(), m.muscle_count),
+                 face[m.jaw_pitch], face[m.jaw_yaw], face[m.jaw_protrusion],
+                 std::span<double>(w.displacement.data(), outputs));
+}
+
+void map_effectors(const RigMapping& m, MappingWorkspace& w,
+                   const std::array<double, kMaxFaceSignals>& face) {
+  m.linear.apply(face, w.effector);
+  for (const PointTerm& p : m.points) {
+    const double* d = w.displacement.data() + 3 * p.point;
+    w.effector[p.actuator] += p.gain * (d[0] * p.axis[0] + d[1] * p.axis[1] + d[2] * p.axis[2]);
+  }
+}
+
+std::optional<double> transform_effector(const ChannelTransform& t, double effector,
+                                         bool* clamped) {
+  *clamped = false;
+  switch (t.kind) {
+    case ChannelTransform::Kind::kNone:
+      return effector;
+    case ChannelTransform::Kind::kCalibration: {
+      *clamped = effector < t.curve.x_min() || effector > t.curve.x_max();
+      return t.curve.evaluate(effector);
+    }
+    case ChannelTransform::Kind::kLinkage: {
+      const double e = std::clamp(effector, t.linkage.effector_min, t.linkage.effector_max);
+      *clamped = e != effector;
+      return t.linkage.to_actuator(e);
+    }
+  }
+  return std::nullopt;
+}
+
+std::uint64_t apply_transforms(const RigMapping& m, const MappingWorkspace& w,
+                               std::array<double, kMaxActuators>& out) {
+  std::uint64_t clamped_bits = 0;
+  for (std::size_t i = 0; i < m.actuators(); ++i) {
+    bool clamped = false;
+    const std::optional<double> position = transform_effector(m.transforms[i], w.effector[i], &clamped);
+    if (position) {
+      out[i] = *position;
+    } else {
+      clamped = true;  // cannot close: keep the previous position
+    }
+    if (clamped) clamped_bits |= std::uint64_t{1} << i;
+  }
+  return clamped_bits;
+}
+
+std::uint64_t map_to_actuators(const RigMapping& m, MappingWorkspace& w,
+                               const std::array<double, kMaxFaceSignals>& face,
+                               std::array<double, kMaxActuators>& out) {
+  evaluate_control_points(m, w, face);
+  map_effectors(m, w, face);
+  return apply_transforms(m, w, out);
+}
+
+}  // namespace facectl

@@ -1,0 +1,87 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "control/calibration_curve.hpp"
+#include "control/capacity.hpp"
+#include "control/linear_mapping.hpp"
+#include "control/linkage.hpp"
+#include "facectl/face/reduced_face_model.hpp"
+
+namespace facectl {
+
+inline constexpr std::size_t kMaxControlPoints = 32;
+
+// A control-point source: gain · (displacement of the point · unit axis),
+// displacement from the reduced face model in metres (head frame).
+struct PointTerm {
+  std::size_t actuator = 0;
+  std::size_t point = 0;  // index into the reduced model's control points
+  std::array<double, 3> axis{};
+  double gain = 0.0;  // effector SI per metre
+};
+
+// What turns an actuator's effector value (what the face part must do) into
+// the actuator position: nothing, a monotone calibration curve, or a linkage
+// inverse. Values outside the curve or the linkage's working range are held
+// at its end (and flagged), never extrapolated.
+struct ChannelTransform {
+  enum class Kind { kNone, kCalibration, kLinkage };
+  Kind kind = Kind::kNone;
+  CalibrationCurve curve;  // effector (x) -> actuator (y), SI
+  Linkage linkage;
+};
+
+// Step 6 of the tick, as a const model: face signals (and the reduced model's
+// control points) -> effector values -> actuator positions. Built once from
+// the rig; map_to_actuators() allocates nothing.
+struct RigMapping {
+  LinearMapping linear;           // effector = offset + gains · face signals
+  std::vector<PointTerm> points;  // control-point sources, any order
+  std::vector<ChannelTransform> transforms;  // one per actuator
+  // The reduced face model, present iff some actuator reads a control point.
+  std::shared_ptr<const face::ReducedFaceModel> reduced;
+  std::size_t muscle_count = 0;  // face signals [0, muscle_count) are the model's muscles
+  std::size_t jaw_pitch = 0, jaw_yaw = 0, jaw_protrusion = 0;  // face signal indices
+
+  std::size_t actuators() const { return linear.actuators(); }
+  bool drives(std::size_t actuator) const;
+};
+
+// Preallocated scratch space of one mapping (one per controller).
+struct MappingWorkspace {
+  face::ReducedFaceWorkspace reduced;
+  std::array<double, 3 * kMaxControlPoints> displacement{};
+  std::array<double, kMaxActuators> effector{};
+};
+
+MappingWorkspace make_mapping_workspace(const RigMapping& mapping);
+
+// Evaluates the control points (step 5) into w.displacement.
+void evaluate_control_points(const RigMapping& mapping, MappingWorkspace& w,
+                             const std::array<double, kMaxFaceSignals>& face);
+
+// Effector values from face signals and the evaluated control points.
+void map_effectors(const RigMapping& mapping, MappingWorkspace& w,
+                   const std::array<double, kMaxFaceSignals>& face);
+
+// Applies each actuator's transform to w.effector. Returns a bit per actuator
+// whose effector lay outside its curve or linkage range (held at the end);
+// an actuator whose linkage cannot close keeps its previous position in `out`.
+std::uint64_t apply_transforms(const RigMapping& mapping, const MappingWorkspace& w,
+                               std::array<double, kMaxActuators>& out);
+
+// Steps 5 and 6 together. Returns apply_transforms()'s bits.
+std::uint64_t map_to_actuators(const RigMapping& mapping, MappingWorkspace& w,
+                               const std::array<double, kMaxFaceSignals>& face,
+                               std::array<double, kMaxActuators>& out);
+
+// One channel's transform on one value; `clamped` reports a held end.
+// nullopt where a linkage cannot close.
+std::optional<double> transform_effector(const ChannelTransform& t, double effector,
+                                         bool* clamped);
+
+}  // namespace facectl
