@@ -289,8 +289,15 @@ void Controller::tick(const TickTiming& timing) {
   // 3. Shape: neutral blend on stale input, activation dynamics, smoothing.
   face_ = shaper_.apply(sanitizer_.values(), input_stale_, dt);
   // 4. Face envelope: mandible limits and admissible rigid ranges.
+  std::copy_n(face_.begin(), model_.layout.size(), before_envelope_.begin());
   const std::uint8_t envelope_flags = envelope_.apply(face_);
-  if (envelope_flags != 0) ++counters_.envelope_clamps;
+  envelope_excess_ = 0.0;
+  if (envelope_flags != 0) {
+    ++counters_.envelope_clamps;
+    for (std::size_t i = 0; i < model_.layout.size(); ++i) {
+      envelope_excess_ = std::max(envelope_excess_, std::fabs(face_[i] - before_envelope_[i]));
+    }
+  }
   //    Coupled face limits: a deterministic, bounded projection.
   coupled_flags_ = model_.face_constraints.project(face_.data(), &coupled_violation_);
   if (coupled_flags_ != 0) {
@@ -315,11 +322,11 @@ void Controller::tick(const TickTiming& timing) {
     }
   }
   // 7. Actuator limits, only while outputs are live.
-  std::array<LimitFlags, kMaxActuators> flags{};
+  std::fill_n(flags_.begin(), model_.actuators.size(), LimitFlags{0});
   bool breach = false;
   if (safety_.outputs_enabled()) {
     choose_targets();
-    breach = limit_actuators(dt, flags.data());
+    breach = limit_actuators(dt, flags_.data());
   }
 
   // 8. Safety state machine.
@@ -355,7 +362,7 @@ void Controller::tick(const TickTiming& timing) {
   // 9-10. Encode and write through the drivers (encoding lives in each backend).
   write_outputs(time);
   // 11. Telemetry.
-  publish_telemetry(timing, transition, rejected, envelope_flags, flags.data());
+  publish_telemetry(timing, transition, rejected, envelope_flags, flags_.data());
 }
 
 }  // namespace facectl

@@ -86,6 +86,16 @@ class Controller {
   const std::array<double, kMaxActuators>& commands() const { return command_; }
   const std::array<double, kMaxActuators>& measured() const { return measured_; }
   const LimiterState& limiter(std::size_t actuator) const { return limiter_[actuator]; }
+  // This tick's intermediate results, for offline checks (facectl verify).
+  const std::array<double, kMaxActuators>& mapped() const { return mapped_; }
+  const std::array<double, kMaxActuators>& targets() const { return target_; }
+  double envelope_excess() const { return envelope_excess_; }  // largest clamp, SI
+  std::uint32_t coupled_flags() const { return coupled_flags_; }
+  double coupled_violation() const { return coupled_violation_; }
+  std::uint32_t actuator_coupled_flags() const { return actuator_coupled_flags_; }
+  double actuator_coupled_violation() const { return actuator_coupled_violation_; }
+  std::uint64_t mapping_clamps() const { return mapping_clamps_; }
+  const std::array<LimitFlags, kMaxActuators>& limit_flags() const { return flags_; }
   bool input_stale() const { return input_stale_; }
 
  private:
@@ -104,6 +114,9 @@ class Controller {
   double coupled_violation_ = 0.0;
   std::uint32_t actuator_coupled_flags_ = 0;
   double actuator_coupled_violation_ = 0.0;
+  double envelope_excess_ = 0.0;
+  std::array<LimitFlags, kMaxActuators> flags_{};  // this tick's, per actuator
+  std::array<double, kMaxFaceSignals> before_envelope_{};
   void log_transition(const TickTiming& timing, SafetyState from, TransitionReason reason);
 
   const ControllerModel& model_;

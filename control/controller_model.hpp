@@ -9,8 +9,8 @@
 #include "control/command_shaper.hpp"
 #include "control/coupled_constraints.hpp"
 #include "control/face_layout.hpp"
-#include "control/rig_mapping.hpp"
 #include "control/mandible_envelope.hpp"
+#include "control/rig_mapping.hpp"
 #include "control/safety_state_machine.hpp"
 
 namespace facectl {

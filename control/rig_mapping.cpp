@@ -59,7 +59,8 @@ std::uint64_t apply_transforms(const RigMapping& m, const MappingWorkspace& w,
   std::uint64_t clamped_bits = 0;
   for (std::size_t i = 0; i < m.actuators(); ++i) {
     bool clamped = false;
-    const std::optional<double> position = transform_effector(m.transforms[i], w.effector[i], &clamped);
+    const std::optional<double> position =
+        transform_effector(m.transforms[i], w.effector[i], &clamped);
     if (position) {
       out[i] = *position;
     } else {

@@ -39,8 +39,8 @@ struct ChannelTransform {
 // control points) -> effector values -> actuator positions. Built once from
 // the rig; map_to_actuators() allocates nothing.
 struct RigMapping {
-  LinearMapping linear;           // effector = offset + gains · face signals
-  std::vector<PointTerm> points;  // control-point sources, any order
+  LinearMapping linear;                      // effector = offset + gains · face signals
+  std::vector<PointTerm> points;             // control-point sources, any order
   std::vector<ChannelTransform> transforms;  // one per actuator
   // The reduced face model, present iff some actuator reads a control point.
   std::shared_ptr<const face::ReducedFaceModel> reduced;
@@ -81,7 +81,6 @@ std::uint64_t map_to_actuators(const RigMapping& mapping, MappingWorkspace& w,
 
 // One channel's transform on one value; `clamped` reports a held end.
 // nullopt where a linkage cannot close.
-std::optional<double> transform_effector(const ChannelTransform& t, double effector,
-                                         bool* clamped);
+std::optional<double> transform_effector(const ChannelTransform& t, double effector, bool* clamped);
 
 }  // namespace facectl

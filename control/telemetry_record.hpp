@@ -20,19 +20,19 @@ struct TelemetryRecord {
   SafetyState state = SafetyState::kIdle;
   TransitionReason transition = TransitionReason::kNone;  // set on the tick that changed state
   bool input_stale = false;
-  std::uint8_t envelope_flags = 0;    // FaceEnvelope::Flag bits
-  std::uint32_t coupled_flags = 0;    // bit i: face coupled limit i was violated and projected
-  double coupled_violation = 0.0;     // the largest violation before projection
+  std::uint8_t envelope_flags = 0;  // FaceEnvelope::Flag bits
+  std::uint32_t coupled_flags = 0;  // bit i: face coupled limit i was violated and projected
+  double coupled_violation = 0.0;   // the largest violation before projection
   std::uint32_t actuator_coupled_flags = 0;  // bit i: actuator coupled limit i fired
   double actuator_coupled_violation = 0.0;   // its largest violation of the mapped targets
-  std::uint32_t rejected_values = 0;  // sanitiser rejections on this tick
-  std::uint32_t overruns = 0;         // consecutive overruns before this tick
+  std::uint32_t rejected_values = 0;         // sanitiser rejections on this tick
+  std::uint32_t overruns = 0;                // consecutive overruns before this tick
   std::uint16_t signal_count = 0;
   std::uint16_t actuator_count = 0;
-  std::array<double, kMaxFaceSignals> face{};        // shaped, enveloped command (SI)
-  std::array<double, kMaxActuators> command{};       // limited actuator command (SI)
-  std::array<double, kMaxActuators> feedback{};      // measured position (SI)
-  std::array<LimitFlags, kMaxActuators> limits{};    // LimitFlag bits
+  std::array<double, kMaxFaceSignals> face{};      // shaped, enveloped command (SI)
+  std::array<double, kMaxActuators> command{};     // limited actuator command (SI)
+  std::array<double, kMaxActuators> feedback{};    // measured position (SI)
+  std::array<LimitFlags, kMaxActuators> limits{};  // LimitFlag bits
 };
 
 }  // namespace facectl

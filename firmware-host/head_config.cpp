@@ -49,7 +49,8 @@ HeadConfig load_head_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path, "");
   root.expect_keys({"head"});
   const ConfigNode head = root["head"];
-  head.expect_keys({"name", "muscles", "passive_muscles", "rigid", "mandible_envelope", "neutral"});
+  head.expect_keys({"name", "muscles", "passive_muscles", "rigid", "mandible_envelope", "neutral",
+                    "antagonists"});
 
   HeadConfig cfg;
   cfg.file = path;
@@ -107,6 +108,23 @@ HeadConfig load_head_config(const std::string& path) {
   if (auto env = head.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);
   cfg.layout = FaceLayout(cfg.muscles);
   if (auto neutral = head.get("neutral")) parse_pose(*neutral, cfg.layout).apply_to(cfg.neutral);
+  if (auto pairs = head.get("antagonists")) {
+    for (const ConfigNode& p : pairs->items()) {
+      p.expect_keys({"muscles", "max_sum"});
+      const auto names = p["muscles"].items();
+      if (names.size() != 2) p["muscles"].fail("two muscle names", std::to_string(names.size()));
+      AntagonistPair pair;
+      pair.where = p.where();
+      std::size_t* slots[2] = {&pair.a, &pair.b};
+      for (std::size_t k = 0; k < 2; ++k) {
+        const auto index = cfg.layout.find(names[k].string());
+        if (!index || *index >= cfg.layout.muscle_count()) names[k].fail("a muscle of this head");
+        *slots[k] = *index;
+      }
+      if (auto m = p.get("max_sum")) pair.max_sum = m->number_in(0.0, 2.0);
+      cfg.antagonists.push_back(pair);
+    }
+  }
   return cfg;
 }
 

@@ -22,6 +22,15 @@ struct EnvelopeSpec {
   std::string where;  // file:line:column of the block
 };
 
+// Two muscles that pull one feature in opposite directions. Driven together
+// they fight (a lip corner pulled up and down at once tears skin or stalls a
+// servo); `facectl verify` proves the rig keeps c_a + c_b <= max_sum.
+struct AntagonistPair {
+  std::size_t a = 0, b = 0;  // face signal indices
+  double max_sum = 1.0;
+  std::string where;
+};
+
 struct HeadConfig {
   std::string file;
   std::string name;
@@ -29,6 +38,7 @@ struct HeadConfig {
   std::vector<std::string> passive_muscles;
   std::map<std::string, Range> rigid_ranges;  // SI, keyed by rigid signal name
   std::optional<EnvelopeSpec> envelope;
+  std::vector<AntagonistPair> antagonists;
   FaceLayout layout{{}};
   std::array<double, kMaxFaceSignals> neutral{};  // SI, full pose
 };

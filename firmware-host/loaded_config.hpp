@@ -27,7 +27,7 @@ struct ConfigOverrides {
   std::optional<std::string> show_path;
   std::optional<double> rate_hz;
   std::optional<std::string> rig_path;  // instead of the runtime file's rig
-  bool keep_problems = false;  // verify reports BuiltModel::problems instead of throwing
+  bool keep_problems = false;           // verify reports BuiltModel::problems instead of throwing
 };
 
 // The shipped default: config/facectl.yaml of the source tree, or $FACECTL_CONFIG.

@@ -6,6 +6,7 @@
 #include "firmware-host/face_cli.hpp"
 #include "firmware-host/plot_command.hpp"
 #include "firmware-host/run_command.hpp"
+#include "firmware-host/verify/verify_command.hpp"
 
 namespace {
 
@@ -49,6 +50,19 @@ int run_cli(int argc, char** argv) {
   plot_cmd->add_option("--actuator", plot.actuators, "Only these actuators (repeatable)");
   plot_cmd->add_option("--out", plot.out_dir, "Output folder (default: .)");
   plot_cmd->callback([&] { exit_code = facectl::plot_command(plot); });
+
+  facectl::VerifyOptions verify;
+  CLI::App* verify_cmd = app.add_subcommand(
+      "verify", "Prove before power-up that nothing the controller can command breaks the rig");
+  verify_cmd->add_option("rig", verify.rig, "Rig YAML to verify")->required();
+  verify_cmd->add_option("--config", verify.config, "Runtime config naming the head");
+  verify_cmd->add_option("--show", verify.shows, "Show to check offline (repeatable)");
+  verify_cmd->add_option("--json", verify.json, "Write the report as JSON to this file");
+  verify_cmd->add_option("--plots", verify.plots,
+                         "Folder for the show check's telemetry and per-actuator SVG plots");
+  verify_cmd->add_option("--ticks", verify.ticks, "Adversarial search length (default 1000000)");
+  verify_cmd->add_option("--seed", verify.seed, "Adversarial search seed (default 1)");
+  verify_cmd->callback([&] { exit_code = facectl::verify_command(verify); });
 
   register_face_commands(app);
 

@@ -28,7 +28,9 @@ std::string describe(const MandibleEnvelope& e) {
   return buf;
 }
 
-std::string unit_name(ActuatorKind kind) { return kind == ActuatorKind::kRotary ? "deg" : "mm"; }
+std::string unit_name(ActuatorKind kind) {
+  return kind == ActuatorKind::kRotary ? "deg" : "mm";
+}
 
 // A rig axis wider than what it would narrow, stated without the override, is
 // silently narrowed at run time: the rig's author meant something else.
@@ -185,13 +187,15 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
   map.jaw_pitch = m.layout.jaw_pitch();
   map.jaw_yaw = m.layout.jaw_yaw();
   map.jaw_protrusion = m.layout.jaw_protrusion();
-  const bool reads_points = std::any_of(rig.actuators.begin(), rig.actuators.end(),
-                                        [](const ActuatorConfig& a) { return !a.map.points.empty(); });
+  const bool reads_points =
+      std::any_of(rig.actuators.begin(), rig.actuators.end(),
+                  [](const ActuatorConfig& a) { return !a.map.points.empty(); });
   if (reads_points) {
     map.reduced = load_reduced(head);
     if (map.reduced->muscles.size() != m.layout.muscle_count() ||
         map.reduced->control_points.size() > kMaxControlPoints) {
-      throw ConfigError(head.file + ": the reduced face model's muscles differ from head.muscles "
+      throw ConfigError(head.file +
+                        ": the reduced face model's muscles differ from head.muscles "
                         "(rebuild it with `facectl face reduce`)");
     }
     for (std::size_t k = 0; k < m.layout.muscle_count(); ++k) {
@@ -214,8 +218,10 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
       if (it == names.end()) {
         std::string list;
         for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-        throw ConfigError(p.where + ": " + who + ": map.points.point: expected a control point of "
-                          "the head (" + list + "), found '" + p.point + "'");
+        throw ConfigError(p.where + ": " + who +
+                          ": map.points.point: expected a control point of "
+                          "the head (" +
+                          list + "), found '" + p.point + "'");
       }
       map.points.push_back({i, static_cast<std::size_t>(it - names.begin()), p.axis, p.gain_si});
     }
@@ -228,11 +234,10 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
       const Linkage::Kind k = a.map.transform.linkage.kind;
       const bool wants_linear = k == Linkage::Kind::kSliderCrank;
       if (wants_linear != (a.model.kind == ActuatorKind::kLinear)) {
-        out.problems.push_back(a.map.transform_where + ": " + who + ": a " +
-                               std::string(to_string(k)) + " linkage drives a " +
-                               (wants_linear ? "linear (mm)" : "rotary (deg)") +
-                               " actuator, but this one is " + unit_name(a.model.kind) +
-                               " (inconsistent units)");
+        out.problems.push_back(
+            a.map.transform_where + ": " + who + ": a " + std::string(to_string(k)) +
+            " linkage drives a " + (wants_linear ? "linear (mm)" : "rotary (deg)") +
+            " actuator, but this one is " + unit_name(a.model.kind) + " (inconsistent units)");
       }
     }
     if (!map.drives(i)) {
@@ -283,7 +288,8 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
   } catch (const std::invalid_argument& e) {
     throw ConfigError(rig.file +
                       ": rig.coupled_limits: expected actuator limits that every actuator's "
-                      "rest position satisfies, found " + std::string(e.what()));
+                      "rest position satisfies, found " +
+                      std::string(e.what()));
   }
   return out;
 }

@@ -36,53 +36,58 @@ void add_state_spans(Plot& plot, const TelemetryTable& t, const std::vector<doub
 
 }  // namespace
 
+int write_actuator_plots(const ControllerModel& m, const TelemetryTable& t,
+                         const std::vector<std::string>& actuators, const std::string& out_dir) {
+  const std::vector<double> time = t.numbers("time_s");
+  std::filesystem::create_directories(out_dir);
+  int written = 0;
+  for (const ActuatorModel& a : m.actuators) {
+    if (!actuators.empty() &&
+        std::find(actuators.begin(), actuators.end(), a.name) == actuators.end()) {
+      continue;
+    }
+    const bool rotary = a.kind == ActuatorKind::kRotary;
+    const double scale = rotary ? 180.0 / std::numbers::pi : 1e3;
+    const std::string unit = rotary ? "deg" : "mm";
+    auto to_unit = [&](std::vector<double> v) {
+      for (double& x : v) x *= scale;
+      return v;
+    };
+    Plot plot;
+    plot.title = a.name + " (" + a.bus + ") against its limits";
+    plot.x_label = "time (s)";
+    plot.y_label = "position (" + unit + ")";
+    plot.series.push_back({"measured", "#f59e0b", time, to_unit(t.numbers("fb." + a.name)), 1.2});
+    plot.series.push_back({"command", "#1d4ed8", time, to_unit(t.numbers("cmd." + a.name)), 1.6});
+    plot.levels.push_back({"hardware limit", "#b91c1c", a.limits.position_min * scale, false});
+    plot.levels.push_back({"hardware limit", "#b91c1c", a.limits.position_max * scale, false});
+    plot.levels.push_back({"soft limit", "#ef4444", a.limits.soft_min * scale, true});
+    plot.levels.push_back({"soft limit", "#ef4444", a.limits.soft_max * scale, true});
+    add_state_spans(plot, t, time);
+    plot.mark_rows = {"position", "velocity", "accel.", "approach"};
+    const std::vector<double> flags = t.numbers("lim." + a.name);
+    const int bits[] = {1, 2, 4, 16};
+    const char* colors[] = {"#7c3aed", "#0891b2", "#db2777", "#ea580c"};
+    for (std::size_t i = 0; i < flags.size(); ++i) {
+      const auto f = static_cast<int>(flags[i]);
+      for (int r = 0; r < 4; ++r) {
+        if ((f & bits[r]) != 0) plot.marks.push_back({colors[r], time[i], r});
+      }
+    }
+    const std::string path = out_dir + "/" + a.name + ".svg";
+    std::ofstream(path) << render_svg(plot);
+    ++written;
+  }
+  return written;
+}
+
 int plot_command(const PlotOptions& options) {
   try {
     const LoadedConfig cfg =
         load_config(options.config.empty() ? default_config_path() : options.config);
     const TelemetryTable t = read_telemetry_csv(options.telemetry);
-    const std::vector<double> time = t.numbers("time_s");
-    std::filesystem::create_directories(options.out_dir);
-    const ControllerModel& m = cfg.built.model;
-    int written = 0;
-    for (const ActuatorModel& a : m.actuators) {
-      if (!options.actuators.empty() &&
-          std::find(options.actuators.begin(), options.actuators.end(), a.name) ==
-              options.actuators.end()) {
-        continue;
-      }
-      const bool rotary = a.kind == ActuatorKind::kRotary;
-      const double scale = rotary ? 180.0 / std::numbers::pi : 1e3;
-      const std::string unit = rotary ? "deg" : "mm";
-      auto to_unit = [&](std::vector<double> v) {
-        for (double& x : v) x *= scale;
-        return v;
-      };
-      Plot plot;
-      plot.title = a.name + " (" + a.bus + ") against its limits";
-      plot.x_label = "time (s)";
-      plot.y_label = "position (" + unit + ")";
-      plot.series.push_back({"measured", "#f59e0b", time, to_unit(t.numbers("fb." + a.name)), 1.2});
-      plot.series.push_back({"command", "#1d4ed8", time, to_unit(t.numbers("cmd." + a.name)), 1.6});
-      plot.levels.push_back({"hardware limit", "#b91c1c", a.limits.position_min * scale, false});
-      plot.levels.push_back({"hardware limit", "#b91c1c", a.limits.position_max * scale, false});
-      plot.levels.push_back({"soft limit", "#ef4444", a.limits.soft_min * scale, true});
-      plot.levels.push_back({"soft limit", "#ef4444", a.limits.soft_max * scale, true});
-      add_state_spans(plot, t, time);
-      plot.mark_rows = {"position", "velocity", "accel.", "approach"};
-      const std::vector<double> flags = t.numbers("lim." + a.name);
-      const int bits[] = {1, 2, 4, 16};
-      const char* colors[] = {"#7c3aed", "#0891b2", "#db2777", "#ea580c"};
-      for (std::size_t i = 0; i < flags.size(); ++i) {
-        const auto f = static_cast<int>(flags[i]);
-        for (int r = 0; r < 4; ++r) {
-          if ((f & bits[r]) != 0) plot.marks.push_back({colors[r], time[i], r});
-        }
-      }
-      const std::string path = options.out_dir + "/" + a.name + ".svg";
-      std::ofstream(path) << render_svg(plot);
-      ++written;
-    }
+    const int written =
+        write_actuator_plots(cfg.built.model, t, options.actuators, options.out_dir);
     if (written == 0) throw ConfigError("--actuator: expected an actuator of the rig, found none");
     std::printf("facectl plot: wrote %d plot(s) to %s\n", written, options.out_dir.c_str());
     return 0;

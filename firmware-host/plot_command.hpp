@@ -17,4 +17,10 @@ struct PlotOptions {
 // where a limit shaped the command marked. Exit 0, or 2 on unusable input.
 int plot_command(const PlotOptions& options);
 
+struct ControllerModel;
+struct TelemetryTable;
+// One SVG per actuator (all if `actuators` is empty) into out_dir; returns how many.
+int write_actuator_plots(const ControllerModel& m, const TelemetryTable& t,
+                         const std::vector<std::string>& actuators, const std::string& out_dir);
+
 }  // namespace facectl

@@ -35,7 +35,7 @@ struct ActuatorConfig {
 // face signals (`face:`) or over actuator positions (`actuators:`).
 struct CoupledLimitConfig {
   CoupledConstraints::Constraint constraint;  // SI coefficients
-  bool over_actuators = false;  // indices are file-order actuator indices
+  bool over_actuators = false;                // indices are file-order actuator indices
   std::string where;
 };
 

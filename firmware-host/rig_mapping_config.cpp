@@ -92,8 +92,8 @@ CalibrationCurve parse_calibration(const ConfigNode& node, const std::string& ac
   for (std::size_t k = 1; k < y.size(); ++k) {
     if ((y[k] > y[k - 1]) != up || y[k] == y[k - 1]) {
       *problem = ys[k].where() + ": calibration is not monotone: " + x_key + " " +
-                 xs[k - 1].found() + " -> " + y_key + " " + ys[k - 1].found() + ", but " +
-                 x_key + " " + xs[k].found() + " -> " + y_key + " " + ys[k].found();
+                 xs[k - 1].found() + " -> " + y_key + " " + ys[k - 1].found() + ", but " + x_key +
+                 " " + xs[k].found() + " -> " + y_key + " " + ys[k].found();
       return {};
     }
   }
@@ -142,8 +142,7 @@ MappingConfig parse_mapping(const ConfigNode& map, const FaceLayout& layout,
                   "unknown signal '" + signal_key + "'");
       }
       // Gain is in effector YAML units per signal YAML unit.
-      cfg.terms.push_back(
-          {*index, gain.number() * to_si / yaml_to_si(layout.signal(*index).kind)});
+      cfg.terms.push_back({*index, gain.number() * to_si / yaml_to_si(layout.signal(*index).kind)});
     }
   }
   if (auto points = map.get("points")) {

@@ -34,8 +34,8 @@ struct MappingConfig {
   std::vector<PointTermConfig> points;
   ChannelTransform transform;
   std::string calibration_problem;  // set (with where) if the curve turns back
-  std::string where;               // the `map` block
-  std::string transform_where;     // its calibration or linkage block
+  std::string where;                // the `map` block
+  std::string transform_where;      // its calibration or linkage block
 };
 
 // Parses `map:` for an actuator whose position unit is `actuator_unit`

@@ -1,11 +1,11 @@
-#include "tests/support/sim_head.hpp"
+#include "firmware-host/offline_head.hpp"
 
 #include <cmath>
 
-namespace facectl::testing {
+namespace facectl {
 
-SimHead::SimHead(const std::string& config, std::size_t telemetry, bool noiseless)
-    : config_(std::make_unique<LoadedConfig>(load_config(config))) {
+OfflineHead::OfflineHead(LoadedConfig config, std::size_t telemetry, bool noiseless)
+    : config_(std::make_unique<LoadedConfig>(std::move(config))) {
   if (noiseless) {
     for (auto& a : config_->rig.actuators) a.plant.noise_stddev = 0.0;
   }
@@ -16,7 +16,7 @@ SimHead::SimHead(const std::string& config, std::size_t telemetry, bool noiseles
                                    ControllerChannels{&mailbox_, telemetry_.get(), &events_});
 }
 
-void SimHead::step(double dt, int consecutive_overruns) {
+void OfflineHead::step(double dt, int consecutive_overruns) {
   now_ns_ += static_cast<std::int64_t>(std::llround(dt * 1e9));
   TickTiming t;
   t.tick = tick_++;
@@ -27,12 +27,12 @@ void SimHead::step(double dt, int consecutive_overruns) {
   controller_->tick(t);
 }
 
-void SimHead::run_for(double seconds) {
+void OfflineHead::run_for(double seconds) {
   const auto n = static_cast<long>(std::llround(seconds / period()));
   for (long i = 0; i < n; ++i) step(period());
 }
 
-void SimHead::send(const std::array<double, kMaxFaceSignals>& values) {
+void OfflineHead::send(const std::array<double, kMaxFaceSignals>& values) {
   FaceCommand cmd;
   cmd.values = values;
   cmd.sequence = ++sequence_;
@@ -40,4 +40,4 @@ void SimHead::send(const std::array<double, kMaxFaceSignals>& values) {
   mailbox_.publish(cmd);
 }
 
-}  // namespace facectl::testing
+}  // namespace facectl

@@ -1,0 +1,229 @@
+#include "firmware-host/verify/adversarial_search.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+#include "firmware-host/offline_head.hpp"
+
+namespace facectl::verify {
+namespace {
+
+using Severity = Finding::Severity;
+constexpr std::size_t kMaxReported = 40;
+
+enum class Mode { kUniform, kExtremes, kBangBang, kNeutral, kNaN };
+
+double to_yaml(ActuatorKind kind) {
+  return kind == ActuatorKind::kRotary ? 180.0 / M_PI : 1e3;
+}
+
+class Search {
+ public:
+  Search(const LoadedConfig& cfg, const SearchOptions& o)
+      : head_(cfg, 0, true), m_(head_.model()), rng_(o.seed), options_(o) {
+    for (const ActuatorModel& a : m_.actuators) result_.actuators.push_back({a.name});
+    prev_cmd_.fill(0.0);
+  }
+
+  SearchResult run() {
+    const auto start = std::chrono::steady_clock::now();
+    head_.controller().request_enable();
+    const double period = head_.period();
+    std::array<double, kMaxFaceSignals> values = m_.neutral;
+    std::uint64_t segment_left = 0;
+    Mode mode = Mode::kNeutral;
+    double dt_scale = 1.0;
+    for (std::uint64_t t = 0; t < options_.ticks; ++t) {
+      if (segment_left == 0) {
+        segment_left = 1 + rng_() % 400;
+        const auto pick = rng_() % 100;
+        mode = pick < 40   ? Mode::kUniform
+               : pick < 70 ? Mode::kExtremes
+               : pick < 90 ? Mode::kBangBang
+               : pick < 98 ? Mode::kNeutral
+                           : Mode::kNaN;
+        // One segment in four runs with late and early ticks.
+        dt_scale = rng_() % 4 == 0 ? 0.5 + 2.5 * unit() : 1.0;
+        if (mode != Mode::kBangBang) draw(mode, values);
+      }
+      --segment_left;
+      if (mode == Mode::kBangBang) draw(Mode::kExtremes, values);
+      head_.send(values);
+      const double dt = dt_scale == 1.0 ? period : period * (0.5 + (dt_scale - 0.5) * unit());
+      head_.step(dt);
+      measure(dt);
+    }
+    result_.ticks = options_.ticks;
+    result_.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (std::size_t i = 0; i < m_.actuators.size(); ++i) {
+      if (coupled_overrides_[i] != 0) {
+        result_.findings.push_back(
+            {Severity::kWarn, "acceleration", m_.actuators[i].name,
+             "an actuator coupled limit stopped a step short beyond max_acceleration on " +
+                 std::to_string(coupled_overrides_[i]) +
+                 " ticks: collision avoidance wins (docs/SAFETY.md, actuator coupled limits)",
+             ""});
+      }
+      if (jerk_yields_[i] == 0) continue;
+      result_.findings.push_back(
+          {Severity::kWarn, "jerk", m_.actuators[i].name,
+           "the jerk limit yielded to a hard bound (position, velocity or acceleration) on " +
+               std::to_string(jerk_yields_[i]) + " ticks: by design (docs/SAFETY.md, jerk yielded)",
+           ""});
+    }
+    if (result_.violations > kMaxReported) {
+      result_.findings.push_back({Severity::kFail, "adversarial", "",
+                                  std::to_string(result_.violations) + " violations in all; " +
+                                      std::to_string(kMaxReported) + " listed",
+                                  ""});
+    }
+    return std::move(result_);
+  }
+
+ private:
+  double unit() { return std::uniform_real_distribution<double>(0.0, 1.0)(rng_); }
+
+  void draw(Mode mode, std::array<double, kMaxFaceSignals>& v) {
+    for (std::size_t i = 0; i < m_.layout.size(); ++i) {
+      const SignalInfo& s = m_.layout.signal(i);
+      switch (mode) {
+        case Mode::kUniform:
+          v[i] = s.domain_min + (s.domain_max - s.domain_min) * unit();
+          break;
+        case Mode::kExtremes:
+        case Mode::kBangBang:
+          v[i] = rng_() % 2 ? s.domain_max : s.domain_min;
+          break;
+        case Mode::kNeutral:
+          v[i] = m_.neutral[i];
+          break;
+        case Mode::kNaN:
+          v[i] = rng_() % 3 == 0 ? std::numeric_limits<double>::quiet_NaN() : m_.neutral[i];
+          break;
+      }
+    }
+  }
+
+  void violation(const std::string& check, const std::string& subject, const std::string& what) {
+    ++result_.violations;
+    if (result_.violations > kMaxReported) return;
+    char at[48];
+    std::snprintf(at, sizeof at, " at t = %.4f s", head_.time() - 1.0);
+    result_.findings.push_back({Severity::kFail, check, subject, what + at, ""});
+  }
+
+  void measure(double dt) {
+    Controller& c = head_.controller();
+    const SafetyState state = c.state();
+    if (state == SafetyState::kFault || state == SafetyState::kEstop) {
+      violation("adversarial", "",
+                std::string("the controller entered ") + std::string(to_string(state)));
+      c.request_reset();
+      c.request_enable();
+      live_ = false;
+      return;
+    }
+    const bool live = state == SafetyState::kEnabling || state == SafetyState::kRunning ||
+                      state == SafetyState::kStopping;
+    if (state == SafetyState::kIdle) c.request_enable();
+    const auto& cmd = c.commands();
+    const std::size_t n = m_.actuators.size();
+    if (live && live_) {
+      for (std::size_t i = 0; i < n; ++i) check_actuator(i, cmd[i], dt);
+      check_constraints(cmd);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const double v = (cmd[i] - prev_cmd_[i]) / dt;
+      const double a = (v - prev_vel_[i]) / dt;
+      prev_acc_[i] = live && live_ ? a : 0.0;
+      prev_vel_[i] = live && live_ ? v : 0.0;
+      prev_cmd_[i] = cmd[i];
+    }
+    live_ = live;
+  }
+
+  void check_actuator(std::size_t i, double x, double dt) {
+    const ActuatorModel& a = m_.actuators[i];
+    const ActuatorLimits& l = a.limits;
+    ActuatorMargins& mg = result_.actuators[i];
+    const double s = to_yaml(a.kind);
+    const double hw = std::min(x - l.position_min, l.position_max - x) * s;
+    if (hw < mg.hardware) {
+      mg.hardware = hw;
+      mg.hardware_at_s = head_.time() - 1.0;
+    }
+    const double soft = std::min(x - l.soft_min, l.soft_max - x) * s;
+    mg.soft = std::min(mg.soft, soft);
+    const double v = (x - prev_cmd_[i]) / dt;
+    const double acc = (v - prev_vel_[i]) / dt;
+    const double fv = 1.0 - std::fabs(v) / l.max_velocity;
+    const double fa = 1.0 - std::fabs(acc) / l.max_acceleration;
+    mg.velocity = std::min(mg.velocity, fv);
+    mg.acceleration = std::min(mg.acceleration, fa);
+    if (l.max_jerk > 0.0) {
+      const double fj = 1.0 - std::fabs((acc - prev_acc_[i]) / dt) / l.max_jerk;
+      mg.jerk = std::min(mg.jerk, fj);
+      if (fj < -1e-6) ++jerk_yields_[i];
+    }
+    constexpr double kTol = 1e-6;  // relative: rounding in the finite differences
+    if (hw < 0.0) violation("position", a.name, "command outside the hardware range");
+    if (soft < -1e-9 * s) violation("position", a.name, "command outside the soft range");
+    if (fv < -kTol) violation("velocity", a.name, "velocity beyond max_velocity");
+    if (fa < -kTol) {
+      // An actuator coupled limit may stop a step short to avoid a collision:
+      // collision avoidance wins over the acceleration limit (docs/SAFETY.md).
+      if ((head_.controller().limit_flags()[i] & kLimitCoupled) != 0) {
+        ++coupled_overrides_[i];
+      } else {
+        violation("acceleration", a.name, "acceleration beyond max_acceleration");
+      }
+    }
+  }
+
+  void check_constraints(const std::array<double, kMaxActuators>& cmd) {
+    const auto& face = head_.controller().face();
+    for (std::size_t k = 0; k < m_.face_constraints.size(); ++k) {
+      const auto& con = m_.face_constraints.constraint(k);
+      const double margin = con.bound - con.value(face.data());
+      result_.face_constraint_margin = std::min(result_.face_constraint_margin, margin);
+      if (margin < -1e-9) violation("face coupled limit", con.name, "face pose beyond the limit");
+    }
+    for (std::size_t k = 0; k < m_.actuator_constraints.size(); ++k) {
+      const auto& con = m_.actuator_constraints.constraint(k);
+      const double margin = con.bound - con.value(cmd.data());
+      result_.actuator_constraint_margin = std::min(result_.actuator_constraint_margin, margin);
+      if (margin < -1e-9)
+        violation("actuator coupled limit", con.name, "commands beyond the limit");
+    }
+    const double pitch = face[m_.layout.jaw_pitch()], yaw = face[m_.layout.jaw_yaw()],
+                 prot = face[m_.layout.jaw_protrusion()];
+    const double e =
+        std::min({pitch - m_.envelope.pitch.min, m_.envelope.pitch.max - pitch,
+                  yaw - m_.envelope.yaw.min, m_.envelope.yaw.max - yaw,
+                  prot - m_.envelope.protrusion.min, m_.envelope.protrusion.max - prot});
+    result_.envelope_margin = std::min(result_.envelope_margin, e);
+    if (e < -1e-12) violation("mandible envelope", "jaw", "face pose outside the envelope");
+  }
+
+  OfflineHead head_;
+  const ControllerModel& m_;
+  std::mt19937_64 rng_;
+  SearchOptions options_;
+  SearchResult result_;
+  bool live_ = false;
+  std::array<double, kMaxActuators> prev_cmd_{}, prev_vel_{}, prev_acc_{};
+  std::array<std::uint64_t, kMaxActuators> jerk_yields_{}, coupled_overrides_{};
+};
+
+}  // namespace
+
+SearchResult adversarial_search(const LoadedConfig& cfg, const SearchOptions& options) {
+  return Search(cfg, options).run();
+}
+
+}  // namespace facectl::verify

@@ -1,0 +1,28 @@
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace facectl::verify {
+
+// The admissible face set as a polytope: a box per variable and linear
+// inequalities rows·x <= rhs (dense rows).
+struct Polytope {
+  std::vector<double> lo, hi;
+  std::vector<std::vector<double>> rows;
+  std::vector<double> rhs;
+  std::size_t size() const { return lo.size(); }
+};
+
+struct Extremum {
+  double value = 0.0;
+  std::vector<double> at;  // a point of the polytope where it is attained
+};
+
+// The exact maximum of c·x over the polytope (GLPK's simplex, then its exact
+// rational simplex to certify the optimum). nullopt if the polytope is empty.
+std::optional<Extremum> maximize(const Polytope& p, const std::vector<double>& c);
+std::optional<Extremum> minimize(const Polytope& p, const std::vector<double>& c);
+
+}  // namespace facectl::verify

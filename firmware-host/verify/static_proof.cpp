@@ -1,0 +1,290 @@
+#include "firmware-host/verify/static_proof.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace facectl::verify {
+namespace {
+
+using Severity = Finding::Severity;
+
+double to_yaml(ActuatorKind kind) {
+  return kind == ActuatorKind::kRotary ? 180.0 / M_PI : 1e3;
+}
+
+std::string fmt(const char* f, double a) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, a);
+  return buf;
+}
+
+struct Interval {
+  double lo, hi;
+  std::vector<double> at_lo, at_hi;  // witnesses (face inputs), if known
+};
+
+// The effector's range over the admissible set: exact (LP) for a channel that
+// is linear in the face signals.
+std::optional<Interval> linear_effector_range(const ControllerModel& m, const Polytope& set,
+                                              std::size_t actuator) {
+  std::vector<double> c(m.layout.size());
+  for (std::size_t j = 0; j < c.size(); ++j) c[j] = m.mapping.linear.gain(actuator, j);
+  const auto hi = maximize(set, c);
+  const auto lo = minimize(set, c);
+  if (!hi || !lo) return std::nullopt;
+  const double off = m.mapping.linear.offset(actuator);
+  return Interval{lo->value + off, hi->value + off, lo->at, hi->at};
+}
+
+// The transform of an effector range. Calibration curves are monotone, so the
+// ends map to the ends. A linkage inverse is checked numerically for
+// monotony over the range (`proven` turns false) and its ends are used.
+Interval transform_range(const ChannelTransform& t, Interval e, const std::string& who,
+                         const std::string& unit, double scale, bool* proven,
+                         std::vector<Finding>& findings, const ControllerModel& m) {
+  auto hull = [](double a, double b, Interval in) {
+    const bool swap = a > b;
+    return Interval{swap ? b : a, swap ? a : b, swap ? in.at_hi : in.at_lo,
+                    swap ? in.at_lo : in.at_hi};
+  };
+  if (t.kind == ChannelTransform::Kind::kNone) return e;
+  if (t.kind == ChannelTransform::Kind::kCalibration) {
+    if (e.lo < t.curve.x_min() || e.hi > t.curve.x_max()) {
+      findings.push_back({Severity::kWarn, "calibration domain", who,
+                          "the effector reaches beyond the calibration curve's points, where "
+                          "the command is held at the curve's end (a clamp)",
+                          describe_face(m, e.lo < t.curve.x_min() ? e.at_lo : e.at_hi)});
+    }
+    return hull(t.curve.evaluate(e.lo), t.curve.evaluate(e.hi), e);
+  }
+  const Linkage& l = t.linkage;
+  if (e.lo < l.effector_min || e.hi > l.effector_max) {
+    findings.push_back({Severity::kWarn, "linkage range", who,
+                        "the effector reaches beyond the linkage's working range, where the "
+                        "command is held at the range's end (a clamp)",
+                        describe_face(m, e.lo < l.effector_min ? e.at_lo : e.at_hi)});
+  }
+  const double a = std::clamp(e.lo, l.effector_min, l.effector_max);
+  const double b = std::clamp(e.hi, l.effector_min, l.effector_max);
+  constexpr int kSamples = 4096;
+  double prev = 0.0, dir = 0.0;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double x = a + (b - a) * k / kSamples;
+    const auto y = l.to_actuator(x);
+    if (!y) {
+      findings.push_back({Severity::kFail, "linkage closure", who,
+                          "the linkage cannot close at effector " + fmt("%.4g", x) +
+                              " (SI) inside its working range",
+                          ""});
+      return e;
+    }
+    if (k > 0) {
+      const double d = *y - prev;
+      if (dir == 0.0) dir = d;
+      if (d * dir < 0.0) {
+        findings.push_back({Severity::kFail, "linkage monotone", who,
+                            "the linkage's inverse turns back inside the working range, at " +
+                                fmt("%.4g", *y * scale) + " " + unit,
+                            ""});
+      }
+    }
+    prev = *y;
+  }
+  *proven = false;
+  return hull(*l.to_actuator(a), *l.to_actuator(b), e);
+}
+
+void check_encoding(const ActuatorModel& a, const std::string& who,
+                    std::vector<Finding>& findings) {
+  const double scale = to_yaml(a.kind);
+  const ActuatorEncoding& e = a.encoding;
+  double lo = 0.0, hi = 0.0;
+  switch (e.raw) {
+    case ActuatorEncoding::Raw::kInt16:
+      lo = -32768, hi = 32767;
+      break;
+    case ActuatorEncoding::Raw::kUint16:
+      lo = 0, hi = 65535;
+      break;
+    case ActuatorEncoding::Raw::kInt32:
+      lo = -2147483648.0, hi = 2147483647.0;
+      break;
+  }
+  for (double v : {a.limits.position_min, a.limits.position_max}) {
+    const double raw = v * scale * e.scale + e.offset;
+    if (raw < lo || raw > hi) {
+      findings.push_back({Severity::kFail, "encoding", who,
+                          "the hardware range does not fit the raw type: position " +
+                              fmt("%.4g", v * scale) + " encodes to " + fmt("%.0f", raw) +
+                              " counts, outside [" + fmt("%.0f", lo) + ", " + fmt("%.0f", hi) + "]",
+                          ""});
+    }
+  }
+}
+
+}  // namespace
+
+Polytope admissible_face_set(const ControllerModel& m) {
+  Polytope p;
+  const std::size_t n = m.layout.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Range r = m.admissible[i];
+    if (i == m.layout.jaw_pitch()) r = m.envelope.pitch;
+    if (i == m.layout.jaw_yaw()) r = m.envelope.yaw;
+    if (i == m.layout.jaw_protrusion()) r = m.envelope.protrusion;
+    p.lo.push_back(r.min);
+    p.hi.push_back(r.max);
+  }
+  for (std::size_t c = 0; c < m.face_constraints.size(); ++c) {
+    const auto& k = m.face_constraints.constraint(c);
+    std::vector<double> row(n, 0.0);
+    for (std::size_t t = 0; t < k.terms; ++t) row[k.index[t]] += k.coeff[t];
+    p.rows.push_back(row);
+    p.rhs.push_back(k.bound);
+  }
+  return p;
+}
+
+std::string describe_face(const ControllerModel& m, const std::vector<double>& x) {
+  std::string out;
+  for (std::size_t i = 0; i < x.size() && i < m.layout.size(); ++i) {
+    if (std::fabs(x[i] - m.neutral[i]) < 1e-12) continue;
+    const SignalInfo& s = m.layout.signal(i);
+    out += (out.empty() ? "" : ", ") + yaml_key(s) + "=" + fmt("%.4g", x[i] / yaml_to_si(s.kind));
+  }
+  return out.empty() ? "the neutral pose" : out;
+}
+
+StaticProof prove(const LoadedConfig& cfg) {
+  const auto start = std::chrono::steady_clock::now();
+  const ControllerModel& m = cfg.built.model;
+  StaticProof out;
+  for (const std::string& p : cfg.built.problems) {
+    out.findings.push_back({Severity::kFail, "rig", "", p, ""});
+  }
+  const Polytope set = admissible_face_set(m);
+  if (!maximize(set, std::vector<double>(set.size(), 0.0))) {
+    out.findings.push_back({Severity::kFail, "admissible set", "",
+                            "the coupled face limits leave no admissible face at all", ""});
+    return out;
+  }
+
+  // Antagonists the head declares must not be driven together past max_sum.
+  for (const AntagonistPair& pair : cfg.head.antagonists) {
+    std::vector<double> c(set.size(), 0.0);
+    c[pair.a] = c[pair.b] = 1.0;
+    const auto worst = maximize(set, c);
+    const std::string who = m.layout.signal(pair.a).name + " + " + m.layout.signal(pair.b).name;
+    if (worst && worst->value > pair.max_sum + 1e-9) {
+      out.findings.push_back({Severity::kFail, "antagonists", who,
+                              "co-activation reaches " + fmt("%.3g", worst->value) + " > max_sum " +
+                                  fmt("%.3g", pair.max_sum) + " (" + pair.where +
+                                  "): add a coupled face limit",
+                              describe_face(m, worst->at)});
+    } else if (worst) {
+      out.findings.push_back({Severity::kInfo, "antagonists", who,
+                              "co-activation at most " + fmt("%.3g", worst->value) +
+                                  " <= max_sum " + fmt("%.3g", pair.max_sum),
+                              ""});
+    }
+  }
+
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    const ActuatorModel& a = m.actuators[i];
+    const std::string who = a.name;
+    const double scale = to_yaml(a.kind);
+    ActuatorRange r;
+    r.name = a.name;
+    r.unit = a.kind == ActuatorKind::kRotary ? "deg" : "mm";
+    r.hardware_min = a.limits.position_min * scale;
+    r.hardware_max = a.limits.position_max * scale;
+    r.soft_min = a.limits.soft_min * scale;
+    r.soft_max = a.limits.soft_max * scale;
+    check_encoding(a, who, out.findings);
+    if (a.max_current_a > 0.0) {
+      out.findings.push_back({Severity::kInfo, "current", who,
+                              "max_current_a is declared but not checked: no bus backend "
+                              "reports current yet",
+                              ""});
+    }
+
+    const bool reads_points = std::any_of(m.mapping.points.begin(), m.mapping.points.end(),
+                                          [&](const PointTerm& p) { return p.actuator == i; });
+    std::optional<Interval> effector;
+    if (reads_points) {
+      r.method = "not proven";
+      r.proven = false;
+      out.findings.push_back({Severity::kFail, "hardware range", who,
+                              "reads reduced-model control points, whose range this build "
+                              "cannot bound yet",
+                              ""});
+      out.actuators.push_back(r);
+      continue;
+    }
+    effector = linear_effector_range(m, set, i);
+    r.method = "exact LP (GLPK, rational)";
+    bool proven = true;
+    const Interval act = transform_range(m.mapping.transforms[i], *effector, who, r.unit, scale,
+                                         &proven, out.findings, m);
+    if (!proven) r.method += " + numerically monotone linkage";
+    r.proven = proven;
+    r.lo = act.lo * scale;
+    r.hi = act.hi * scale;
+    r.hardware_margin = std::min(r.lo - r.hardware_min, r.hardware_max - r.hi);
+    r.soft_margin = std::min(r.lo - r.soft_min, r.soft_max - r.hi);
+    const double eps = 1e-9 * std::max(1.0, r.hardware_max - r.hardware_min);  // rounding
+    if (r.hi > r.hardware_max + eps || r.lo < r.hardware_min - eps) {
+      const bool high = r.hi > r.hardware_max;
+      out.findings.push_back({Severity::kFail, "hardware range", who,
+                              "mapped command reaches " + fmt("%.4g", high ? r.hi : r.lo) + " " +
+                                  r.unit + (high ? " > hardware max " : " < hardware min ") +
+                                  fmt("%.4g", high ? r.hardware_max : r.hardware_min) + " " +
+                                  r.unit + " (position limit, by " +
+                                  fmt("%.4g", -r.hardware_margin) + " " + r.unit + ")",
+                              describe_face(m, high ? act.at_hi : act.at_lo)});
+    } else if (r.soft_margin < -1e-9 * std::max(1.0, r.soft_max - r.soft_min)) {
+      const bool high = r.hi > r.soft_max;
+      out.findings.push_back({Severity::kWarn, "soft range", who,
+                              "mapped command reaches " + fmt("%.4g", high ? r.hi : r.lo) + " " +
+                                  r.unit + ", beyond the soft limit " +
+                                  fmt("%.4g", high ? r.soft_max : r.soft_min) + " " + r.unit +
+                                  ": the limiter will clamp it there",
+                              describe_face(m, high ? act.at_hi : act.at_lo)});
+    }
+    out.actuators.push_back(r);
+  }
+
+  // Actuator coupled limits: will the projection have to act? Exact where every
+  // actuator in the limit maps linearly.
+  for (std::size_t c = 0; c < m.actuator_constraints.size(); ++c) {
+    const auto& k = m.actuator_constraints.constraint(c);
+    std::vector<double> obj(set.size(), 0.0);
+    double offset = 0.0;
+    bool linear = true;
+    for (std::size_t t = 0; t < k.terms; ++t) {
+      const std::size_t act = k.index[t];
+      linear = linear && m.mapping.transforms[act].kind == ChannelTransform::Kind::kNone;
+      for (std::size_t j = 0; j < obj.size(); ++j) {
+        obj[j] += k.coeff[t] * m.mapping.linear.gain(act, j);
+      }
+      offset += k.coeff[t] * m.mapping.linear.offset(act);
+    }
+    if (!linear) continue;
+    const auto worst = maximize(set, obj);
+    if (!worst) continue;
+    const double excess = worst->value + offset - k.bound;
+    out.findings.push_back(
+        {Severity::kInfo, "actuator coupled limit", k.name,
+         excess > 1e-9 ? "the mapping can ask for " + fmt("%.4g", excess) +
+                             " beyond it; the tick projects such targets and shortens steps"
+                       : "the mapping never asks beyond it",
+         excess > 1e-9 ? describe_face(m, worst->at) : ""});
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace facectl::verify
