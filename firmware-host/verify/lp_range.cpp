@@ -12,7 +12,24 @@ struct ProblemDeleter {
   void operator()(glp_prob* p) const { glp_delete_prob(p); }
 };
 
+// Without inequalities the box alone decides: each variable at the bound its
+// coefficient favours (GLPK's exact simplex needs at least one row).
+Extremum box_optimum(const Polytope& p, const std::vector<double>& c, int direction) {
+  Extremum e;
+  e.at.resize(p.size());
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    const bool up = (c[j] > 0.0) == (direction == GLP_MAX);
+    e.at[j] = c[j] == 0.0 ? p.lo[j] : (up ? p.hi[j] : p.lo[j]);
+    e.value += c[j] * e.at[j];
+  }
+  return e;
+}
+
 std::optional<Extremum> optimize(const Polytope& p, const std::vector<double>& c, int direction) {
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    if (p.lo[j] > p.hi[j]) return std::nullopt;
+  }
+  if (p.rows.empty()) return box_optimum(p, c, direction);
   const int n = static_cast<int>(p.size());
   const int m = static_cast<int>(p.rows.size());
   std::unique_ptr<glp_prob, ProblemDeleter> lp(glp_create_prob());

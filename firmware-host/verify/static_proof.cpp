@@ -21,6 +21,20 @@ std::string fmt(const char* f, double a) {
   return buf;
 }
 
+// An LP optimum sits on a vertex, so signals the objective ignores land on
+// arbitrary bounds. Put the ones no constraint ties to the rest back at
+// neutral: the witness then shows only what matters (and stays admissible).
+std::vector<double> tidy(const ControllerModel& m, const Polytope& set,
+                         const std::vector<double>& objective, std::vector<double> x) {
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    if (objective[j] != 0.0) continue;
+    bool tied = false;
+    for (const auto& row : set.rows) tied = tied || row[j] != 0.0;
+    if (!tied) x[j] = std::clamp(m.neutral[j], set.lo[j], set.hi[j]);
+  }
+  return x;
+}
+
 struct Interval {
   double lo, hi;
   std::vector<double> at_lo, at_hi;  // witnesses (face inputs), if known
@@ -36,7 +50,8 @@ std::optional<Interval> linear_effector_range(const ControllerModel& m, const Po
   const auto lo = minimize(set, c);
   if (!hi || !lo) return std::nullopt;
   const double off = m.mapping.linear.offset(actuator);
-  return Interval{lo->value + off, hi->value + off, lo->at, hi->at};
+  return Interval{lo->value + off, hi->value + off, tidy(m, set, c, lo->at),
+                  tidy(m, set, c, hi->at)};
 }
 
 // The transform of an effector range. Calibration curves are monotone, so the
@@ -183,7 +198,7 @@ StaticProof prove(const LoadedConfig& cfg) {
                               "co-activation reaches " + fmt("%.3g", worst->value) + " > max_sum " +
                                   fmt("%.3g", pair.max_sum) + " (" + pair.where +
                                   "): add a coupled face limit",
-                              describe_face(m, worst->at)});
+                              describe_face(m, tidy(m, set, c, worst->at))});
     } else if (worst) {
       out.findings.push_back({Severity::kInfo, "antagonists", who,
                               "co-activation at most " + fmt("%.3g", worst->value) +
@@ -281,7 +296,7 @@ StaticProof prove(const LoadedConfig& cfg) {
          excess > 1e-9 ? "the mapping can ask for " + fmt("%.4g", excess) +
                              " beyond it; the tick projects such targets and shortens steps"
                        : "the mapping never asks beyond it",
-         excess > 1e-9 ? describe_face(m, worst->at) : ""});
+         excess > 1e-9 ? describe_face(m, tidy(m, set, obj, worst->at)) : ""});
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

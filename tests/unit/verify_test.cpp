@@ -1,0 +1,149 @@
+// facectl verify: passes the shipped rigs, fails each deliberately broken rig
+// under tests/verify/rigs naming the actuator, the limit and a witness, and
+// its static proof is sound (sampling never finds a command outside it).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "firmware-host/loaded_config.hpp"
+#include "firmware-host/verify/static_proof.hpp"
+#include "firmware-host/verify/verify_command.hpp"
+
+namespace facectl {
+namespace {
+
+const std::string kSource = FACECTL_SOURCE_DIR;
+
+LoadedConfig load_rig(const std::string& rig) {
+  ConfigOverrides o;
+  o.rig_path = rig;
+  o.keep_problems = true;
+  return load_config(default_config_path(), o);
+}
+
+const verify::Finding* find_failure(const std::vector<verify::Finding>& findings,
+                                    const std::string& check) {
+  for (const auto& f : findings) {
+    if (f.severity == verify::Finding::Severity::kFail && f.check == check) return &f;
+  }
+  return nullptr;
+}
+
+TEST(Verify, PassesBothShippedRigs) {
+  VerifyOptions o;
+  o.ticks = 100'000;
+  o.rig = kSource + "/config/rigs/default.yaml";
+  o.shows = {kSource + "/config/shows/demo.yaml"};
+  EXPECT_EQ(verify_command(o), 0);
+  o.rig = kSource + "/config/rigs/hobby.yaml";
+  o.shows.clear();
+  EXPECT_EQ(verify_command(o), 0);
+}
+
+TEST(Verify, AMappingBeyondAHardwareLimitFailsWithItsWitness) {
+  const auto cfg = load_rig(kSource + "/tests/verify/rigs/beyond_hardware.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "hardware range");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->subject, "mouth_corner_l");
+  EXPECT_NE(f->message.find("60 deg > hardware max 50 deg"), std::string::npos) << f->message;
+  EXPECT_EQ(f->witness, "zygomaticus_major_l=1, levator_anguli_oris_l=1");
+  VerifyOptions o;
+  o.rig = kSource + "/tests/verify/rigs/beyond_hardware.yaml";
+  o.ticks = 1000;
+  EXPECT_EQ(verify_command(o), 1);
+}
+
+TEST(Verify, ANonMonotoneCalibrationFailsNamingThePoints) {
+  const auto cfg = load_rig(kSource + "/tests/verify/rigs/non_monotone_calibration.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "rig");
+  ASSERT_NE(f, nullptr);
+  EXPECT_NE(f->message.find("calibration is not monotone: effector_mm '4' -> position_deg '30', "
+                            "but effector_mm '8' -> position_deg '25' (actuator 'brow_l')"),
+            std::string::npos)
+      << f->message;
+  // And `facectl run` refuses such a rig outright.
+  ConfigOverrides strict;
+  strict.rig_path = kSource + "/tests/verify/rigs/non_monotone_calibration.yaml";
+  EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
+}
+
+TEST(Verify, AnEnvelopeWidenedWithoutTheOverrideIsRefused) {
+  VerifyOptions o;
+  o.rig = kSource + "/tests/verify/rigs/widened_envelope.yaml";
+  o.ticks = 1000;
+  EXPECT_EQ(verify_command(o), 2);  // the rig is refused as it is read
+  try {
+    load_rig(o.rig);
+    FAIL() << "a widened envelope was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("widened_envelope.yaml:14:16: rig.mandible_envelope."
+                                         "pitch_deg: expected a range inside the design envelope "
+                                         "-4..18 deg (widening needs `widen_override: true`), "
+                                         "found [0.000000, 25.000000]"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Verify, AntagonistsAllowedToCoActivateFail) {
+  const auto cfg = load_rig(kSource + "/tests/verify/rigs/antagonists.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "antagonists");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->subject, "zygomaticus_major_l + depressor_anguli_oris_l");
+  EXPECT_NE(f->message.find("co-activation reaches 2 > max_sum 1"), std::string::npos);
+  EXPECT_EQ(f->witness, "zygomaticus_major_l=1, depressor_anguli_oris_l=1");
+}
+
+TEST(Verify, AnActuatorThatNothingDrivesFails) {
+  const auto cfg = load_rig(kSource + "/tests/verify/rigs/undriven.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "rig");
+  ASSERT_NE(f, nullptr);
+  EXPECT_NE(f->message.find("actuator 'neck_pan': nothing drives it"), std::string::npos);
+}
+
+// Soundness: millions of admissible faces (random points of the box, made
+// admissible by the tick's own projection, plus the box's extremes) never map
+// outside the range the proof reported.
+void expect_sound(const std::string& rig, int samples) {
+  const auto cfg = load_rig(rig);
+  const ControllerModel& m = cfg.built.model;
+  const auto proof = verify::prove(cfg);
+  const verify::Polytope set = verify::admissible_face_set(m);
+  MappingWorkspace w = make_mapping_workspace(m.mapping);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::array<double, kMaxFaceSignals> face{};
+  std::array<double, kMaxActuators> out{};
+  for (int s = 0; s < samples; ++s) {
+    const bool corner = s % 4 == 0;
+    for (std::size_t j = 0; j < set.size(); ++j) {
+      const double t = corner ? static_cast<double>(rng() % 2) : u(rng);
+      face[j] = set.lo[j] + t * (set.hi[j] - set.lo[j]);
+    }
+    m.face_constraints.project(face.data());
+    map_to_actuators(m.mapping, w, face, out);
+    for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+      const auto& r = proof.actuators[i];
+      const double scale = r.unit == "deg" ? 180.0 / M_PI : 1e3;
+      const double x = out[i] * scale;
+      const double eps = 1e-9 * (1.0 + std::fabs(x));
+      ASSERT_GE(x, r.lo - eps) << r.name << " at sample " << s;
+      ASSERT_LE(x, r.hi + eps) << r.name << " at sample " << s;
+    }
+  }
+}
+
+TEST(Verify, TheStaticProofIsSoundOnTheDefaultRig) {
+  expect_sound(kSource + "/config/rigs/default.yaml", 2'000'000);
+}
+
+TEST(Verify, TheStaticProofIsSoundOnTheHobbyRig) {
+  expect_sound(kSource + "/config/rigs/hobby.yaml", 1'000'000);
+}
+
+}  // namespace
+}  // namespace facectl
