@@ -75,6 +75,7 @@ class Compiled {
         factors_.insert(factors_.end(), t.powers.begin(), t.powers.end());
       }
     }
+    has_uni_ = has;
     for (int d = 0; d < dims; ++d)
       if (has[static_cast<std::size_t>(d)]) {
         uni_dim_.push_back(d);
@@ -82,10 +83,17 @@ class Compiled {
       }
   }
 
-  Interval enclose(const Interval* box) const {
+  // The enclosure of f(x) + Σ_d shift[d]·x_d over the box (shift may be null). A shift on a
+  // dimension with a univariate part joins that cubic before its exact range is taken.
+  Interval enclose(const Interval* box, const double* shift = nullptr) const {
     Interval r{constant_, constant_};
-    for (std::size_t k = 0; k < uni_dim_.size(); ++k)
-      r = r + cubic_range(uni_[k][0], uni_[k][1], uni_[k][2], box[uni_dim_[k]]);
+    for (std::size_t k = 0; k < uni_dim_.size(); ++k) {
+      const int d = uni_dim_[k];
+      r = r + cubic_range(uni_[k][0] + (shift ? shift[d] : 0.0), uni_[k][1], uni_[k][2], box[d]);
+    }
+    if (shift)
+      for (std::size_t d = 0; d < has_uni_.size(); ++d)
+        if (!has_uni_[d] && shift[d] != 0.0) r = r + shift[d] * box[d];
     for (const Cross& c : cross_) {
       Interval p{c.coefficient, c.coefficient};
       for (int f = c.first; f < c.first + c.count; ++f)
@@ -120,6 +128,7 @@ class Compiled {
   };
   double constant_ = 0.0;
   std::vector<int> uni_dim_;
+  std::vector<char> has_uni_;
   std::vector<std::array<double, 3>> uni_;
   std::vector<Cross> cross_;
   std::vector<std::array<int, 2>> factors_;
@@ -197,9 +206,13 @@ bool tighten(const std::vector<Row>& rows, Interval* box) {
   return true;
 }
 
-bool box_inside(const Row& r, const Interval* box) {
+// Whether every point of the box, over the split dimensions, satisfies the row for some
+// value of the other (never split, f-independent) dimensions.
+bool box_inside(const Search& s, const Row& r, const Interval* box) {
   double most = 0.0;
-  for (const auto& [d, a] : r.a) most += a > 0 ? a * box[d].hi : a * box[d].lo;
+  for (const auto& [d, a] : r.a)
+    most += (a > 0) == static_cast<bool>(s.split[static_cast<std::size_t>(d)]) ? a * box[d].hi
+                                                                               : a * box[d].lo;
   return most <= r.b;
 }
 
@@ -255,10 +268,11 @@ class Maximiser {
  public:
   Maximiser(const Search& s, const Side& side) : s_(s), side_(side) {
     const auto D = static_cast<std::size_t>(s.dims);
-    reduced_.resize(D);
-    grad_.resize(D);
+    plain_.resize(D);
+    dual_.resize(D);
     x_.resize(D);
-    fixed_.resize(D);
+    shift_.resize(D);
+    crossing_.resize(D);
   }
 
   SideResult run() {
@@ -348,74 +362,187 @@ class Maximiser {
     }
   }
 
-  // Upper bound of f over the box and the dimension to split (−1: none helps). Also tries
-  // an admissible point of the box for the attained value.
-  std::pair<double, int> evaluate(const Interval* box, double parent_upper) {
+  // Scratch for one enclosure: the box reduced by monotonicity, the gradient enclosures,
+  // which dimensions were fixed, and the reduced box's centre.
+  struct Reduction {
+    std::vector<Interval> box, grad;
+    std::vector<char> fixed;
+    std::vector<double> centre;
+    void resize(std::size_t D) {
+      box.resize(D);
+      grad.resize(D);
+      fixed.resize(D);
+      centre.resize(D);
+    }
+  };
+
+  // Upper bound over the box of L(x) = f(x) + Σ_d shift[d]·x_d + shift0 (shift null: f).
+  double upper_bound(const Interval* box, const double* shift, double shift0, Reduction& r) {
     const int D = s_.dims;
-    std::copy(box, box + D, reduced_.begin());
-    std::fill(fixed_.begin(), fixed_.end(), 0);
-    // Monotonicity: where ∂f/∂x_d has one sign over the (reduced) box, the maximum over
+    std::copy(box, box + D, r.box.begin());
+    std::fill(r.fixed.begin(), r.fixed.end(), 0);
+    // Monotonicity: where ∂L/∂x_d has one sign over the (reduced) box, the maximum over
     // the box lies on that face, so the box shrinks to it; repeat while it fixes more.
     for (int round = 0; round < 3; ++round) {
       bool more = false;
       for (int d = 0; d < D; ++d) {
-        if (!s_.split[static_cast<std::size_t>(d)] || fixed_[static_cast<std::size_t>(d)]) continue;
-        const Interval g = side_.gradient[static_cast<std::size_t>(d)].enclose(reduced_.data());
-        grad_[static_cast<std::size_t>(d)] = g;
-        Interval& r = reduced_[static_cast<std::size_t>(d)];
+        const auto k = static_cast<std::size_t>(d);
+        if (r.fixed[k]) continue;
+        if (!s_.split[k]) {
+          // f does not depend on it; L does through the shift, with constant slope.
+          if (shift && shift[d] != 0.0) {
+            r.box[k] = shift[d] > 0 ? Interval{r.box[k].hi, r.box[k].hi}
+                                    : Interval{r.box[k].lo, r.box[k].lo};
+            r.fixed[k] = 1;
+          }
+          continue;
+        }
+        Interval g = side_.gradient[k].enclose(r.box.data());
+        if (shift) g = g + Interval{shift[d], shift[d]};
+        r.grad[k] = g;
         if (g.lo >= 0 || g.hi <= 0) {
-          r = g.lo >= 0 ? Interval{r.hi, r.hi} : Interval{r.lo, r.lo};
-          fixed_[static_cast<std::size_t>(d)] = 1;
+          r.box[k] =
+              g.lo >= 0 ? Interval{r.box[k].hi, r.box[k].hi} : Interval{r.box[k].lo, r.box[k].lo};
+          r.fixed[k] = 1;
           more = true;
         }
       }
       if (!more) break;
     }
-    // Natural enclosure and mean-value form on the reduced box; keep the smaller.
-    double upper = std::min(parent_upper, side_.f.enclose(reduced_.data()).hi);
-    for (int d = 0; d < D; ++d) x_[static_cast<std::size_t>(d)] = reduced_[d].mid();
+    // Natural enclosure and mean-value form on the reduced box; keep the smaller. Every
+    // dimension L varies with is either fixed or in the mean-value sum.
+    double upper = side_.f.enclose(r.box.data(), shift).hi + shift0;
+    for (int d = 0; d < D; ++d) r.centre[static_cast<std::size_t>(d)] = r.box[d].mid();
+    double fm = side_.f.value(r.centre.data()) + shift0;
+    if (shift)
+      for (int d = 0; d < D; ++d) fm += shift[d] * r.centre[static_cast<std::size_t>(d)];
     Interval mv{0, 0};
-    const double fm = side_.f.value(x_.data());
-    for (int d = 0; d < D; ++d)
-      if (s_.split[static_cast<std::size_t>(d)] && !fixed_[static_cast<std::size_t>(d)])
-        mv = mv + grad_[static_cast<std::size_t>(d)] *
-                      (reduced_[static_cast<std::size_t>(d)] - Interval{x_[d], x_[d]});
-    upper = std::min(upper, fm + mv.hi);
-
-    // An admissible point for the attained value: the reduced box's centre, repaired
-    // onto the constraints within the box when it violates one.
-    if (point_admissible(s_.rows, x_.data()) || repair(s_, side_, box, x_.data()))
-      attain(x_.data());
-
-    bool inside = true;
-    for (const Row& r : s_.rows) inside = inside && box_inside(r, box);
-    // Split rule: the dimension contributing most width to the enclosure. A fixed
-    // (monotone) dimension contributes nothing while the whole box is admissible.
-    int split = -1;
-    double score = 0.0;
     for (int d = 0; d < D; ++d) {
       const auto k = static_cast<std::size_t>(d);
-      if (!s_.split[k] || box[d].width() <= 0) continue;
-      if (inside && fixed_[k]) continue;
-      const double sc = grad_[k].mag() * box[d].width();
-      if (sc > score) {
-        score = sc;
-        split = d;
+      if (s_.split[k] && !r.fixed[k])
+        mv = mv + r.grad[k] * (r.box[k] - Interval{r.centre[k], r.centre[k]});
+    }
+    return std::min(upper, fm + mv.hi);
+  }
+
+  // A Lagrangian bound: for multipliers λ ≥ 0, max f over box ∩ {A·x ≤ b} ≤ max over the
+  // whole box of f − Σ λ_r·(a_r·x − b_r). λ_r comes from the one-row linear programme on
+  // f's gradient at the box centre (a fractional knapsack), row by row. Fills shift_ and
+  // returns shift0, or NaN when every λ is 0.
+  double multipliers(const Interval* box) {
+    const int D = s_.dims;
+    for (int d = 0; d < D; ++d) x_[static_cast<std::size_t>(d)] = box[d].mid();
+    for (int d = 0; d < D; ++d)
+      shift_[static_cast<std::size_t>(d)] =
+          side_.gradient[static_cast<std::size_t>(d)].value(x_.data());
+    std::vector<double>& g = shift_;  // g + shift, built in place: starts as the gradient
+    double shift0 = 0.0;
+    bool any = false;
+    for (const Row& row : s_.rows) {
+      if (box_inside(s_, row, box)) continue;
+      double excess = -row.b;
+      order_.clear();
+      for (std::size_t k = 0; k < row.a.size(); ++k) {
+        const auto [d, a] = row.a[k];
+        const double gd = g[static_cast<std::size_t>(d)];
+        const bool at_hi = gd >= 0;  // where the linearised objective is largest
+        excess += a * (at_hi ? box[d].hi : box[d].lo);
+        // Moving off that end lowers the row only if a has the same sign as the move.
+        if ((a > 0) == at_hi) order_.push_back({std::fabs(gd / a), static_cast<int>(k)});
+      }
+      if (excess <= 0) continue;
+      std::sort(order_.begin(), order_.end());
+      double lambda = 0.0;
+      for (const auto& [cost, k] : order_) {
+        const auto [d, a] = row.a[static_cast<std::size_t>(k)];
+        lambda = cost;
+        excess -= std::fabs(a) * box[d].width();
+        if (excess <= 0) break;
+      }
+      if (lambda <= 0) continue;
+      any = true;
+      for (const auto& [d, a] : row.a) g[static_cast<std::size_t>(d)] -= lambda * a;
+      shift0 += lambda * row.b;
+    }
+    if (!any) return kNaN;
+    // Back from g + shift to the shift alone.
+    for (int d = 0; d < D; ++d)
+      shift_[static_cast<std::size_t>(d)] -=
+          side_.gradient[static_cast<std::size_t>(d)].value(x_.data());
+    return shift0;
+  }
+
+  bool try_point(const Interval* box, double* x) {
+    if (!point_admissible(s_.rows, x) && !repair(s_, side_, box, x)) return false;
+    attain(x);
+    return true;
+  }
+
+  // Upper bound of f over the admissible part of the box and the dimension to split (−1:
+  // none helps). Also tries admissible points of the box for the attained value.
+  std::pair<double, int> evaluate(const Interval* box, double parent_upper) {
+    const int D = s_.dims;
+    double upper = std::min(parent_upper, upper_bound(box, nullptr, 0.0, plain_));
+    // Whether the face of the box that the bound came from is admissible: then the
+    // constraints do not widen the gap here.
+    bool inside = true;
+    std::fill(crossing_.begin(), crossing_.end(), 0);
+    for (const Row& r : s_.rows)
+      if (!box_inside(s_, r, plain_.box.data())) {
+        inside = false;
+        for (const auto& [d, a] : r.a) crossing_[static_cast<std::size_t>(d)] = 1;
+      }
+    const Reduction* used = &plain_;
+    if (!inside && upper > best_ + s_.tolerance) {
+      const double shift0 = multipliers(box);
+      if (!std::isnan(shift0)) {
+        const double lagrangian = upper_bound(box, shift_.data(), shift0, dual_);
+        try_point(box, dual_.centre.data());
+        if (lagrangian < upper) {
+          upper = lagrangian;
+          used = &dual_;
+        }
       }
     }
-    if (split < 0 && !inside) {
-      // f is flat here but the box crosses a constraint: cut the widest crossing term.
-      for (const Row& r : s_.rows) {
-        if (box_inside(r, box)) continue;
+    if (!try_point(box, plain_.centre.data()) && inside) {
+      // Each row alone admits the bound's face, but together they do not (they share a
+      // variable the polynomial does not use): every row counts as cutting it.
+      inside = false;
+      for (const Row& r : s_.rows)
+        for (const auto& [d, a] : r.a) crossing_[static_cast<std::size_t>(d)] = 1;
+    }
+
+    // Split rule: the dimension contributing most width (|gradient| · width) to the
+    // enclosure that gave the bound. A fixed (monotone) dimension contributes nothing,
+    // unless it is in a row that cuts the face the bound came from: then part of the gap is
+    // that face's inadmissible corner.
+    int split = -1;
+    double score = 0.0;
+    auto consider = [&](const Reduction& r) {
+      for (int d = 0; d < D; ++d) {
+        const auto k = static_cast<std::size_t>(d);
+        if (!s_.split[k] || box[d].width() <= 0 || (r.fixed[k] && !crossing_[k])) continue;
+        const double sc = r.grad[k].mag() * box[d].width();
+        if (sc > score) {
+          score = sc;
+          split = d;
+        }
+      }
+    };
+    consider(*used);
+    // f is flat here but the box crosses a constraint: cut the widest crossing term of a
+    // polynomial variable, and as a last resort of a constraint-only one.
+    for (int pass = 0; pass < 2 && split < 0 && !inside; ++pass)
+      for (const Row& r : s_.rows)
         for (const auto& [d, a] : r.a) {
           const double sc = std::fabs(a) * box[d].width();
-          if (s_.split[static_cast<std::size_t>(d)] && sc > score) {
+          if (crossing_[static_cast<std::size_t>(d)] &&
+              static_cast<bool>(s_.split[static_cast<std::size_t>(d)]) == (pass == 0) &&
+              sc > score) {
             score = sc;
             split = d;
           }
         }
-      }
-    }
     // Stop splitting where halving no longer changes the box in floating point.
     if (split >= 0) {
       const double m = box[split].mid();
@@ -426,9 +553,11 @@ class Maximiser {
 
   const Search& s_;
   const Side& side_;
-  std::vector<Interval> slab_, reduced_, grad_;
-  std::vector<double> x_, witness_;
-  std::vector<char> fixed_;
+  std::vector<Interval> slab_;
+  Reduction plain_, dual_;
+  std::vector<double> x_, shift_, witness_;
+  std::vector<std::pair<double, int>> order_;
+  std::vector<char> crossing_;  // in a row that cuts the bound's face
   std::vector<int> free_;
   double best_ = -kInf, dropped_ = -kInf, unsplittable_ = -kInf;
 };

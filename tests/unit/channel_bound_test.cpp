@@ -7,17 +7,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <random>
 #include <string>
 
-#include "facectl/face/head_spec.hpp"
 #include "firmware-host/verify/channel_polynomial.hpp"
+#include "tests/support/default_face_space.hpp"
 
 namespace facectl::verify {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 // A polynomial over `count` variables from {coefficient, {{variable, power}...}} terms.
 ChannelPolynomial polynomial(int count, double constant,
@@ -38,16 +35,19 @@ LinearInequality row(int count, std::vector<std::pair<int, double>> a, double b)
   return r;
 }
 
+// q = 0.25 + x0³ − x0 + 2·x1·x2 − x1², x0 ∈ [−1, 2], x1 ∈ [−1, 1], x2 ∈ [0, 2].
+// x0³ − x0 spans [−2/(3√3), 6]; 2·x1·x2 − x1² spans [−5, 3] (x2 = 2, x1 = −1 and 1).
+ChannelPolynomial hand_checked() {
+  return polynomial(3, 0.25,
+                    {{1.0, {1, {{0, 3}}}},
+                     {-1.0, {1, {{0, 1}}}},
+                     {2.0, {1, {{1, 1}, {2, 1}}}},
+                     {-1.0, {1, {{1, 2}}}}});
+}
+const std::vector<Interval> kHandCheckedBox{{-1, 2}, {-1, 1}, {0, 2}};
+
 TEST(ChannelBound, HandCheckedCubicWithCrossTerm) {
-  // q = x0³ − x0 + 2·x1·x2 − x1², x0 ∈ [−1, 2], x1 ∈ [−1, 1], x2 ∈ [0, 2].
-  // x0³ − x0 spans [−2/(3√3), 6]; 2·x1·x2 − x1² spans [−5, 3] (x2 = 2, x1 = −1 and 1).
-  const ChannelPolynomial p = polynomial(3, 0.25,
-                                         {{1.0, {1, {{0, 3}}}},
-                                          {-1.0, {1, {{0, 1}}}},
-                                          {2.0, {1, {{1, 1}, {2, 1}}}},
-                                          {-1.0, {1, {{1, 2}}}}});
-  const std::vector<Interval> box{{-1, 2}, {-1, 1}, {0, 2}};
-  const ChannelBound b = bound_channel(p, box, {}, {1e-9, 100000});
+  const ChannelBound b = bound_channel(hand_checked(), kHandCheckedBox, {}, {1e-9, 100000});
   const double lo = 0.25 - 2 / (3 * std::sqrt(3.0)) - 5, hi = 0.25 + 6 + 3;
   // Within the tolerance plus the rounding slack (1e-10 of Σ|terms| ≈ 14).
   const double slack = kRelativeSlack * (0.25 + 8 + 1 + 4 + 1) + kAbsoluteSlack;
@@ -91,6 +91,29 @@ TEST(ChannelBound, ConstraintOnAnotherVariablePrunesWithoutSplittingIt) {
   EXPECT_GE(b.witness_max[1], 0.25);
 }
 
+TEST(ChannelBound, RowsCoupledThroughAnUnusedVariable) {
+  // q = x0 − x2 with x0 ≤ x1, x0 + x1 ≤ 1 and x1 − x2 ≤ 0.25. q ignores x1, which the rows
+  // tie to both: x2 ≥ x1 − 0.25 ≥ x0 − 0.25, so q ≤ 0.25 (at x0 = x1 = t, x2 = t − 0.25 for
+  // any t in [0.25, 0.5]), although each row alone allows q = 1.
+  const ChannelPolynomial p = polynomial(3, 0, {{1.0, {1, {{0, 1}}}}, {-1.0, {1, {{2, 1}}}}});
+  const std::vector<Interval> box{{0, 1}, {0, 1}, {0, 1}};
+  const std::vector<LinearInequality> rows{
+      row(3, {{0, 1}, {1, -1}}, 0), row(3, {{0, 1}, {1, 1}}, 1), row(3, {{1, 1}, {2, -1}}, 0.25)};
+  // The maximum is attained along a segment, where the gap closes only linearly in the
+  // box width: the default tolerance.
+  const ChannelBound b = bound_channel(p, box, rows);
+  ASSERT_TRUE(b.converged) << b.lower << " " << b.upper << " " << b.attained_min << " "
+                           << b.attained_max << " " << b.boxes_used;
+  EXPECT_GE(b.upper, 0.25);
+  EXPECT_NEAR(b.upper, 0.25, 1e-6);
+  EXPECT_NEAR(b.lower, -1, 1e-6);
+  const std::vector<double>& w = b.witness_max;
+  EXPECT_NEAR(w[0] - w[2], 0.25, 1e-6);
+  EXPECT_LE(w[0], w[1] + 1e-12);
+  EXPECT_LE(w[0] + w[1], 1 + 1e-12);
+  EXPECT_LE(w[1] - w[2], 0.25 + 1e-12);
+}
+
 TEST(ChannelBound, EmptyAdmissibleSetIsReported) {
   const ChannelPolynomial p = polynomial(2, 0, {{1.0, {1, {{0, 1}, {1, 1}}}}});
   const std::vector<Interval> box{{0, 1}, {0, 1}};
@@ -107,13 +130,7 @@ TEST(ChannelBound, EmptyAdmissibleSetIsReported) {
 }
 
 TEST(ChannelBound, BudgetExhaustedStillGivesAProvenBound) {
-  const ChannelPolynomial p = polynomial(3, 0,
-                                         {{1.0, {1, {{0, 3}}}},
-                                          {-1.0, {1, {{0, 1}}}},
-                                          {2.0, {1, {{1, 1}, {2, 1}}}},
-                                          {-1.0, {1, {{1, 2}}}}});
-  const std::vector<Interval> box{{-1, 2}, {-1, 1}, {0, 2}};
-  const ChannelBound b = bound_channel(p, box, {}, {0.0, 3});
+  const ChannelBound b = bound_channel(hand_checked(), kHandCheckedBox, {}, {0.0, 3});
   EXPECT_FALSE(b.converged);
   EXPECT_LE(b.lower, 0.25 - 2 / (3 * std::sqrt(3.0)) - 5);
   EXPECT_GE(b.upper, 9.25);
@@ -131,35 +148,9 @@ TEST(ChannelBound, RejectsMalformedInput) {
 
 // ---- The shipped reduced model -------------------------------------------------------
 
-struct Shipped {
-  face::ReducedFaceModel model;
-  int n = 0;
-  std::vector<Interval> box;
-  int index(const std::string& muscle) const {
-    for (int i = 0; i < n; ++i)
-      if (model.muscles[static_cast<std::size_t>(i)] == muscle) return i;
-    throw std::runtime_error("no muscle " + muscle);
-  }
-  int point(const std::string& name) const {
-    for (std::size_t i = 0; i < model.control_points.size(); ++i)
-      if (model.control_points[i] == name) return static_cast<int>(i);
-    throw std::runtime_error("no control point " + name);
-  }
-};
-
-const Shipped& shipped() {
-  static const Shipped s = [] {
-    Shipped r;
-    r.model = face::load_reduced_model(FACECTL_DEFAULT_HEAD_DIR "/reduced_face.txt",
-                                       face::load_head_spec(FACECTL_DEFAULT_HEAD_DIR));
-    r.n = static_cast<int>(r.model.muscles.size());
-    r.box.assign(static_cast<std::size_t>(r.n), Interval{0, 1});
-    r.box.push_back({-4 * kDeg, 18 * kDeg});
-    r.box.push_back({-5 * kDeg, 5 * kDeg});
-    r.box.push_back({0, 0.008});
-    return r;
-  }();
-  return s;
+using testing::DefaultFaceSpace;
+const DefaultFaceSpace& shipped() {
+  return testing::default_face_space();
 }
 
 struct Case {
@@ -168,7 +159,7 @@ struct Case {
 };
 
 std::vector<Case> channels() {
-  const Shipped& s = shipped();
+  const DefaultFaceSpace& s = shipped();
   const int n = s.n;
   const double r2 = std::sqrt(0.5);
   const int c83 = s.point("fdp_8_3"), c84 = s.point("fdp_8_4"), c41 = s.point("fdp_4_1"),
@@ -183,28 +174,21 @@ std::vector<Case> channels() {
       {"mixed: both corners, zygomaticus, pitch",
        {0.003,
         {{c83, {0, 1, 0}, 0.5}, {c84, {0, 1, 0}, 0.5}},
-        {{s.index("zygomaticus_major_l"), 0.01}, {n, -0.02}}}},
+        {{s.muscle("zygomaticus_major_l"), 0.01}, {n, -0.02}}}},
       {"mixed: diagonal corner, brow, protrusion, yaw",
        {-0.01,
         {{c83, {r2, r2, 0}, 2.0}, {c41, {0, -1, 0}, 0.7}},
-        {{n + 2, 0.3}, {n + 1, 0.01}, {s.index("depressor_anguli_oris_l"), -0.004}}}},
+        {{n + 2, 0.3}, {n + 1, 0.01}, {s.muscle("depressor_anguli_oris_l"), -0.004}}}},
       {"mixed: lower lip with jaw pitch", {0, {{c82, {0, -1, 0}, 1}}, {{n, 0.05}}}},
   };
 }
 
 std::vector<LinearInequality> coupled_limits() {
-  const Shipped& s = shipped();
-  const int N = s.n + 3, pitch = s.n, yaw = s.n + 1;
-  return {
-      row(N, {{s.index("zygomaticus_major_l"), 1}, {s.index("depressor_anguli_oris_l"), 1}}, 1),
-      // Yaw within a band that widens with pitch: |yaw| ≤ 0.05 + 0.3·pitch.
-      row(N, {{yaw, 1}, {pitch, -0.3}}, 0.05),
-      row(N, {{yaw, -1}, {pitch, -0.3}}, 0.05),
-  };
+  return shipped().coupled_limits();
 }
 
 bool admissible(const std::vector<double>& x, std::span<const LinearInequality> rows) {
-  const Shipped& s = shipped();
+  const DefaultFaceSpace& s = shipped();
   for (std::size_t v = 0; v < x.size(); ++v)
     if (!s.box[v].contains(x[v])) return false;
   for (const LinearInequality& r : rows) {
@@ -257,7 +241,7 @@ class AdmissibleSampler {
   AdmissibleSampler(std::span<const LinearInequality> rows, unsigned seed)
       : rows_(rows), rng_(seed) {}
   std::vector<double> next() {
-    const Shipped& s = shipped();
+    const DefaultFaceSpace& s = shipped();
     std::vector<double> x(s.box.size());
     do {
       for (std::size_t v = 0; v < x.size(); ++v) {
@@ -276,72 +260,88 @@ class AdmissibleSampler {
   std::uniform_real_distribution<double> u_{0.0, 1.0};
 };
 
-void check_sound_and_tight(const Case& c, std::span<const LinearInequality> rows, int samples) {
-  SCOPED_TRACE(c.name + (rows.empty() ? "" : " (coupled limits)"));
-  const Shipped& s = shipped();
-  const ChannelPolynomial p = make_channel_polynomial(s.model, c.terms);
-  const BoundOptions opt;
-  const ChannelBound b = bound_channel(p, s.box, rows, opt);
-  ASSERT_FALSE(b.empty);
-  ASSERT_TRUE(b.converged) << "boxes " << b.boxes_used;
-  EXPECT_LE(b.upper - b.attained_max, opt.tolerance);
-  EXPECT_LE(b.attained_min - b.lower, opt.tolerance);
-  EXPECT_LE(b.lower, b.attained_min);
-  EXPECT_GE(b.upper, b.attained_max);
-
-  TickChannel q(c.terms);
-  // The witnesses are admissible and give the attained values.
-  ASSERT_TRUE(admissible(b.witness_max, rows));
-  ASSERT_TRUE(admissible(b.witness_min, rows));
-  EXPECT_NEAR(q(b.witness_max), b.attained_max, 1e-12);
-  EXPECT_NEAR(q(b.witness_min), b.attained_min, 1e-12);
-
-  // Every corner of the box over the variables the channel uses (others at their lower
-  // end), when admissible; then random admissible points.
-  const std::vector<int> used = p.used_variables();
-  ASSERT_LE(used.size(), 22u);
+// One channel under test: its proof and the range the samples have reached.
+struct Proven {
+  const Case* c;
+  ChannelPolynomial p;
+  ChannelBound b;
+  TickChannel q;
   double seen_lo = INFINITY, seen_hi = -INFINITY;
-  auto check = [&](const std::vector<double>& x) {
+  // False (and a test failure) when q(x) leaves the proven range.
+  bool check(const std::vector<double>& x) {
     const double v = q(x);
     seen_lo = std::min(seen_lo, v);
     seen_hi = std::max(seen_hi, v);
-    if (v < b.lower || v > b.upper) {
-      ADD_FAILURE() << "q = " << v << " outside [" << b.lower << ", " << b.upper << "]";
-      return false;
+    if (v >= b.lower && v <= b.upper) return true;
+    ADD_FAILURE() << c->name << ": q = " << v << " outside [" << b.lower << ", " << b.upper << "]";
+    return false;
+  }
+};
+
+// Proves every channel, checks tightness and witnesses, then checks every admissible
+// corner of the box over each channel's variables (others at their lower end) and
+// `samples` random admissible points, shared by all channels, against the proven ranges.
+void check_sound_and_tight(std::span<const LinearInequality> rows, int samples) {
+  const DefaultFaceSpace& s = shipped();
+  const BoundOptions opt;
+  std::vector<Case> cases = channels();
+  std::vector<Proven> proven;
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    ChannelPolynomial p = make_channel_polynomial(s.model, c.terms);
+    ChannelBound b = bound_channel(p, s.box, rows, opt);
+    ASSERT_FALSE(b.empty);
+    ASSERT_TRUE(b.converged) << "boxes " << b.boxes_used;
+    EXPECT_LE(b.upper - b.attained_max, opt.tolerance);
+    EXPECT_LE(b.attained_min - b.lower, opt.tolerance);
+    EXPECT_LE(b.lower, b.attained_min);
+    EXPECT_GE(b.upper, b.attained_max);
+    TickChannel q(c.terms);
+    // The witnesses are admissible and give the attained values.
+    ASSERT_TRUE(admissible(b.witness_max, rows));
+    ASSERT_TRUE(admissible(b.witness_min, rows));
+    EXPECT_NEAR(q(b.witness_max), b.attained_max, 1e-12);
+    EXPECT_NEAR(q(b.witness_min), b.attained_min, 1e-12);
+
+    const std::vector<int> used = p.used_variables();
+    ASSERT_LE(used.size(), 22u);
+    Proven pr{&c, std::move(p), std::move(b), std::move(q)};
+    std::vector<double> x(s.box.size());
+    for (std::size_t v = 0; v < x.size(); ++v) x[v] = s.box[v].lo;
+    for (unsigned long mask = 0; mask < (1ul << used.size()); ++mask) {
+      for (std::size_t k = 0; k < used.size(); ++k) {
+        const auto v = static_cast<std::size_t>(used[k]);
+        x[v] = (mask >> k) & 1 ? s.box[v].hi : s.box[v].lo;
+      }
+      if (admissible(x, rows)) {
+        ASSERT_TRUE(pr.check(x));
+      }
     }
-    return true;
-  };
-  std::vector<double> x(s.box.size());
-  for (std::size_t v = 0; v < x.size(); ++v) x[v] = s.box[v].lo;
-  for (unsigned long mask = 0; mask < (1ul << used.size()); ++mask) {
-    for (std::size_t k = 0; k < used.size(); ++k) {
-      const auto v = static_cast<std::size_t>(used[k]);
-      x[v] = (mask >> k) & 1 ? s.box[v].hi : s.box[v].lo;
-    }
-    if (!admissible(x, rows)) continue;
-    if (!check(x)) return;
+    proven.push_back(std::move(pr));
   }
   AdmissibleSampler sampler(rows, 12345);
-  for (int k = 0; k < samples; ++k)
-    if (!check(sampler.next())) return;
-  std::printf("  %-46s %s proven [% .6f, % .6f] mm, sampled [% .6f, % .6f] mm, %ld boxes\n",
-              c.name.c_str(), rows.empty() ? "free   " : "coupled", 1e3 * b.lower, 1e3 * b.upper,
-              1e3 * seen_lo, 1e3 * seen_hi, b.boxes_used);
+  for (int k = 0; k < samples; ++k) {
+    const std::vector<double> x = sampler.next();
+    for (Proven& pr : proven) ASSERT_TRUE(pr.check(x));
+  }
+  for (const Proven& pr : proven)
+    std::printf("  %-46s %s proven [% .6f, % .6f] mm, sampled [% .6f, % .6f] mm, %ld boxes\n",
+                pr.c->name.c_str(), rows.empty() ? "free   " : "coupled", 1e3 * pr.b.lower,
+                1e3 * pr.b.upper, 1e3 * pr.seen_lo, 1e3 * pr.seen_hi, pr.b.boxes_used);
 }
 
 constexpr int kSamples = 1'000'000;
 
 TEST(ChannelBoundShippedModel, SoundAndTightOnTheBox) {
-  for (const Case& c : channels()) check_sound_and_tight(c, {}, kSamples);
+  check_sound_and_tight({}, kSamples);
 }
 
 TEST(ChannelBoundShippedModel, SoundAndTightWithCoupledLimits) {
-  const std::vector<LinearInequality> rows = coupled_limits();
-  for (const Case& c : channels()) check_sound_and_tight(c, rows, kSamples);
+  check_sound_and_tight(coupled_limits(), kSamples);
 }
 
 TEST(ChannelBoundShippedModel, CoupledLimitsOnlyNarrowTheRange) {
-  const Shipped& s = shipped();
+  const DefaultFaceSpace& s = shipped();
   const std::vector<LinearInequality> rows = coupled_limits();
   for (const Case& c : channels()) {
     const ChannelPolynomial p = make_channel_polynomial(s.model, c.terms);
@@ -353,7 +353,7 @@ TEST(ChannelBoundShippedModel, CoupledLimitsOnlyNarrowTheRange) {
 }
 
 TEST(ChannelBoundShippedModel, Deterministic) {
-  const Shipped& s = shipped();
+  const DefaultFaceSpace& s = shipped();
   const ChannelPolynomial p = make_channel_polynomial(s.model, channels()[6].terms);
   const ChannelBound a = bound_channel(p, s.box, coupled_limits()),
                      b = bound_channel(p, s.box, coupled_limits());
@@ -364,7 +364,7 @@ TEST(ChannelBoundShippedModel, Deterministic) {
 }
 
 TEST(ChannelPolynomial, MatchesTheModelAndRejectsBadTerms) {
-  const Shipped& s = shipped();
+  const DefaultFaceSpace& s = shipped();
   const Case c = channels()[7];
   const ChannelPolynomial p = make_channel_polynomial(s.model, c.terms);
   TickChannel q(c.terms);
