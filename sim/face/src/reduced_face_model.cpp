@@ -14,6 +14,8 @@ namespace facectl::face {
 namespace {
 
 constexpr std::size_t kPerMuscle = 6;  // c, c², c³, c·pitch, c·yaw, c·protrusion
+// Jaw terms in scaled units (deg-like and mm-like) so the fit is well conditioned.
+constexpr double kPitchScale = 10, kYawScale = 10, kProtrusionScale = 100;
 
 int feature_count(std::size_t muscles, std::size_t pairs) {
   return static_cast<int>(kPerMuscle * muscles + 9 + pairs);
@@ -22,8 +24,7 @@ int feature_count(std::size_t muscles, std::size_t pairs) {
 void fill_features(std::span<const double> c, double pitch, double yaw, double prot,
                    const std::vector<std::array<int, 2>>& pairs, Eigen::Ref<Eigen::VectorXd> f) {
   const std::size_t n = c.size();
-  // Jaw terms in scaled units (deg-like and mm-like) so the fit is well conditioned.
-  const double p = pitch * 10, y = yaw * 10, t = prot * 100;
+  const double p = pitch * kPitchScale, y = yaw * kYawScale, t = prot * kProtrusionScale;
   for (std::size_t i = 0; i < n; ++i) {
     f[i] = c[i];
     f[n + i] = c[i] * c[i];
@@ -46,6 +47,52 @@ void fill_features(std::span<const double> c, double pitch, double yaw, double p
 }
 
 }  // namespace
+
+// The symbolic twin of fill_features, column for column: keep the two in step (the
+// drift guard in tests/unit/feature_monomials_test.cpp evaluates both on random inputs).
+std::vector<Monomial> feature_monomials(const ReducedFaceModel& m) {
+  const int n = static_cast<int>(m.muscles.size());
+  const int pitch = n, yaw = n + 1, prot = n + 2;
+  std::vector<Monomial> f(
+      static_cast<std::size_t>(feature_count(m.muscles.size(), m.pairs.size())));
+  auto set = [&](std::size_t column, double scale, std::vector<std::array<int, 2>> powers) {
+    f[column] = {scale, std::move(powers)};
+  };
+  for (int i = 0; i < n; ++i) {
+    const std::size_t k = static_cast<std::size_t>(i), N = static_cast<std::size_t>(n);
+    set(k, 1, {{i, 1}});
+    set(N + k, 1, {{i, 2}});
+    set(2 * N + k, 1, {{i, 3}});
+    set(3 * N + k, kPitchScale, {{i, 1}, {pitch, 1}});
+    set(4 * N + k, kYawScale, {{i, 1}, {yaw, 1}});
+    set(5 * N + k, kProtrusionScale, {{i, 1}, {prot, 1}});
+  }
+  const std::size_t j = kPerMuscle * m.muscles.size();
+  set(j + 0, kPitchScale, {{pitch, 1}});
+  set(j + 1, kYawScale, {{yaw, 1}});
+  set(j + 2, kProtrusionScale, {{prot, 1}});
+  set(j + 3, kPitchScale * kPitchScale, {{pitch, 2}});
+  set(j + 4, kYawScale * kYawScale, {{yaw, 2}});
+  set(j + 5, kProtrusionScale * kProtrusionScale, {{prot, 2}});
+  set(j + 6, kPitchScale * kYawScale, {{pitch, 1}, {yaw, 1}});
+  set(j + 7, kPitchScale * kProtrusionScale, {{pitch, 1}, {prot, 1}});
+  set(j + 8, kYawScale * kProtrusionScale, {{yaw, 1}, {prot, 1}});
+  for (std::size_t k = 0; k < m.pairs.size(); ++k) {
+    const auto [a, b] = m.pairs[k];
+    if (a == b)
+      set(j + 9 + k, 1, {{a, 2}});
+    else
+      set(j + 9 + k, 1, {{std::min(a, b), 1}, {std::max(a, b), 1}});
+  }
+  return f;
+}
+
+double evaluate_monomial(const Monomial& m, std::span<const double> variables) {
+  double v = m.coefficient;
+  for (const auto& [var, power] : m.powers)
+    for (int e = 0; e < power; ++e) v *= variables[static_cast<std::size_t>(var)];
+  return v;
+}
 
 ReducedFaceWorkspace make_reduced_workspace(const ReducedFaceModel& m) {
   return {Eigen::VectorXd::Zero(m.feature_count())};

@@ -28,6 +28,21 @@ struct ReducedFaceModel {
   int feature_count() const { return static_cast<int>(coefficients.cols()); }
 };
 
+// One feature column in closed form: coefficient · Π x_var^power. Variables are numbered
+// 0..n−1 for the contractions (head.yaml order), n for pitch (rad), n+1 for yaw (rad),
+// n+2 for protrusion (m); the coefficient carries the fit's internal jaw scaling.
+struct Monomial {
+  double coefficient = 1.0;
+  std::vector<std::array<int, 2>>
+      powers;  // {variable, exponent ≥ 1}, each variable once, ascending
+};
+
+// Column k describes feature k of evaluate(): out = coefficients · (feature_monomials
+// evaluated at the input). Lives next to the feature code so the two cannot drift; a test
+// compares them on random inputs.
+std::vector<Monomial> feature_monomials(const ReducedFaceModel& m);
+double evaluate_monomial(const Monomial& m, std::span<const double> variables);
+
 struct ReducedFaceWorkspace {
   Eigen::VectorXd features;
 };
