@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "firmware-host/verify/channel_bound.hpp"
+
 namespace facectl::verify {
 namespace {
 
@@ -35,35 +37,35 @@ std::vector<double> tidy(const ControllerModel& m, const Polytope& set,
   return x;
 }
 
-struct Interval {
+struct EffectorRange {
   double lo, hi;
   std::vector<double> at_lo, at_hi;  // witnesses (face inputs), if known
 };
 
 // The effector's range over the admissible set: exact (LP) for a channel that
 // is linear in the face signals.
-std::optional<Interval> linear_effector_range(const ControllerModel& m, const Polytope& set,
-                                              std::size_t actuator) {
+std::optional<EffectorRange> linear_effector_range(const ControllerModel& m, const Polytope& set,
+                                                   std::size_t actuator) {
   std::vector<double> c(m.layout.size());
   for (std::size_t j = 0; j < c.size(); ++j) c[j] = m.mapping.linear.gain(actuator, j);
   const auto hi = maximize(set, c);
   const auto lo = minimize(set, c);
   if (!hi || !lo) return std::nullopt;
   const double off = m.mapping.linear.offset(actuator);
-  return Interval{lo->value + off, hi->value + off, tidy(m, set, c, lo->at),
-                  tidy(m, set, c, hi->at)};
+  return EffectorRange{lo->value + off, hi->value + off, tidy(m, set, c, lo->at),
+                       tidy(m, set, c, hi->at)};
 }
 
 // The transform of an effector range. Calibration curves are monotone, so the
 // ends map to the ends. A linkage inverse is checked numerically for
 // monotony over the range (`proven` turns false) and its ends are used.
-Interval transform_range(const ChannelTransform& t, Interval e, const std::string& who,
-                         const std::string& unit, double scale, bool* proven,
-                         std::vector<Finding>& findings, const ControllerModel& m) {
-  auto hull = [](double a, double b, Interval in) {
+EffectorRange transform_range(const ChannelTransform& t, EffectorRange e, const std::string& who,
+                              const std::string& unit, double scale, bool* proven,
+                              std::vector<Finding>& findings, const ControllerModel& m) {
+  auto hull = [](double a, double b, EffectorRange in) {
     const bool swap = a > b;
-    return Interval{swap ? b : a, swap ? a : b, swap ? in.at_hi : in.at_lo,
-                    swap ? in.at_lo : in.at_hi};
+    return EffectorRange{swap ? b : a, swap ? a : b, swap ? in.at_hi : in.at_lo,
+                         swap ? in.at_lo : in.at_hi};
   };
   if (t.kind == ChannelTransform::Kind::kNone) return e;
   if (t.kind == ChannelTransform::Kind::kCalibration) {
@@ -138,6 +140,53 @@ void check_encoding(const ActuatorModel& a, const std::string& who,
                           ""});
     }
   }
+}
+
+// The effector's range for a channel that reads control points: the reduced
+// model's polynomial over (muscles, jaw) is bounded by branch and bound;
+// signals outside the polynomial (eyes, neck) add their own box range, and
+// coupled limits that involve them are left out (which only widens the set).
+std::optional<EffectorRange> point_effector_range(const ControllerModel& m, const Polytope& set,
+                                                  std::size_t actuator, bool* converged) {
+  const std::size_t vars = m.layout.muscle_count() + 3;  // the polynomial's variables
+  ChannelTerms terms;
+  terms.offset = m.mapping.linear.offset(actuator);
+  for (const PointTerm& p : m.mapping.points) {
+    if (p.actuator != actuator) continue;
+    terms.points.push_back({static_cast<int>(p.point), p.axis, p.gain});
+  }
+  EffectorRange outside{0.0, 0.0, {}, {}};
+  std::vector<double> lo_at(set.size()), hi_at(set.size());
+  for (std::size_t j = 0; j < set.size(); ++j) {
+    const double g = m.mapping.linear.gain(actuator, j);
+    lo_at[j] = hi_at[j] = std::clamp(m.neutral[j], set.lo[j], set.hi[j]);
+    if (g == 0.0) continue;
+    if (j < vars) {
+      terms.linear.push_back({static_cast<int>(j), g});
+    } else {
+      lo_at[j] = g > 0 ? set.lo[j] : set.hi[j];
+      hi_at[j] = g > 0 ? set.hi[j] : set.lo[j];
+      outside.lo += g * lo_at[j];
+      outside.hi += g * hi_at[j];
+    }
+  }
+  const ChannelPolynomial poly = make_channel_polynomial(*m.mapping.reduced, terms);
+  std::vector<Interval> box;
+  for (std::size_t j = 0; j < vars; ++j) box.push_back({set.lo[j], set.hi[j]});
+  std::vector<LinearInequality> rows;
+  for (std::size_t r = 0; r < set.rows.size(); ++r) {
+    bool inside = true;
+    for (std::size_t j = vars; j < set.size(); ++j) inside = inside && set.rows[r][j] == 0.0;
+    if (!inside) continue;
+    rows.push_back(
+        {std::vector<double>(set.rows[r].begin(), set.rows[r].begin() + vars), set.rhs[r]});
+  }
+  const ChannelBound b = bound_channel(poly, box, rows);
+  if (b.empty) return std::nullopt;
+  *converged = b.converged;
+  for (std::size_t j = 0; j < vars && j < b.witness_min.size(); ++j) lo_at[j] = b.witness_min[j];
+  for (std::size_t j = 0; j < vars && j < b.witness_max.size(); ++j) hi_at[j] = b.witness_max[j];
+  return EffectorRange{b.lower + outside.lo, b.upper + outside.hi, lo_at, hi_at};
 }
 
 }  // namespace
@@ -228,22 +277,20 @@ StaticProof prove(const LoadedConfig& cfg) {
 
     const bool reads_points = std::any_of(m.mapping.points.begin(), m.mapping.points.end(),
                                           [&](const PointTerm& p) { return p.actuator == i; });
-    std::optional<Interval> effector;
-    if (reads_points) {
-      r.method = "not proven";
-      r.proven = false;
-      out.findings.push_back({Severity::kFail, "hardware range", who,
-                              "reads reduced-model control points, whose range this build "
-                              "cannot bound yet",
-                              ""});
-      out.actuators.push_back(r);
-      continue;
-    }
-    effector = linear_effector_range(m, set, i);
-    r.method = "exact LP (GLPK, rational)";
+    std::optional<EffectorRange> effector;
     bool proven = true;
-    const Interval act = transform_range(m.mapping.transforms[i], *effector, who, r.unit, scale,
-                                         &proven, out.findings, m);
+    if (reads_points) {
+      bool converged = false;
+      effector = point_effector_range(m, set, i, &converged);
+      r.method = converged ? "branch and bound on the reduced model"
+                           : "branch and bound on the reduced model (budget hit: loose bound)";
+    } else {
+      effector = linear_effector_range(m, set, i);
+      r.method = "exact LP (GLPK, rational)";
+    }
+    if (!effector) continue;
+    const EffectorRange act = transform_range(m.mapping.transforms[i], *effector, who, r.unit,
+                                              scale, &proven, out.findings, m);
     if (!proven) r.method += " + numerically monotone linkage";
     r.proven = proven;
     r.lo = act.lo * scale;
