@@ -29,10 +29,6 @@ Controller::Controller(const ControllerModel& model, std::span<ActuatorBus* cons
     measured_[i] = model.actuators[i].rest;
     mapped_[i] = model.actuators[i].rest;
   }
-  for (std::size_t c = 0; c < model.actuator_constraints.size(); ++c) {
-    const CoupledConstraints::Constraint& k = model.actuator_constraints.constraint(c);
-    for (std::size_t t = 0; t < k.terms; ++t) constrained_[k.index[t]] = true;
-  }
   // IDLE means disabled: make it true of the hardware too, whatever a crashed
   // previous run left enabled.
   for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
@@ -102,31 +98,68 @@ void Controller::choose_targets() {
   }
 }
 
+namespace {
+
+// How far the limiter may still travel at speed v before it stands still: its
+// own approach plan (docs/SAFETY.md), v²/2A + v·(dt + A/2J).
+double stopping_distance(const ActuatorLimits& l, double v, double dt) {
+  const double ramp = l.max_jerk > 0.0 ? l.max_acceleration / (2.0 * l.max_jerk) : 0.0;
+  return v * v / (2.0 * l.max_acceleration) + v * (dt + ramp);
+}
+
+}  // namespace
+
+double Controller::worst_reach(std::size_t c, double dt) const {
+  // Σ a·x over the constrained actuators, each taken where it would stop if
+  // it braked now, when it moves the sum up.
+  const CoupledConstraints::Constraint& k = model_.actuator_constraints.constraint(c);
+  double sum = 0.0;
+  for (std::size_t t = 0; t < k.terms; ++t) {
+    const LimiterState& s = limiter_[k.index[t]];
+    const double toward = k.coeff[t] > 0.0 ? s.velocity : -s.velocity;
+    sum += k.coeff[t] * s.position;
+    if (toward > 0.0) {
+      sum += std::fabs(k.coeff[t]) *
+             stopping_distance(model_.actuators[k.index[t]].limits, toward, dt);
+    }
+  }
+  return sum;
+}
+
 void Controller::keep_actuator_constraints(double dt, LimitFlags* flags) {
-  // Each actuator's limiter moves on its own; the joint step may cut a corner
-  // of an actuator coupled limit even though both ends are admissible.
-  // Shorten the step of every constrained actuator by the same fraction, so
-  // the commands stay on the admissible side (a convex set).
-  std::uint32_t limiting = 0;
-  const double a =
-      model_.actuator_constraints.feasible_fraction(previous_.data(), command_.data(), &limiting);
-  if (a >= 1.0) return;
+  // Each actuator's limiter moves on its own, so the joint motion can cut a
+  // corner of an actuator coupled limit although both ends are admissible.
+  // Invariant: where every constrained actuator would stop if it braked now
+  // stays admissible. A step that would break it is replaced, for each
+  // actuator moving the sum up, by the limiter's own step toward where it
+  // would stop: braking within its acceleration and jerk limits, which does
+  // not move its stopping point on (docs/SAFETY.md, actuator coupled limits).
+  std::uint64_t hold = 0;
+  for (std::size_t c = 0; c < model_.actuator_constraints.size(); ++c) {
+    const CoupledConstraints::Constraint& k = model_.actuator_constraints.constraint(c);
+    if (worst_reach(c, dt) <= k.bound + 1e-12) continue;
+    for (std::size_t t = 0; t < k.terms; ++t) {
+      if (k.coeff[t] * limiter_[k.index[t]].velocity > 0.0) hold |= std::uint64_t{1} << k.index[t];
+    }
+  }
+  if (hold == 0) return;
   ++counters_.actuator_coupled_steps;
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
-    if (!constrained_[i]) continue;
-    const double position = previous_[i] + a * (command_[i] - previous_[i]);
-    const double velocity = dt > 0.0 ? (position - previous_[i]) / dt : 0.0;
-    limiter_[i].acceleration = dt > 0.0 ? (velocity - limiter_[i].velocity) / dt : 0.0;
-    limiter_[i].velocity = velocity;
-    limiter_[i].position = position;
-    command_[i] = position;
-    flags[i] |= kLimitCoupled;
+    if (((hold >> i) & 1u) == 0) continue;
+    const ActuatorLimits& l = model_.actuators[i].limits;
+    const LimiterState before = pre_step_[i];
+    const double v = std::fabs(before.velocity);
+    const double stop =
+        before.position + std::copysign(stopping_distance(l, v, dt), before.velocity);
+    limiter_[i] = before;
+    flags[i] = limit_step(l, limiter_[i], v > 0.0 ? stop : before.position, dt) | kLimitCoupled;
+    command_[i] = limiter_[i].position;
   }
 }
 
 bool Controller::limit_actuators(double dt, LimitFlags* flags) {
   bool breach = false;
-  std::copy_n(command_.begin(), model_.actuators.size(), previous_.begin());
+  std::copy_n(limiter_.begin(), model_.actuators.size(), pre_step_.begin());
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     flags[i] = limit_step(model_.actuators[i].limits, limiter_[i], target_[i], dt);
     if ((mapping_clamps_ >> i) & 1u) flags[i] |= kLimitMapping;

@@ -103,6 +103,7 @@ class Controller {
   void choose_targets();
   bool limit_actuators(double dt, LimitFlags* flags);  // true if the backstop acted
   void keep_actuator_constraints(double dt, LimitFlags* flags);
+  double worst_reach(std::size_t constraint, double dt) const;
   bool feedback_out_of_range() const;
   bool at_rest(double dt);
   void enter_state(SafetyState state);
@@ -140,8 +141,7 @@ class Controller {
   std::array<double, kMaxFaceSignals> face_{};
   MappingWorkspace mapping_ws_;
   std::uint64_t mapping_clamps_ = 0;
-  std::array<bool, kMaxActuators> constrained_{};  // appears in an actuator coupled limit
-  std::array<double, kMaxActuators> previous_{};   // last tick's commands
+  std::array<LimiterState, kMaxActuators> pre_step_{};  // limiter states before this step
   std::array<double, kMaxActuators> mapped_{};
   std::array<double, kMaxActuators> target_{};
   std::array<double, kMaxActuators> command_{};
