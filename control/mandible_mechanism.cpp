@@ -16,9 +16,13 @@ using Eigen::Vector3d;
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-// Gauss–Newton steps of the nearest-reachable clamp, and when it stops early:
-// a step shorter than kStepTolerance metric units (1e-9 mm or degree by default).
-constexpr int kSolveIterations = 12;
+// The nearest-reachable clamp: at most kSolveIterations Gauss–Newton steps, each
+// halved at most kHalvings − 1 times, each trial pose found by at most
+// kNewtonIterations Newton steps. It stops early at a step shorter than
+// kStepTolerance metric units (1e-9 mm or degree by default).
+constexpr int kSolveIterations = 10;
+constexpr int kHalvings = 4;
+constexpr int kNewtonIterations = 6;
 constexpr double kStepTolerance = 1e-9;
 // Slack, in m (stroke) or rad, within which a QP candidate counts as feasible.
 constexpr double kFeasibleSlack = 1e-12;
@@ -153,6 +157,24 @@ void clip_strokes(const MandibleMechanism& m, MandibleStrokes& s) {
     s[i] = std::clamp(s[i], m.strut[i].stroke.min, m.strut[i].stroke.max);
 }
 
+// Newton on strokes(x) = target from x (updated in place; held DOFs stay held).
+// True once every residual is at most kForwardTolerance.
+bool newton(const MandibleMechanism& m, const MandibleStrokes& target, MandibleVector& x,
+            int max_iterations) {
+  for (int it = 0; it <= max_iterations; ++it) {
+    const Augmented a = augmented(m, x);
+    Vector3d residual = Vector3d::Zero();
+    for (std::size_t i = 0; i < m.count; ++i) residual[i] = a.value[i] - target[i];
+    if (!residual.allFinite()) return false;
+    if (residual.cwiseAbs().maxCoeff() <= kForwardTolerance) return true;
+    if (it == max_iterations) break;
+    Matrix3d Jinv;
+    if (!invert(a.J, Jinv)) return false;
+    x = m.held_in(x - Jinv * residual);
+  }
+  return false;
+}
+
 [[noreturn]] void reject(const std::string& what) {
   throw std::invalid_argument("mandible mechanism: " + what);
 }
@@ -250,26 +272,50 @@ MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& 
   result.achieved = to_pose(goal);
   if (inside) return result;
 
-  // Nearest reachable: min |W(x − goal)|² s.t. lo <= strokes(x) <= hi. Each step
-  // linearises the strokes at x (y = s + J·(x' − x)) and solves the QP exactly in
-  // the predicted strokes y, where the limits are a box.
+  // Nearest reachable: min |W(x − goal)|² s.t. lo <= strokes(x) <= hi, as projected
+  // Gauss–Newton in stroke space. The iterate is a stroke vector y inside the box
+  // and the pose x it produces (Newton). Each step linearises x(y) at y
+  // (x' = x + J⁻¹·(y' − y)) and solves the QP in y' exactly, where the limits are
+  // a box; a step that does not shorten the distance is halved, and one that
+  // cannot be made to is not taken. So y never leaves the box, and x is always
+  // the pose of y.
   const Matrix3d W = m.weight.asDiagonal();
+  MandibleStrokes y = out_strokes;
+  clip_strokes(m, y);
   MandibleVector x = goal;
+  if (!newton(m, y, x, kNewtonIterations)) {  // start at rest instead: it is reachable
+    x = m.held_in(MandibleVector::Zero());
+    strokes(m, to_pose(x), y);
+  }
+  double f = (W * (x - goal)).squaredNorm();
   for (int it = 0; it < kSolveIterations; ++it) {
-    const Augmented a = augmented(m, x);
+    Augmented a = augmented(m, x);
+    for (std::size_t i = 0; i < m.count; ++i) a.value[i] = y[i];  // the box point itself
     Matrix3d Jinv;
     if (!invert(a.J, Jinv)) break;
     const Matrix3d A = W * Jinv;
     const Vector3d c = W * (goal - x) + A * a.value;
-    const Vector3d y = box_qp(A.transpose() * A, A.transpose() * c, a.lo, a.hi);
-    const Vector3d step = Jinv * (y - a.value);
-    if (!step.allFinite()) break;
-    x = m.held_in(x + step);
+    const Vector3d dy = box_qp(A.transpose() * A, A.transpose() * c, a.lo, a.hi) - a.value;
+    if (!dy.allFinite() || (A * dy).norm() < kStepTolerance) break;
     result.iterations = it + 1;
-    if ((W * step).norm() < kStepTolerance) break;
+    bool accepted = false;
+    double alpha = 1.0;
+    for (int h = 0; h < kHalvings && !accepted; ++h, alpha *= 0.5) {
+      MandibleStrokes y_try = y;
+      for (std::size_t i = 0; i < m.count; ++i) y_try[i] = y[i] + alpha * dy[i];
+      clip_strokes(m, y_try);  // a convex combination of box points, up to rounding
+      MandibleVector x_try = m.held_in(x + alpha * (Jinv * dy));
+      if (!newton(m, y_try, x_try, kNewtonIterations)) continue;
+      const double f_try = (W * (x_try - goal)).squaredNorm();
+      if (!(f_try < f)) continue;
+      accepted = true;
+      x = x_try;
+      y = y_try;
+      f = f_try;
+    }
+    if (!accepted) break;
   }
-  strokes(m, to_pose(x), out_strokes);
-  clip_strokes(m, out_strokes);
+  out_strokes = y;
   result.achieved = to_pose(x);
   result.clamped = true;
   result.distance = metric_distance(m, x, goal);
@@ -279,19 +325,8 @@ MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& 
 std::optional<face::MandiblePose> forward(const MandibleMechanism& m, const MandibleStrokes& target,
                                           const face::MandiblePose& guess, int max_iterations) {
   MandibleVector x = m.held_in(to_vector(guess));
-  if (!x.allFinite()) return std::nullopt;
-  for (int it = 0; it <= max_iterations; ++it) {
-    const Augmented a = augmented(m, x);
-    Vector3d residual = Vector3d::Zero();
-    for (std::size_t i = 0; i < m.count; ++i) residual[i] = a.value[i] - target[i];
-    if (!residual.allFinite()) return std::nullopt;
-    if (residual.cwiseAbs().maxCoeff() <= kForwardTolerance) return to_pose(x);
-    if (it == max_iterations) break;
-    Matrix3d Jinv;
-    if (!invert(a.J, Jinv)) return std::nullopt;
-    x = m.held_in(x - Jinv * residual);
-  }
-  return std::nullopt;
+  if (!x.allFinite() || !newton(m, target, x, max_iterations)) return std::nullopt;
+  return to_pose(x);
 }
 
 MandibleConditioning conditioning(const MandibleMechanism& m, const MandibleEnvelope& envelope,

@@ -208,7 +208,7 @@ TEST(MandibleMechanism, UnreachableTargetsGoToTheNearestReachablePose) {
       for (std::size_t i = 0; i < n; ++i) {
         EXPECT_GE(out[i], m.strut[i].stroke.min);
         EXPECT_LE(out[i], m.strut[i].stroke.max);
-        EXPECT_NEAR(out[i], check[i], 1e-12);
+        EXPECT_NEAR(out[i], check[i], 1e-11);  // Newton's tolerance
       }
       const MandibleVector goal = m.held_in(to_vector(target));
       if (!r.clamped) {
@@ -217,7 +217,7 @@ TEST(MandibleMechanism, UnreachableTargetsGoToTheNearestReachablePose) {
       }
       ++clamped;
       EXPECT_FALSE(reachable(m, goal));
-      EXPECT_LT(r.iterations, 12) << "did not converge";
+      EXPECT_LE(r.iterations, 10);
       const MandibleVector x = to_vector(r.achieved);
       EXPECT_NEAR(r.distance, distance(m, x, goal), 1e-12);
       // The achieved pose is on the boundary of the reachable set.
