@@ -101,15 +101,17 @@ struct MandibleSolveResult {
   face::MandiblePose achieved;  // the pose `out_strokes` produces
   bool clamped = false;         // stroke limits moved it away from the target
   double distance = 0.0;        // metric distance target → achieved (driven DOFs)
-  int iterations = 0;           // Gauss–Newton iterations used (0: target reachable)
+  int iterations = 0;           // Gauss–Newton steps used (0: target reachable)
 };
 
 // Inverse kinematics in the tick. If the target's strokes are within limits the
 // result is exact. Otherwise the pose moves to the nearest reachable one in the
-// model's metric: a fixed number of Gauss–Newton steps, each an exact box-QP in
-// stroke space solved by enumerating its 3^n active sets. `out_strokes` is always
-// within the stroke limits. A non-finite target gives the held/rest pose.
-// Bounded time, deterministic, no allocation.
+// model's metric: projected Gauss–Newton in stroke space (at most 10 steps, each
+// an exact box-QP over the 3^n active sets, with at most 3 halvings and 6 Newton
+// steps for the pose). `out_strokes` is always within the stroke limits and
+// `achieved` is the pose they produce (to 1e-11 m of stroke). A non-finite
+// target gives the rest pose (held DOFs held). Bounded time, deterministic, no
+// allocation.
 MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& target,
                           MandibleStrokes& out_strokes);
 

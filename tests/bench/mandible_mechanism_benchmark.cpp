@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include <numbers>
+#include <vector>
 
 #include "control/mechanism_range_proof.hpp"
 #include "tests/support/mandible_mechanisms.hpp"
@@ -13,36 +14,39 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-// Targets spread over the envelope (reachable) or beyond it (clamped).
-void run_solve(benchmark::State& state, std::size_t struts, double reach) {
+// 256 targets on a sweep over 1.6 times the envelope, all of them reachable or all
+// of them clamped (chosen before timing), solved in turn.
+void run_solve(benchmark::State& state, std::size_t struts, bool want_clamped) {
   const MandibleMechanism m = testing::proposed_mechanism(struts);
   MandibleStrokes out{};
-  std::size_t i = 0, clamped = 0;
-  for (auto _ : state) {
+  std::vector<face::MandiblePose> targets;
+  for (std::size_t i = 0; targets.size() < 256; ++i) {
     const double t = static_cast<double>(i % 97) / 96.0, u = static_cast<double>(i % 13) / 12.0;
-    const face::MandiblePose target{(7 + 11 * reach * (2 * t - 1)) * kDeg,
-                                    5 * reach * (2 * u - 1) * kDeg,
-                                    (4 + 4 * reach * (1 - 2 * t)) * 1e-3};
-    const MandibleSolveResult r = solve(m, target, out);
-    clamped += r.clamped ? 1 : 0;
-    benchmark::DoNotOptimize(out);
-    ++i;
+    const face::MandiblePose target{(7 + 17.6 * (2 * t - 1)) * kDeg, 8 * (2 * u - 1) * kDeg,
+                                    (4 + 6.4 * (1 - 2 * t)) * 1e-3};
+    if (solve(m, target, out).clamped == want_clamped) targets.push_back(target);
   }
-  state.counters["clamped"] = static_cast<double>(clamped) / static_cast<double>(i);
+  std::size_t i = 0, iterations = 0;
+  for (auto _ : state) {
+    const MandibleSolveResult r = solve(m, targets[i++ % targets.size()], out);
+    iterations += static_cast<std::size_t>(r.iterations);
+    benchmark::DoNotOptimize(out);
+  }
+  state.counters["iterations"] = static_cast<double>(iterations) / static_cast<double>(i);
 }
 
 void BM_MandibleSolveReachable(benchmark::State& state) {
-  run_solve(state, 3, 1.0);
+  run_solve(state, 3, false);
 }
 BENCHMARK(BM_MandibleSolveReachable);
 
 void BM_MandibleSolveClamped(benchmark::State& state) {
-  run_solve(state, 3, 1.6);
+  run_solve(state, 3, true);
 }
 BENCHMARK(BM_MandibleSolveClamped);
 
 void BM_MandibleSolveClamped2Strut(benchmark::State& state) {
-  run_solve(state, 2, 1.6);
+  run_solve(state, 2, true);
 }
 BENCHMARK(BM_MandibleSolveClamped2Strut);
 
