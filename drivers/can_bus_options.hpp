@@ -9,6 +9,7 @@ namespace facectl {
 // Settings shared by the CAN actuator buses (docs/PROTOCOLS.md).
 struct CanBusOptions {
   bool fd = false;                   // CAN FD frames (custom layout only)
+  long data_bitrate = 0;             // CAN FD data phase (bit rate switch); 0 = the nominal rate
   int cycle_divider = 1;             // transmit on every Nth tick: the bus rate is tick rate / N
   double heartbeat_timeout_s = 0.1;  // a node not heard for this long: FAULT
 

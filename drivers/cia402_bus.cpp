@@ -248,12 +248,7 @@ BusStatus Cia402Bus::status() const {
 }
 
 CanBusBudget Cia402Bus::budget(double tick_hz, long bitrate) const {
-  const double bus_hz = tick_hz / options_.cycle_divider;
-  const double n = static_cast<double>(drives_.size());
-  const double heartbeats_per_s =
-      n * 1000.0 / options_.drive_heartbeat_ms + 1000.0 / options_.host_heartbeat_ms;
-  const double frames = 1.0 + 2.0 * n + heartbeats_per_s / bus_hz;
-  return CanBusBudget::compute(static_cast<int>(std::ceil(frames)), bus_hz, bitrate);
+  return cia402_budget(drives_.size(), options_, tick_hz, bitrate);
 }
 
 cia402::DriveState Cia402Bus::drive_state(std::size_t actuator) const {

@@ -14,6 +14,7 @@
 #include "control/controller_model.hpp"
 #include "control/latest_value_mailbox.hpp"
 #include "drivers/modbus_register_map.hpp"
+#include "drivers/modbus_timing.hpp"
 
 namespace facectl {
 
@@ -28,19 +29,6 @@ struct ModbusEndpoint {
   // "host[:port]" for modbus_tcp, a device path for modbus_rtu. Throws
   // std::invalid_argument naming the bad part.
   static ModbusEndpoint parse(const std::string& type, const std::string& endpoint, long baud);
-};
-
-// Timing of the I/O thread. Every value is explicit: libmodbus's own default
-// response timeout (500 ms) would hide a dead board for half a second per
-// transaction (stephane/libmodbus#776).
-struct ModbusTiming {
-  double response_timeout_s = 0.020;  // per transaction attempt
-  double byte_timeout_s = 0.005;      // between bytes of one reply (RTU)
-  int max_retries = 1;                // extra attempts per transaction per cycle
-  double board_timeout_s = 0.100;     // no good reply for this long: FAULT, commands stale
-  double cycle_period_s = 0.001;      // I/O cycle; 0 runs back to back (benchmarks)
-  double reconnect_interval_s = 0.050;
-  int board_watchdog_ms = 100;  // written to each board's watchdog register on connect
 };
 
 // Counters of the I/O thread, readable from any thread.

@@ -22,6 +22,7 @@ LoadedConfig load_config(const std::string& runtime_path, const ConfigOverrides&
     cfg.runtime.rate_hz = *overrides.rate_hz;
   }
   if (overrides.show_path) cfg.runtime.show_path = *overrides.show_path;
+  if (overrides.hardware) cfg.runtime.hardware = *overrides.hardware;
   cfg.head = load_head_config(cfg.runtime.head_path);
   cfg.rig = load_rig_config(cfg.runtime.rig_path, cfg.head.layout);
   cfg.expressions = ExpressionLibrary::load(cfg.runtime.expressions_path, cfg.head.layout);
@@ -29,7 +30,10 @@ LoadedConfig load_config(const std::string& runtime_path, const ConfigOverrides&
     cfg.show =
         Show::load(cfg.runtime.show_path, cfg.head.layout, cfg.head.neutral, cfg.expressions);
   }
+  if (cfg.runtime.gamepad) resolve_gamepad_terms(*cfg.runtime.gamepad, cfg.head.layout);
   cfg.built = build_model(cfg.head, cfg.rig, cfg.runtime);
+  cfg.budgets = check_bus_budgets(cfg.rig, cfg.runtime.rate_hz);
+  enforce_bus_budgets(cfg.budgets, cfg.built.warnings);
   return cfg;
 }
 
