@@ -13,6 +13,7 @@
 #include "control/loop_timer.hpp"
 #include "firmware-host/fault_injection.hpp"
 #include "firmware-host/loaded_config.hpp"
+#include "firmware-host/real_hardware.hpp"
 #include "firmware-host/realtime_loop.hpp"
 #include "firmware-host/realtime_thread.hpp"
 #include "firmware-host/run_summary.hpp"
@@ -46,6 +47,17 @@ int run_command(const RunOptions& options) {
   ConfigOverrides overrides;
   overrides.show_path = options.show;
   overrides.rate_hz = options.rate_hz;
+  if (options.hardware) {
+    if (*options.hardware == "sim") {
+      overrides.hardware = HardwareMode::kSim;
+    } else if (*options.hardware == "real") {
+      overrides.hardware = HardwareMode::kReal;
+    } else {
+      std::fprintf(stderr, "facectl run: --hardware: expected sim or real, found '%s'\n",
+                   options.hardware->c_str());
+      return 2;
+    }
+  }
   std::vector<Injection> injections;
   std::unique_ptr<LoadedConfig> cfg;
   try {
@@ -61,6 +73,11 @@ int run_command(const RunOptions& options) {
                           cfg->rig.name + "', found no such bus");
       }
     }
+    if (cfg->runtime.hardware == HardwareMode::kReal && !injections.empty()) {
+      throw ConfigError(
+          "--inject: expected simulated hardware (fault rehearsal), found "
+          "hardware: real");
+    }
     if (options.duration_s && !(*options.duration_s > 0.0)) {
       throw ConfigError("--duration: expected a number of seconds > 0");
     }
@@ -75,8 +92,22 @@ int run_command(const RunOptions& options) {
   RealtimeReport rt;
   keep_off_realtime_cpu(cfg->runtime.realtime, rt);
 
-  // 2. Hardware (simulated twins), channels and the controller.
-  auto hw = make_sim_hardware(model, cfg->rig);
+  // 2. Hardware (simulated twins, or the real buses and GPIO), channels and the controller.
+  std::unique_ptr<SimHardware> sim;
+  std::unique_ptr<RealHardware> real;
+  if (cfg->runtime.hardware == HardwareMode::kReal) {
+    try {
+      real = make_real_hardware(model, *cfg);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "facectl run: real hardware: %s\n", e.what());
+      return 2;
+    }
+    for (const auto& note : real->notes) std::fprintf(stderr, "%s\n", note.c_str());
+  } else {
+    sim = make_sim_hardware(model, cfg->rig);
+  }
+  const std::vector<ActuatorBus*>& seams = real ? real->seams : sim->seams;
+  SafetyIo& io = real ? real->io() : static_cast<SafetyIo&>(sim->io);
   LatestValueMailbox<FaceCommand> mailbox;
   SpscRing<TransitionEvent> events(256);
   std::unique_ptr<SpscRing<TelemetryRecord>> telemetry;
@@ -90,7 +121,7 @@ int run_command(const RunOptions& options) {
     std::fprintf(stderr, "facectl run: %s\n", e.what());
     return 2;
   }
-  Controller controller(model, hw->seams, hw->io, {&mailbox, telemetry.get(), &events});
+  Controller controller(model, seams, io, {&mailbox, telemetry.get(), &events});
 
   // 3. Input: the show, looping when a duration is given.
   std::unique_ptr<ShowPlayer> player;
@@ -137,10 +168,10 @@ int run_command(const RunOptions& options) {
       inj.done = true;
       switch (inj.kind) {
         case Injection::Kind::kEstop:
-          hw->io.press_estop();
+          sim->io.press_estop();
           break;
         case Injection::Kind::kBusFault:
-          hw->find(inj.bus)->inject_fault("injected bus fault");
+          sim->find(inj.bus)->inject_fault("injected bus fault");
           break;
         case Injection::Kind::kInputLoss:
           if (player) player->go_silent();
@@ -178,8 +209,9 @@ int run_command(const RunOptions& options) {
   }
   if (tty) std::fputs("\r\033[K", stdout);
 
-  RunSummaryInput in{model,        controller,    stats,          rt,
-                     writer.get(), cfg->rig.name, cfg->head.name, events.dropped()};
+  RunSummaryInput in{model,         controller,     stats,
+                     rt,            writer.get(),   cfg->rig.name,
+                     cfg->head.name, events.dropped(), real != nullptr};
   return print_run_summary(in);
 }
 
