@@ -27,6 +27,10 @@ int run_cli(int argc, char** argv) {
   run_cmd->add_option("--hardware", run.hardware,
                       "sim or real: the simulated twins or the rig's buses and GPIO (default "
                       "from config: sim)");
+  run_cmd->add_flag("--gamepad", run.gamepad,
+                    "Puppeteer the face from the runtime config's gamepad instead of a show");
+  run_cmd->add_option("--record-show", run.record_show,
+                      "With --gamepad: write what was performed as a show file");
   run_cmd->add_option(
       "--inject", run.inject,
       "Rehearse a fault: estop@S, bus_fault:BUS@S, input_loss@S, overrun_storm:MS@S");
