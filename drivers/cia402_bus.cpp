@@ -59,6 +59,11 @@ Cia402Bus::Cia402Bus(std::string name, CanTransport& transport,
          4},
         {0x6007, 0, 1, 2},  // abort connection option: go to fault
     };
+    // First the PDO mapping the cycle relies on, unless the drives keep it.
+    if (options_.map_pdos) {
+      const auto mapping = cia402::pdo_mapping_sdos(d->node);
+      d->sdos.insert(d->sdos.begin(), mapping.begin(), mapping.end());
+    }
     const std::string who = name_ + " drive " + std::to_string(d->node);
     d->lost = who + ": heartbeat lost";
     d->emergency = who + ": emergency (EMCY)";

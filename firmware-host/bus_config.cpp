@@ -32,7 +32,7 @@ void parse_can(const ConfigNode& node, BusConfig& bus) {
   only_for("data_bitrate", !cia402, "CAN FD is for custom boards");
   only_for("values", !cia402, "value width is for custom boards");
   for (const char* key :
-       {"host_node", "host_heartbeat_ms", "drive_heartbeat_ms", "drive_watchdog_ms",
+       {"map_pdos", "host_node", "host_heartbeat_ms", "drive_heartbeat_ms", "drive_watchdog_ms",
         "sdo_timeout_ms", "enable_timeout_ms", "counts_per_rev", "counts_per_mm"}) {
     only_for(key, cia402, "CiA 402 drives only");
   }
@@ -55,6 +55,7 @@ void parse_can(const ConfigNode& node, BusConfig& bus) {
       n->fail("int16 or int32");
     }
   }
+  if (auto n = node.get("map_pdos")) o.map_pdos = n->boolean();
   if (auto n = node.get("host_node")) o.host_node = static_cast<int>(n->integer_in(1, 127));
   if (auto n = node.get("host_heartbeat_ms"))
     o.host_heartbeat_ms = static_cast<int>(n->integer_in(1, 65535));
@@ -126,7 +127,7 @@ BusConfig parse_bus_config(const ConfigNode& node) {
   bus.type = node["type"].string();
   if (bus.type == "can") {
     node.expect_keys({"name", "type", "interface", "bitrate", "protocol", "rate_divider", "fd",
-                      "data_bitrate", "values", "heartbeat_timeout_ms", "host_node",
+                      "data_bitrate", "values", "heartbeat_timeout_ms", "map_pdos", "host_node",
                       "host_heartbeat_ms", "drive_heartbeat_ms", "drive_watchdog_ms",
                       "sdo_timeout_ms", "enable_timeout_ms", "counts_per_rev", "counts_per_mm"});
     parse_can(node, bus);

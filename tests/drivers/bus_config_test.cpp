@@ -69,11 +69,13 @@ TEST(BusConfig, CanKeysReachTheBusOptions) {
   EXPECT_EQ(b.can.data_bitrate, 5'000'000);
   EXPECT_DOUBLE_EQ(b.can.heartbeat_timeout_s, 0.05);
 
-  TempFile g(rig(kCan + ", protocol: cia402, host_node: 100, drive_watchdog_ms: 60, "
-                        "counts_per_rev: 65536, counts_per_mm: 2000"));
+  TempFile g(rig(kCan +
+                 ", protocol: cia402, map_pdos: false, host_node: 100, drive_watchdog_ms: 60, "
+                 "counts_per_rev: 65536, counts_per_mm: 2000"));
   const BusConfig c = load_rig_config(g.path(), head().layout).buses.at(0);
   EXPECT_EQ(c.can_protocol, "cia402");
   EXPECT_EQ(c.can.host_node, 100);
+  EXPECT_FALSE(c.can.map_pdos);
   EXPECT_EQ(c.can.drive_watchdog_ms, 60);
   EXPECT_NEAR(c.can.rotary_counts_per_rad, 65536 / 6.283185307179586, 1e-9);
   EXPECT_DOUBLE_EQ(c.can.linear_counts_per_m, 2e6);
@@ -111,7 +113,8 @@ TEST(BusConfig, BadBusKeysNameTheirPositionKeyExpectedAndFound) {
             "RIG:4:79: rig.buses[0].rate_divider: expected an integer in [1, 100], found '0'");
   EXPECT_EQ(budget_error(rig(kCan + ", retries: 1")),
             "RIG:4:65: rig.buses[0].retries: expected one of: name, type, interface, bitrate, "
-            "protocol, rate_divider, fd, data_bitrate, values, heartbeat_timeout_ms, host_node, "
+            "protocol, rate_divider, fd, data_bitrate, values, heartbeat_timeout_ms, map_pdos, "
+            "host_node, "
             "host_heartbeat_ms, drive_heartbeat_ms, drive_watchdog_ms, sdo_timeout_ms, "
             "enable_timeout_ms, counts_per_rev, counts_per_mm, found unknown key 'retries'");
   const std::string rtu = "type: modbus_rtu, device: /dev/ttyS0, baud: 115200";
