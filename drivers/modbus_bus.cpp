@@ -179,6 +179,12 @@ BusStatus ModbusBus::status() const {
   return s;
 }
 
+std::size_t ModbusBus::boards_answered() const {
+  std::size_t n = 0;
+  for (const auto& b : boards_) n += b->answered.load(std::memory_order_acquire) ? 1 : 0;
+  return n;
+}
+
 bool ModbusBus::command_stale(std::size_t actuator) const {
   return actuator < count_ && boards_[board_of_[actuator]]->stale.load(std::memory_order_acquire);
 }
@@ -257,6 +263,7 @@ bool ModbusBus::transact(Board& board, Request&& request) {
       atomic_max(stats_.max_rtt_ns, rtt);
       board.last_ok_ns = t1;
       board.last_failure = Failure::kNone;
+      board.answered.store(true, std::memory_order_release);
       return true;
     }
     const int err = errno;

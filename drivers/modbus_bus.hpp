@@ -73,6 +73,8 @@ class ModbusBus final : public ActuatorBus {
   // board_timeout_s: the board holds (or has relaxed from) an old command.
   bool command_stale(std::size_t actuator) const;
   std::size_t board_count() const { return boards_.size(); }
+  // Boards that have answered at least one transaction since start-up.
+  std::size_t boards_answered() const;
   ModbusStats stats() const;
 
  private:
@@ -102,6 +104,7 @@ class ModbusBus final : public ActuatorBus {
     // Shared with the tick.
     std::atomic<const char*> reason{nullptr};
     std::atomic<bool> stale{true};
+    std::atomic<bool> answered{false};
   };
 
   void io_loop();

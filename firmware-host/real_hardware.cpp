@@ -16,13 +16,15 @@ void check_modbus_answers(const ModbusBus& bus, const ModbusTiming& timing) {
   const auto limit = std::chrono::steady_clock::now() +
                      std::chrono::duration<double>(2.0 * timing.board_timeout_s + 0.2);
   while (std::chrono::steady_clock::now() < limit) {
-    const BusStatus s = bus.status();
-    if (!s.fault && bus.stats().transactions >= bus.board_count()) return;
+    if (bus.boards_answered() == bus.board_count() && !bus.status().fault) return;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   const BusStatus s = bus.status();
-  throw std::runtime_error(std::string(bus.name()) + ": " +
-                           (s.fault ? s.reason : "the boards do not answer"));
+  // The fault reason names the bus and board already.
+  throw std::runtime_error(s.fault ? std::string(s.reason)
+                                   : std::string(bus.name()) + ": " +
+                                         std::to_string(bus.board_count() - bus.boards_answered()) +
+                                         " of its boards do not answer");
 }
 
 }  // namespace

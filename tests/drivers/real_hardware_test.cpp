@@ -119,6 +119,20 @@ TEST(RealHardware, DevicesThatCannotBeOpenedAreClearErrors) {
     EXPECT_NE(std::string(e.what()).find("board 1"), std::string::npos) << e.what();
   }
 
+  // Board 1 answers, board 2 (unit 2) is not there.
+  {
+    sim::ModbusActuatorBoard board(1, three_channels());
+    auto server = sim::ModbusBoardServer::tcp({&board});
+    testing::ModbusTcpRig two(server->port(), "sim", /*board_2=*/true);
+    const LoadedConfig cfg3 = load_config(two.runtime.path());
+    try {
+      make_real_hardware(cfg3.built.model, cfg3);
+      FAIL();
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("modbus0 board 2"), std::string::npos) << e.what();
+    }
+  }
+
   // The board answers; the GPIO chip does not exist.
   sim::ModbusActuatorBoard board(1, three_channels());
   auto server = sim::ModbusBoardServer::tcp({&board});
