@@ -3,6 +3,7 @@
 #include <string>
 
 #include "drivers/can_bus_options.hpp"
+#include "drivers/modbus_register_map.hpp"
 #include "drivers/modbus_timing.hpp"
 
 namespace facectl {
@@ -16,6 +17,7 @@ struct BusSpec {
   std::string can_protocol = "custom";  // cia402 | custom
   CanBusOptions can;
   ModbusTiming modbus;
+  modbus_map::Addresses modbus_registers;
 };
 
 }  // namespace facectl

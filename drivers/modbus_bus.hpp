@@ -58,7 +58,8 @@ class ModbusBus final : public ActuatorBus {
   // addresses place them on boards (modbus_map::place). `initial_positions`
   // are reported by read() until a board first answers. Starts the I/O thread.
   ModbusBus(std::string name, ModbusEndpoint endpoint, const std::vector<ActuatorModel>& actuators,
-            const std::vector<double>& initial_positions, ModbusTiming timing = {});
+            const std::vector<double>& initial_positions, ModbusTiming timing = {},
+            modbus_map::Addresses registers = {});
   ~ModbusBus() override;
   ModbusBus(const ModbusBus&) = delete;
   ModbusBus& operator=(const ModbusBus&) = delete;
@@ -118,6 +119,7 @@ class ModbusBus final : public ActuatorBus {
   std::string name_;
   ModbusEndpoint endpoint_;
   ModbusTiming timing_;
+  modbus_map::Addresses registers_;
   std::size_t count_ = 0;
   std::vector<modbus_map::Unit> units_;  // per actuator
   std::vector<std::size_t> board_of_;    // per actuator

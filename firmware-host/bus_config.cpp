@@ -107,6 +107,19 @@ void parse_modbus(const ConfigNode& node, BusConfig& bus) {
     t.reconnect_interval_s = n->number_in(1.0, 10'000.0) * 1e-3;
   if (auto n = node.get("watchdog_ms"))
     t.board_watchdog_ms = static_cast<int>(n->integer_in(1, 65535));
+  modbus_map::Addresses& r = bus.modbus_registers;
+  if (auto n = node.get("enable_register")) r.control = static_cast<int>(n->integer_in(0, 65525));
+  if (auto n = node.get("status_register")) r.status = static_cast<int>(n->integer_in(0, 65523));
+  r.watchdog = r.control + modbus_map::kHrWatchdogMs;  // the board's layout, unless told
+  if (auto n = node.get("watchdog_register")) {
+    r.watchdog = static_cast<int>(n->integer_in(0, 65535));
+    // CONTROL, HEARTBEAT and up to 8 targets are written as one block.
+    if (r.watchdog >= r.control && r.watchdog < r.control + 2 + modbus_map::kChannelsPerBoard) {
+      n->fail("a register outside the enable block [" + std::to_string(r.control) + ", " +
+              std::to_string(r.control + 2 + modbus_map::kChannelsPerBoard) +
+              ") (CONTROL, HEARTBEAT, 8 targets)");
+    }
+  }
   // One silent board costs (retries + 1) response timeouts per cycle: the
   // fault must not fire before a single cycle has had its chance.
   const double worst_ms = (t.max_retries + 1) * t.response_timeout_s * 1e3;
@@ -132,9 +145,17 @@ BusConfig parse_bus_config(const ConfigNode& node) {
                       "sdo_timeout_ms", "enable_timeout_ms", "counts_per_rev", "counts_per_mm"});
     parse_can(node, bus);
   } else if (bus.type == "modbus_rtu" || bus.type == "modbus_tcp") {
-    std::vector<std::string> keys = {"name",         "type",           "response_timeout_ms",
-                                     "retries",      "fault_after_ms", "cycle_ms",
-                                     "reconnect_ms", "watchdog_ms"};
+    std::vector<std::string> keys = {"name",
+                                     "type",
+                                     "response_timeout_ms",
+                                     "retries",
+                                     "fault_after_ms",
+                                     "cycle_ms",
+                                     "reconnect_ms",
+                                     "watchdog_ms",
+                                     "enable_register",
+                                     "watchdog_register",
+                                     "status_register"};
     if (bus.type == "modbus_rtu") {
       keys.insert(keys.end(), {"device", "baud", "byte_timeout_ms"});
     } else {

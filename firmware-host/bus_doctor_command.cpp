@@ -24,7 +24,7 @@ DoctorReport diagnose(const BusConfig& bus, const std::vector<ActuatorModel>& ac
   if (bus.is_modbus()) {
     DoctorReport r =
         diagnose_modbus(bus.name, ModbusEndpoint::parse(bus.type, bus.endpoint, bus.bitrate),
-                        actuators, bus.modbus, options.samples);
+                        actuators, bus.modbus, options.samples, bus.modbus_registers);
     if (bus.type == "modbus_rtu") {
       r.findings.insert(
           r.findings.begin(),

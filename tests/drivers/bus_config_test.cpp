@@ -94,7 +94,14 @@ TEST(BusConfig, ModbusKeysReachTheTiming) {
   EXPECT_DOUBLE_EQ(b.modbus.board_timeout_s, 0.08);
   EXPECT_DOUBLE_EQ(b.modbus.cycle_period_s, 0.005);
   EXPECT_EQ(b.modbus.board_watchdog_ms, 250);
-  TempFile g(rig("type: modbus_tcp, host: 10.0.0.7:1502"));
+  EXPECT_EQ(b.modbus_registers.control, 0);
+  EXPECT_EQ(b.modbus_registers.watchdog, 10);
+  EXPECT_EQ(b.modbus_registers.status, 0);
+  TempFile g(
+      rig("type: modbus_tcp, host: 10.0.0.7:1502, enable_register: 40, "
+          "watchdog_register: 7, status_register: 300"));
+  EXPECT_EQ(load_rig_config(g.path(), head().layout).buses.at(0).modbus_registers.watchdog, 7);
+  EXPECT_EQ(load_rig_config(g.path(), head().layout).buses.at(0).modbus_registers.status, 300);
   EXPECT_EQ(load_rig_config(g.path(), head().layout).buses.at(0).endpoint, "10.0.0.7:1502");
 }
 
@@ -121,6 +128,9 @@ TEST(BusConfig, BadBusKeysNameTheirPositionKeyExpectedAndFound) {
   EXPECT_EQ(budget_error(rig(rtu + ", response_timeout_ms: 500")),
             "RIG:4:92: rig.buses[0].response_timeout_ms: expected a number in [1, 250], found "
             "'500'");
+  EXPECT_EQ(budget_error(rig(rtu + ", enable_register: 20, watchdog_register: 25")),
+            "RIG:4:111: rig.buses[0].watchdog_register: expected a register outside the enable "
+            "block [20, 30) (CONTROL, HEARTBEAT, 8 targets), found '25'");
   EXPECT_EQ(budget_error(rig(rtu + ", retries: 9")),
             "RIG:4:80: rig.buses[0].retries: expected an integer in [0, 5], found '9'");
   EXPECT_EQ(budget_error(rig(rtu + ", response_timeout_ms: 40, retries: 2, fault_after_ms: 100")),

@@ -12,15 +12,17 @@ namespace facectl::testing {
 // safety_io block on `chip`. For driving a simulated board server through the
 // real configuration path.
 struct ModbusTcpRig {
-  explicit ModbusTcpRig(int port, const std::string& chip = "sim", bool board_2 = false)
-      : rig(rig_text(port, board_2)), runtime(runtime_text(rig.path(), chip)) {}
+  // `bus_keys` are added to the bus entry (", key: value, ...").
+  explicit ModbusTcpRig(int port, const std::string& chip = "sim", bool board_2 = false,
+                        const std::string& bus_keys = "")
+      : rig(rig_text(port, board_2, bus_keys)), runtime(runtime_text(rig.path(), chip)) {}
 
-  static std::string rig_text(int port, bool board_2) {
+  static std::string rig_text(int port, bool board_2, const std::string& bus_keys) {
     std::string s =
         "rig:\n  name: tcp\n  buses:\n    - { name: modbus0, type: modbus_tcp, host: "
         "127.0.0.1:" +
-        std::to_string(port) +
-        ", response_timeout_ms: 20, retries: 1, fault_after_ms: 100 }\n  actuators:\n";
+        std::to_string(port) + ", response_timeout_ms: 20, retries: 1, fault_after_ms: 100" +
+        bus_keys + " }\n  actuators:\n";
     const char* names[] = {"jaw_pitch", "jaw_yaw", "jaw_protrusion"};
     const char* signals[] = {"jaw_pitch_deg", "jaw_yaw_deg", "jaw_protrusion_mm"};
     for (int i = 0; i < 3; ++i) {

@@ -102,6 +102,43 @@ TEST(RealHardware, AModbusTcpRigRunsThroughTheConfigAndTheGpioEstopStopsIt) {
   EXPECT_FALSE(chip->physical(4)) << "power dropped in ESTOP";
 }
 
+TEST(RealHardware, BoardsWhoseRegistersStartElsewhereAreDrivenAtTheConfiguredAddresses) {
+  sim::ModbusActuatorBoard board(1, three_channels());
+  auto server = sim::ModbusBoardServer::tcp({&board}, {100, 110, 200});
+  testing::ModbusTcpRig files(server->port(), "sim", false,
+                              ", enable_register: 100, status_register: 200");
+  const LoadedConfig cfg = load_config(files.runtime.path());
+  EXPECT_EQ(cfg.rig.buses[0].modbus_registers.watchdog, 110);
+  SimGpioChip* chip = nullptr;
+  auto hw = make_real_hardware(cfg.built.model, cfg, sim_gpio(chip));
+  hw->seams[0]->set_enabled(true);
+  const std::vector<double> target{0.05, 0.0, 0.001};
+  std::vector<double> measured(3);
+  for (int k = 0; k < 2000 && std::abs(board.position(0) - 0.05) > 0.002; ++k) {
+    const TickTime t{monotonic_ns(), 0.001};
+    hw->seams[0]->read(t, measured);
+    hw->seams[0]->write(t, target);
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_NEAR(board.position(0), 0.05, 0.002);
+  EXPECT_TRUE(board.enabled());
+  EXPECT_FALSE(hw->seams[0]->status().fault) << hw->seams[0]->status().reason;
+  hw->seams[0]->set_enabled(false);
+
+  // The same rig against a board at the default addresses: refused by the board.
+  sim::ModbusActuatorBoard plain(1, three_channels());
+  auto plain_server = sim::ModbusBoardServer::tcp({&plain});
+  testing::ModbusTcpRig wrong(plain_server->port(), "sim", false,
+                              ", enable_register: 100, status_register: 200");
+  const LoadedConfig cfg2 = load_config(wrong.runtime.path());
+  try {
+    make_real_hardware(cfg2.built.model, cfg2, sim_gpio(chip));
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("modbus0 board 1"), std::string::npos) << e.what();
+  }
+}
+
 TEST(RealHardware, DevicesThatCannotBeOpenedAreClearErrors) {
   // Nothing listens on the port: the board never answers.
   int port = 0;
