@@ -77,7 +77,8 @@ std::optional<int> usb_serial_latency_timer_ms(const std::string& device,
 
 DoctorReport diagnose_modbus(const std::string& bus, const ModbusEndpoint& ep,
                              const std::vector<ActuatorModel>& actuators,
-                             const ModbusTiming& timing, int samples) {
+                             const ModbusTiming& timing, int samples,
+                             const modbus_map::Addresses& registers) {
   DoctorReport r;
   r.bus = bus + (ep.tcp ? " (Modbus TCP " + ep.host + ":" + std::to_string(ep.port) + ")"
                         : " (Modbus RTU " + ep.device + " " + std::to_string(ep.baud) + " baud)");
@@ -128,7 +129,8 @@ DoctorReport diagnose_modbus(const std::string& bus, const ModbusEndpoint& ep,
     std::uint16_t in[modbus_map::kInputCount] = {};
     for (int i = 0; i < samples; ++i) {
       const std::int64_t t0 = monotonic_ns();
-      if (modbus_read_input_registers(ctx, 0, modbus_map::kIrPosition0 + used, in) > 0) {
+      if (modbus_read_input_registers(ctx, registers.status, modbus_map::kIrPosition0 + used, in) >
+          0) {
         rtt.ms.push_back(static_cast<double>(monotonic_ns() - t0) * 1e-6);
       } else {
         ++failures;

@@ -38,7 +38,8 @@ std::optional<int> usb_serial_latency_timer_ms(const std::string& device,
 // configured period).
 DoctorReport diagnose_modbus(const std::string& bus, const ModbusEndpoint& endpoint,
                              const std::vector<ActuatorModel>& actuators,
-                             const ModbusTiming& timing, int samples = 20);
+                             const ModbusTiming& timing, int samples = 20,
+                             const modbus_map::Addresses& registers = {});
 
 // CAN: the bus load at the tick rate, then `listen_s` of listening for the
 // devices: CiA 402 drives are asked for their device type (an SDO upload,

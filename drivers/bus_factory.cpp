@@ -14,7 +14,7 @@ RealBus make_bus(const BusSpec& spec, const std::vector<ActuatorModel>& actuator
   if (spec.type == "modbus_rtu" || spec.type == "modbus_tcp") {
     out.bus = std::make_unique<ModbusBus>(
         spec.name, ModbusEndpoint::parse(spec.type, spec.endpoint, spec.bitrate), actuators,
-        initial, spec.modbus);
+        initial, spec.modbus, spec.modbus_registers);
     return out;
   }
   if (spec.type != "can") {

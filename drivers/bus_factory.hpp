@@ -6,22 +6,11 @@
 
 #include "control/actuator_bus.hpp"
 #include "control/controller_model.hpp"
-#include "drivers/can_bus_options.hpp"
+#include "drivers/bus_spec.hpp"
 #include "drivers/can_transport.hpp"
 #include "drivers/modbus_bus.hpp"
 
 namespace facectl {
-
-// What a rig's `buses[]` entry says about a real bus.
-struct BusSpec {
-  std::string name;
-  std::string type;                     // can | modbus_rtu | modbus_tcp
-  std::string endpoint;                 // CAN interface, serial device, or host[:port]
-  long bitrate = 0;                     // CAN bitrate or serial baud
-  std::string can_protocol = "custom";  // cia402 | custom
-  CanBusOptions can;
-  ModbusTiming modbus;
-};
 
 // A real bus and what it owns. The bus is declared last so that it goes
 // before the transport it talks through.

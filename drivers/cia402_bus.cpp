@@ -59,6 +59,11 @@ Cia402Bus::Cia402Bus(std::string name, CanTransport& transport,
          4},
         {0x6007, 0, 1, 2},  // abort connection option: go to fault
     };
+    // First the PDO mapping the cycle relies on, unless the drives keep it.
+    if (options_.map_pdos) {
+      const auto mapping = cia402::pdo_mapping_sdos(d->node);
+      d->sdos.insert(d->sdos.begin(), mapping.begin(), mapping.end());
+    }
     const std::string who = name_ + " drive " + std::to_string(d->node);
     d->lost = who + ": heartbeat lost";
     d->emergency = who + ": emergency (EMCY)";
@@ -248,12 +253,7 @@ BusStatus Cia402Bus::status() const {
 }
 
 CanBusBudget Cia402Bus::budget(double tick_hz, long bitrate) const {
-  const double bus_hz = tick_hz / options_.cycle_divider;
-  const double n = static_cast<double>(drives_.size());
-  const double heartbeats_per_s =
-      n * 1000.0 / options_.drive_heartbeat_ms + 1000.0 / options_.host_heartbeat_ms;
-  const double frames = 1.0 + 2.0 * n + heartbeats_per_s / bus_hz;
-  return CanBusBudget::compute(static_cast<int>(std::ceil(frames)), bus_hz, bitrate);
+  return cia402_budget(drives_.size(), options_, tick_hz, bitrate);
 }
 
 cia402::DriveState Cia402Bus::drive_state(std::size_t actuator) const {

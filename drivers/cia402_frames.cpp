@@ -141,4 +141,22 @@ std::optional<SdoReply> decode_sdo_reply(const CanFrame& f) {
   return r;
 }
 
+std::vector<SdoWrite> pdo_mapping_sdos(int node) {
+  const auto n = static_cast<std::uint32_t>(node);
+  std::vector<SdoWrite> out;
+  const auto map = [&](std::uint16_t comm, std::uint16_t mapping, std::uint32_t cob,
+                       std::uint32_t first, std::uint32_t second) {
+    out.push_back({comm, 1, kPdoInvalid | (cob + n), 4});
+    out.push_back({mapping, 0, 0, 1});
+    out.push_back({mapping, 1, first, 4});
+    out.push_back({mapping, 2, second, 4});
+    out.push_back({mapping, 0, 2, 1});
+    out.push_back({comm, 2, 1, 1});  // synchronous, every SYNC
+    out.push_back({comm, 1, cob + n, 4});
+  };
+  map(0x1400, 0x1600, kRpdo1Base, kMapControlword, kMapTargetPosition);
+  map(0x1800, 0x1A00, kTpdo1Base, kMapStatusword, kMapPositionActual);
+  return out;
+}
+
 }  // namespace facectl::cia402

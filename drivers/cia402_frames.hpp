@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "drivers/can_frame.hpp"
 
@@ -105,5 +106,18 @@ struct SdoWrite {
   std::uint32_t value = 0;
   int size = 4;
 };
+
+// Mapping entries (CiA 301: index << 16 | subindex << 8 | bits).
+inline constexpr std::uint32_t kMapControlword = 0x60400010;
+inline constexpr std::uint32_t kMapTargetPosition = 0x607A0020;
+inline constexpr std::uint32_t kMapStatusword = 0x60410010;
+inline constexpr std::uint32_t kMapPositionActual = 0x60640020;
+inline constexpr std::uint32_t kPdoInvalid = 0x80000000;  // COB-ID bit 31: PDO disabled
+
+// The SDO writes that map RPDO1 (controlword, target position) and TPDO1
+// (statusword, position actual), both synchronous on every SYNC, by the CiA
+// 301 procedure: invalidate the PDO, clear its mapping count, write the
+// entries, set the count, set the transmission type, validate the PDO.
+std::vector<SdoWrite> pdo_mapping_sdos(int node);
 
 }  // namespace facectl::cia402

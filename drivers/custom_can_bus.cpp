@@ -32,6 +32,7 @@ CustomCanBus::CustomCanBus(std::string name, CanTransport& transport,
                                   std::to_string(63 * per_frame));
     }
     const auto ch = static_cast<std::size_t>((a.address - 1) % per_frame);
+    addresses_.push_back(a.address);
     units_.push_back(a.kind == ActuatorKind::kRotary ? modbus_map::Unit::kRotary
                                                      : modbus_map::Unit::kLinear);
     Board* board = nullptr;
@@ -167,8 +168,7 @@ BusStatus CustomCanBus::status() const {
 }
 
 CanBusBudget CustomCanBus::budget(double tick_hz, long bitrate) const {
-  return CanBusBudget::compute(static_cast<int>(2 * boards_.size()),
-                               tick_hz / options_.cycle_divider, bitrate);
+  return custom_can_budget(addresses_, options_, tick_hz, bitrate);
 }
 
 }  // namespace facectl

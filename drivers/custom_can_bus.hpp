@@ -61,6 +61,7 @@ class CustomCanBus final : public ActuatorBus {
   std::vector<std::unique_ptr<Board>> boards_;
   std::vector<modbus_map::Unit> units_;
   std::vector<double> positions_;
+  std::vector<int> addresses_;  // for the budget
   CanBusHealth health_;
   bool enabled_ = false;
   bool watching_ = false;  // enabled at least once since the boards were last heard

@@ -75,10 +75,12 @@ ModbusEndpoint ModbusEndpoint::parse(const std::string& type, const std::string&
 
 ModbusBus::ModbusBus(std::string name, ModbusEndpoint endpoint,
                      const std::vector<ActuatorModel>& actuators,
-                     const std::vector<double>& initial_positions, ModbusTiming timing)
+                     const std::vector<double>& initial_positions, ModbusTiming timing,
+                     modbus_map::Addresses registers)
     : name_(std::move(name)),
       endpoint_(std::move(endpoint)),
       timing_(timing),
+      registers_(registers),
       count_(actuators.size()) {
   if (count_ > kMaxActuators) {
     throw std::invalid_argument("bus " + name_ + ": " + std::to_string(count_) +
@@ -179,6 +181,12 @@ BusStatus ModbusBus::status() const {
   return s;
 }
 
+std::size_t ModbusBus::boards_answered() const {
+  std::size_t n = 0;
+  for (const auto& b : boards_) n += b->answered.load(std::memory_order_acquire) ? 1 : 0;
+  return n;
+}
+
 bool ModbusBus::command_stale(std::size_t actuator) const {
   return actuator < count_ && boards_[board_of_[actuator]]->stale.load(std::memory_order_acquire);
 }
@@ -229,7 +237,7 @@ bool ModbusBus::connect(std::int64_t now_ns) {
   // timeout, so a dead host stops the head even if this thread dies too.
   for (auto& b : boards_) {
     const auto wd = static_cast<std::uint16_t>(timing_.board_watchdog_ms);
-    transact(*b, [&] { return modbus_write_register(ctx_, modbus_map::kHrWatchdogMs, wd); });
+    transact(*b, [&] { return modbus_write_register(ctx_, registers_.watchdog, wd); });
     if (ctx_ == nullptr) return false;
   }
   return true;
@@ -257,6 +265,7 @@ bool ModbusBus::transact(Board& board, Request&& request) {
       atomic_max(stats_.max_rtt_ns, rtt);
       board.last_ok_ns = t1;
       board.last_failure = Failure::kNone;
+      board.answered.store(true, std::memory_order_release);
       return true;
     }
     const int err = errno;
@@ -310,7 +319,7 @@ void ModbusBus::serve_board(Board& board, bool enabled, std::int64_t now_ns) {
             a == SIZE_MAX ? 0 : modbus_map::to_register(units_[a], current_.positions[a]);
       }
       if (transact(board, [&] {
-            return modbus_write_registers(ctx_, modbus_map::kHrControl, 2 + board.channels,
+            return modbus_write_registers(ctx_, registers_.control, 2 + board.channels,
                                           regs.data());
           })) {
         board.acked_sequence = current_.sequence;
@@ -323,17 +332,16 @@ void ModbusBus::serve_board(Board& board, bool enabled, std::int64_t now_ns) {
     // No target is sent while the controller is not enabled.
     if (!board.disable_confirmed || now_ns - board.last_disable_ns > 100'000'000) {
       const std::uint16_t zero = 0;
-      if (transact(board, [&] {
-            return modbus_write_registers(ctx_, modbus_map::kHrControl, 1, &zero);
-          })) {
+      if (transact(board,
+                   [&] { return modbus_write_registers(ctx_, registers_.control, 1, &zero); })) {
         board.disable_confirmed = true;
         board.last_disable_ns = now_ns;
       }
     }
   }
   const bool answered = transact(board, [&] {
-    return modbus_read_input_registers(ctx_, 0, modbus_map::kIrPosition0 + board.channels,
-                                       in.data());
+    return modbus_read_input_registers(ctx_, registers_.status,
+                                       modbus_map::kIrPosition0 + board.channels, in.data());
   });
   if (answered) {
     for (int ch = 0; ch < board.channels; ++ch) {
@@ -422,7 +430,7 @@ void ModbusBus::io_loop() {
     const std::uint16_t zero = 0;
     for (auto& b : boards_) {
       modbus_set_slave(ctx_, b->unit);
-      modbus_write_registers(ctx_, modbus_map::kHrControl, 1, &zero);
+      modbus_write_registers(ctx_, registers_.control, 1, &zero);
     }
   }
 }

@@ -14,6 +14,7 @@
 #include "control/controller_model.hpp"
 #include "control/latest_value_mailbox.hpp"
 #include "drivers/modbus_register_map.hpp"
+#include "drivers/modbus_timing.hpp"
 
 namespace facectl {
 
@@ -28,19 +29,6 @@ struct ModbusEndpoint {
   // "host[:port]" for modbus_tcp, a device path for modbus_rtu. Throws
   // std::invalid_argument naming the bad part.
   static ModbusEndpoint parse(const std::string& type, const std::string& endpoint, long baud);
-};
-
-// Timing of the I/O thread. Every value is explicit: libmodbus's own default
-// response timeout (500 ms) would hide a dead board for half a second per
-// transaction (stephane/libmodbus#776).
-struct ModbusTiming {
-  double response_timeout_s = 0.020;  // per transaction attempt
-  double byte_timeout_s = 0.005;      // between bytes of one reply (RTU)
-  int max_retries = 1;                // extra attempts per transaction per cycle
-  double board_timeout_s = 0.100;     // no good reply for this long: FAULT, commands stale
-  double cycle_period_s = 0.001;      // I/O cycle; 0 runs back to back (benchmarks)
-  double reconnect_interval_s = 0.050;
-  int board_watchdog_ms = 100;  // written to each board's watchdog register on connect
 };
 
 // Counters of the I/O thread, readable from any thread.
@@ -70,7 +58,8 @@ class ModbusBus final : public ActuatorBus {
   // addresses place them on boards (modbus_map::place). `initial_positions`
   // are reported by read() until a board first answers. Starts the I/O thread.
   ModbusBus(std::string name, ModbusEndpoint endpoint, const std::vector<ActuatorModel>& actuators,
-            const std::vector<double>& initial_positions, ModbusTiming timing = {});
+            const std::vector<double>& initial_positions, ModbusTiming timing = {},
+            modbus_map::Addresses registers = {});
   ~ModbusBus() override;
   ModbusBus(const ModbusBus&) = delete;
   ModbusBus& operator=(const ModbusBus&) = delete;
@@ -85,6 +74,8 @@ class ModbusBus final : public ActuatorBus {
   // board_timeout_s: the board holds (or has relaxed from) an old command.
   bool command_stale(std::size_t actuator) const;
   std::size_t board_count() const { return boards_.size(); }
+  // Boards that have answered at least one transaction since start-up.
+  std::size_t boards_answered() const;
   ModbusStats stats() const;
 
  private:
@@ -114,6 +105,7 @@ class ModbusBus final : public ActuatorBus {
     // Shared with the tick.
     std::atomic<const char*> reason{nullptr};
     std::atomic<bool> stale{true};
+    std::atomic<bool> answered{false};
   };
 
   void io_loop();
@@ -127,6 +119,7 @@ class ModbusBus final : public ActuatorBus {
   std::string name_;
   ModbusEndpoint endpoint_;
   ModbusTiming timing_;
+  modbus_map::Addresses registers_;
   std::size_t count_ = 0;
   std::vector<modbus_map::Unit> units_;  // per actuator
   std::vector<std::size_t> board_of_;    // per actuator

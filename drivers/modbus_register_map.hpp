@@ -41,6 +41,16 @@ enum class FaultCode : std::uint16_t {
   kPositionError = 3,    // following error beyond the board's limit
 };
 
+// Where a board's blocks sit, for boards whose register map starts elsewhere
+// (rig keys enable_register, watchdog_register, status_register). The
+// CONTROL, HEARTBEAT, TARGET block is contiguous from `control` (one write
+// per cycle needs that); STATUS .. POSITION is contiguous from `status`.
+struct Addresses {
+  int control = kHrControl;
+  int watchdog = kHrWatchdogMs;
+  int status = kIrStatus;
+};
+
 enum class Unit { kRotary, kLinear };
 
 // Scaling of target and position registers: 0.01 degree (rotary) or 0.01 mm

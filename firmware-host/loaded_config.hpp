@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "firmware-host/bus_budget_check.hpp"
 #include "firmware-host/expression_library.hpp"
 #include "firmware-host/head_config.hpp"
 #include "firmware-host/model_builder.hpp"
@@ -21,6 +22,7 @@ struct LoadedConfig {
   ExpressionLibrary expressions;
   std::optional<Show> show;
   BuiltModel built;
+  std::vector<BusBudgetResult> budgets;  // per bus, at the loop rate
 };
 
 struct ConfigOverrides {
@@ -28,6 +30,7 @@ struct ConfigOverrides {
   std::optional<double> rate_hz;
   std::optional<std::string> rig_path;  // instead of the runtime file's rig
   bool keep_problems = false;           // verify reports BuiltModel::problems instead of throwing
+  std::optional<HardwareMode> hardware;
 };
 
 // The shipped default: config/facectl.yaml of the source tree, or $FACECTL_CONFIG.

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "firmware-host/bench_command.hpp"
+#include "firmware-host/bus_doctor_command.hpp"
 #include "firmware-host/face_cli.hpp"
 #include "firmware-host/plot_command.hpp"
 #include "firmware-host/run_command.hpp"
@@ -17,13 +18,20 @@ int run_cli(int argc, char** argv) {
 
   facectl::RunOptions run;
   CLI::App* run_cmd = app.add_subcommand(
-      "run", "Drive the head (simulated hardware) from a show, with the real-time loop");
+      "run", "Drive the head from a show, with the real-time loop (simulated hardware by default)");
   run_cmd->add_option("--config", run.config,
                       "Runtime config (default: the shipped config/facectl.yaml)");
   run_cmd->add_option("--show", run.show, "Show file to play (overrides the config's show)");
   run_cmd->add_option("--duration", run.duration_s, "Run this many seconds, looping the show");
   run_cmd->add_option("--rate", run.rate_hz, "Loop rate in Hz (default from config: 1000)");
   run_cmd->add_option("--record", run.record, "Write per-tick telemetry CSV to this file");
+  run_cmd->add_option("--hardware", run.hardware,
+                      "sim or real: the simulated twins or the rig's buses and GPIO (default "
+                      "from config: sim)");
+  run_cmd->add_flag("--gamepad", run.gamepad,
+                    "Puppeteer the face from the runtime config's gamepad instead of a show");
+  run_cmd->add_option("--record-show", run.record_show,
+                      "With --gamepad: write what was performed as a show file");
   run_cmd->add_option(
       "--inject", run.inject,
       "Rehearse a fault: estop@S, bus_fault:BUS@S, input_loss@S, overrun_storm:MS@S");
@@ -63,6 +71,20 @@ int run_cli(int argc, char** argv) {
   verify_cmd->add_option("--ticks", verify.ticks, "Adversarial search length (default 1000000)");
   verify_cmd->add_option("--seed", verify.seed, "Adversarial search seed (default 1)");
   verify_cmd->callback([&] { exit_code = facectl::verify_command(verify); });
+
+  facectl::BusDoctorOptions doctor;
+  CLI::App* bus_cmd = app.add_subcommand("bus", "Bus tools");
+  bus_cmd->require_subcommand(1);
+  CLI::App* doctor_cmd = bus_cmd->add_subcommand(
+      "doctor",
+      "Check each bus of a rig: reachable, devices answering, round trips, bad defaults, load "
+      "(reads only; exit 0 ok, 1 problems, 2 unusable input)");
+  doctor_cmd->add_option("rig", doctor.rig, "Rig file (default: the runtime config's rig)");
+  doctor_cmd->add_option("--config", doctor.config, "Runtime config (head, loop rate)");
+  doctor_cmd->add_option("--bus", doctor.bus, "Only this bus");
+  doctor_cmd->add_option("--samples", doctor.samples, "Modbus reads per board (default 20)");
+  doctor_cmd->add_option("--listen", doctor.listen_s, "Seconds to listen on CAN (default 0.5)");
+  doctor_cmd->callback([&] { exit_code = facectl::bus_doctor_command(doctor); });
 
   register_face_commands(app);
 

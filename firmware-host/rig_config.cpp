@@ -18,30 +18,6 @@ Units units_of(ActuatorKind kind) {
   return kind == ActuatorKind::kRotary ? Units{"deg", kDeg} : Units{"mm", 1e-3};
 }
 
-BusConfig parse_bus(const ConfigNode& node) {
-  node.expect_keys({"name", "type", "interface", "device", "host", "bitrate", "baud"});
-  BusConfig bus;
-  bus.where = node.where();
-  bus.name = node["name"].string();
-  bus.type = node["type"].string();
-  if (bus.type == "can") {
-    bus.endpoint = node["interface"].string();
-    bus.bitrate = node["bitrate"].integer();
-    if (bus.bitrate <= 0 || bus.bitrate > 1'000'000) {
-      node["bitrate"].fail("a CAN bitrate in (0, 1000000] bit/s");
-    }
-  } else if (bus.type == "modbus_rtu") {
-    bus.endpoint = node["device"].string();
-    bus.bitrate = node["baud"].integer();
-    if (bus.bitrate <= 0) node["baud"].fail("a baud rate > 0");
-  } else if (bus.type == "modbus_tcp") {
-    bus.endpoint = node["host"].string();
-  } else {
-    node["type"].fail("one of: can, modbus_rtu, modbus_tcp");
-  }
-  return bus;
-}
-
 Range parse_limit_range(const ConfigNode& node, double to_si) {
   node.expect_keys({"min", "max"});
   const double lo = node["min"].number();
@@ -205,7 +181,7 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
   cfg.name = rig["name"].string();
   std::set<std::string> bus_names;
   for (const ConfigNode& b : rig["buses"].items()) {
-    BusConfig bus = parse_bus(b);
+    BusConfig bus = parse_bus_config(b);
     if (!bus_names.insert(bus.name).second) b["name"].fail("a unique bus name");
     cfg.buses.push_back(std::move(bus));
   }

@@ -7,20 +7,13 @@
 
 #include "control/controller_model.hpp"
 #include "control/coupled_constraints.hpp"
+#include "firmware-host/bus_config.hpp"
 #include "firmware-host/config_node.hpp"
 #include "firmware-host/head_config.hpp"
 #include "firmware-host/rig_mapping_config.hpp"
 #include "sim/plant/servo_plant.hpp"
 
 namespace facectl {
-
-struct BusConfig {
-  std::string name;
-  std::string type;      // can | modbus_rtu | modbus_tcp
-  std::string endpoint;  // interface, device or host:port
-  long bitrate = 0;      // CAN bitrate or serial baud (0 for TCP)
-  std::string where;
-};
 
 struct ActuatorConfig {
   ActuatorModel model;

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -11,8 +12,11 @@
 
 #include "control/controller.hpp"
 #include "control/loop_timer.hpp"
+#include "drivers/hid_gamepad.hpp"
 #include "firmware-host/fault_injection.hpp"
+#include "firmware-host/gamepad_puppeteer.hpp"
 #include "firmware-host/loaded_config.hpp"
+#include "firmware-host/real_hardware.hpp"
 #include "firmware-host/realtime_loop.hpp"
 #include "firmware-host/realtime_thread.hpp"
 #include "firmware-host/run_summary.hpp"
@@ -46,6 +50,17 @@ int run_command(const RunOptions& options) {
   ConfigOverrides overrides;
   overrides.show_path = options.show;
   overrides.rate_hz = options.rate_hz;
+  if (options.hardware) {
+    if (*options.hardware == "sim") {
+      overrides.hardware = HardwareMode::kSim;
+    } else if (*options.hardware == "real") {
+      overrides.hardware = HardwareMode::kReal;
+    } else {
+      std::fprintf(stderr, "facectl run: --hardware: expected sim or real, found '%s'\n",
+                   options.hardware->c_str());
+      return 2;
+    }
+  }
   std::vector<Injection> injections;
   std::unique_ptr<LoadedConfig> cfg;
   try {
@@ -61,6 +76,18 @@ int run_command(const RunOptions& options) {
                           cfg->rig.name + "', found no such bus");
       }
     }
+    if (cfg->runtime.hardware == HardwareMode::kReal && !injections.empty()) {
+      throw ConfigError(
+          "--inject: expected simulated hardware (fault rehearsal), found "
+          "hardware: real");
+    }
+    if (options.gamepad && !cfg->runtime.gamepad) {
+      throw ConfigError("--gamepad: expected a gamepad block in " + cfg->runtime.file +
+                        ", found none");
+    }
+    if (options.record_show && !options.gamepad) {
+      throw ConfigError("--record-show: expected --gamepad (it records the puppeteering)");
+    }
     if (options.duration_s && !(*options.duration_s > 0.0)) {
       throw ConfigError("--duration: expected a number of seconds > 0");
     }
@@ -75,8 +102,22 @@ int run_command(const RunOptions& options) {
   RealtimeReport rt;
   keep_off_realtime_cpu(cfg->runtime.realtime, rt);
 
-  // 2. Hardware (simulated twins), channels and the controller.
-  auto hw = make_sim_hardware(model, cfg->rig);
+  // 2. Hardware (simulated twins, or the real buses and GPIO), channels and the controller.
+  std::unique_ptr<SimHardware> sim;
+  std::unique_ptr<RealHardware> real;
+  if (cfg->runtime.hardware == HardwareMode::kReal) {
+    try {
+      real = make_real_hardware(model, *cfg);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "facectl run: real hardware: %s\n", e.what());
+      return 2;
+    }
+    for (const auto& note : real->notes) std::fprintf(stderr, "%s\n", note.c_str());
+  } else {
+    sim = make_sim_hardware(model, cfg->rig);
+  }
+  const std::vector<ActuatorBus*>& seams = real ? real->seams : sim->seams;
+  SafetyIo& io = real ? real->io() : static_cast<SafetyIo&>(sim->io);
   LatestValueMailbox<FaceCommand> mailbox;
   SpscRing<TransitionEvent> events(256);
   std::unique_ptr<SpscRing<TelemetryRecord>> telemetry;
@@ -90,16 +131,37 @@ int run_command(const RunOptions& options) {
     std::fprintf(stderr, "facectl run: %s\n", e.what());
     return 2;
   }
-  Controller controller(model, hw->seams, hw->io, {&mailbox, telemetry.get(), &events});
+  Controller controller(model, seams, io, {&mailbox, telemetry.get(), &events});
 
-  // 3. Input: the show, looping when a duration is given.
+  // 3. Input: the gamepad (puppeteering), or the show, looping when a duration is given.
   std::unique_ptr<ShowPlayer> player;
-  if (cfg->show) {
+  std::unique_ptr<HidGamepad> pad;
+  std::unique_ptr<ShowRecorder> recorder;
+  std::unique_ptr<GamepadPuppeteer> puppeteer;
+  if (options.gamepad) {
+    const GamepadConfig& g = *cfg->runtime.gamepad;
+    try {
+      pad = std::make_unique<HidGamepad>(g.selector, g.layout);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "facectl run: gamepad: %s\n", e.what());
+      return 2;
+    }
+    if (options.record_show) recorder = std::make_unique<ShowRecorder>(model.layout, model.neutral);
+    puppeteer = std::make_unique<GamepadPuppeteer>(
+        [p = pad.get()](GamepadState& s) { return p->latest(s); }, GamepadMapping(g.terms),
+        model.neutral, mailbox, g.rate_hz, recorder.get());
+    std::fprintf(
+        stderr, "facectl run: puppeteering from gamepad %s; Ctrl-C ends the run\n",
+        g.selector.path.empty()
+            ? (std::to_string(g.selector.vendor) + ":" + std::to_string(g.selector.product)).c_str()
+            : g.selector.path.c_str());
+  } else if (cfg->show) {
     player = std::make_unique<ShowPlayer>(*cfg->show, mailbox, cfg->runtime.show_rate_hz,
                                           options.duration_s.has_value());
   }
-  const double end_s =
-      options.duration_s ? *options.duration_s : (cfg->show ? cfg->show->duration() : 1e300);
+  const double end_s = options.duration_s ? *options.duration_s
+                       : (player)         ? cfg->show->duration()
+                                          : 1e300;
 
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
@@ -107,6 +169,7 @@ int run_command(const RunOptions& options) {
   // 4. Start: logger, input, then the real-time loop.
   if (writer) writer->start();
   if (player) player->start();
+  if (puppeteer) puppeteer->start();
   LoopStats stats;
   RealtimeLoop loop(controller, model.rate_hz, stats);
   std::atomic<bool> stop{false};
@@ -137,10 +200,10 @@ int run_command(const RunOptions& options) {
       inj.done = true;
       switch (inj.kind) {
         case Injection::Kind::kEstop:
-          hw->io.press_estop();
+          sim->io.press_estop();
           break;
         case Injection::Kind::kBusFault:
-          hw->find(inj.bus)->inject_fault("injected bus fault");
+          sim->find(inj.bus)->inject_fault("injected bus fault");
           break;
         case Injection::Kind::kInputLoss:
           if (player) player->go_silent();
@@ -171,6 +234,7 @@ int run_command(const RunOptions& options) {
   stop.store(true);
   rt_thread.join();
   if (player) player->stop();
+  if (puppeteer) puppeteer->stop();
   if (writer) writer->finish();
   while (const TransitionEvent* ev = events.front()) {
     print_event(*ev);
@@ -178,9 +242,27 @@ int run_command(const RunOptions& options) {
   }
   if (tty) std::fputs("\r\033[K", stdout);
 
-  RunSummaryInput in{model,        controller,    stats,          rt,
-                     writer.get(), cfg->rig.name, cfg->head.name, events.dropped()};
-  return print_run_summary(in);
+  RunSummaryInput in{model,          controller,    stats,          rt,
+                     writer.get(),   cfg->rig.name, cfg->head.name, events.dropped(),
+                     real != nullptr};
+  int rc = print_run_summary(in);
+  if (recorder) {
+    if (recorder->keyframes() == 0) {
+      std::fprintf(stderr,
+                   "facectl run: --record-show: the gamepad sent nothing; no show written\n");
+      rc = std::max(rc, 1);
+    } else {
+      try {
+        recorder->write(*options.record_show, "recorded");
+        std::printf("  recorded %zu keyframes to %s\n", recorder->keyframes(),
+                    options.record_show->c_str());
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "facectl run: --record-show: %s\n", e.what());
+        rc = std::max(rc, 1);
+      }
+    }
+  }
+  return rc;
 }
 
 }  // namespace facectl

@@ -11,13 +11,17 @@ struct RunOptions {
   std::optional<std::string> show;   // overrides the runtime file's show
   std::optional<double> duration_s;  // run this long (the show loops); else play the show once
   std::optional<double> rate_hz;
-  std::optional<std::string> record;  // telemetry CSV path
-  std::vector<std::string> inject;    // fault rehearsal on simulated hardware
-  bool quiet = false;                 // no status line even on a terminal
+  std::optional<std::string> record;       // telemetry CSV path
+  std::optional<std::string> hardware;     // "sim" or "real": overrides the runtime file
+  bool gamepad = false;                    // puppeteer from the runtime file's gamepad, not a show
+  std::optional<std::string> record_show;  // with gamepad: write what was performed as a show
+  std::vector<std::string> inject;         // fault rehearsal on simulated hardware
+  bool quiet = false;                      // no status line even on a terminal
 };
 
 // Exit codes: 0 success; 1 a check failed (a limit breach or lost telemetry);
-// 2 unusable input; 3 the run ended in FAULT or ESTOP.
+// 2 unusable input, or real hardware that cannot be opened; 3 the run ended in
+// FAULT or ESTOP.
 int run_command(const RunOptions& options);
 
 }  // namespace facectl

@@ -13,8 +13,9 @@ int print_run_summary(const RunSummaryInput& in) {
   const double period = 1.0 / m.rate_hz;
 
   std::printf("facectl run summary\n");
-  std::printf("  head %s, rig %s: %zu actuators on %zu buses (simulated)\n", in.head_name.c_str(),
-              in.rig_name.c_str(), m.actuators.size(), m.buses.size());
+  std::printf("  head %s, rig %s: %zu actuators on %zu buses (%s)\n", in.head_name.c_str(),
+              in.rig_name.c_str(), m.actuators.size(), m.buses.size(),
+              in.real_hardware ? "real hardware" : "simulated");
   std::printf("  real-time: SCHED_FIFO %s, memory locked %s, pinned %s\n",
               in.realtime.fifo ? "yes" : "no", in.realtime.memory_locked ? "yes" : "no",
               in.realtime.pinned ? "yes" : "no");

@@ -18,6 +18,7 @@ struct RunSummaryInput {
   std::string rig_name;
   std::string head_name;
   std::uint64_t events_dropped = 0;  // state transitions the event ring refused
+  bool real_hardware = false;
 };
 
 // Prints the end-of-run summary to stdout and returns the exit code

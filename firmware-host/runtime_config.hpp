@@ -1,9 +1,11 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "control/command_shaper.hpp"
 #include "control/safety_state_machine.hpp"
+#include "firmware-host/hardware_config.hpp"
 
 namespace facectl {
 
@@ -31,6 +33,9 @@ struct RuntimeConfig {
   std::string rig_path;
   std::string expressions_path;
   std::string show_path;
+  HardwareMode hardware = HardwareMode::kSim;  // `hardware:`; `facectl run --hardware` overrides
+  std::optional<SafetyIoConfig> safety_io;     // required by hardware: real
+  std::optional<GamepadConfig> gamepad;        // puppeteering (`facectl run --gamepad`)
 };
 
 RuntimeConfig load_runtime_config(const std::string& path);

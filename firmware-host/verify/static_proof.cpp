@@ -345,6 +345,14 @@ StaticProof prove(const LoadedConfig& cfg) {
                        : "the mapping never asks beyond it",
          excess > 1e-9 ? describe_face(m, tidy(m, set, obj, worst->at)) : ""});
   }
+  // Bus schedules against their frame budgets (the drivers' budget model).
+  for (const BusBudgetResult& b : cfg.budgets) {
+    using V = BusBudgetResult::Verdict;
+    const Severity sev = b.verdict == V::kRefused   ? Severity::kFail
+                         : b.verdict == V::kWarning ? Severity::kWarn
+                                                    : Severity::kInfo;
+    out.findings.push_back({sev, "bus budget", b.bus, b.text, ""});
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -8,9 +8,48 @@ namespace facectl::sim {
 using namespace cia402;
 
 Cia402DriveSim::Cia402DriveSim(int node, ServoPlantParams plant, double counts_per_si,
-                               double initial_si)
+                               double initial_si, bool standard_mapping)
     : node_(node), counts_per_si_(counts_per_si), plant_(plant, initial_si) {
   pending_target_ = static_cast<std::int32_t>(std::lround(initial_si * counts_per_si));
+  const auto n = static_cast<std::uint32_t>(node);
+  rpdo_.cob = kRpdo1Base + n;
+  tpdo_.cob = kTpdo1Base + n;
+  rpdo_.map = {cia402::kMapControlword, cia402::kMapTargetPosition};
+  tpdo_.map = {cia402::kMapStatusword, cia402::kMapPositionActual};
+  if (!standard_mapping) {
+    std::swap(rpdo_.map[0], rpdo_.map[1]);
+    std::swap(tpdo_.map[0], tpdo_.map[1]);
+  }
+}
+
+int Cia402DriveSim::Pdo::bytes() const {
+  int n = 0;
+  for (int i = 0; i < count; ++i)
+    n += static_cast<int>(map[static_cast<std::size_t>(i)] & 0xFF) / 8;
+  return n;
+}
+
+// CiA 301: the mapping may change only while the PDO is invalid, and its
+// entries only while the count is 0. Returns false to abort the write.
+bool Cia402DriveSim::write_pdo_object(Pdo& pdo, bool mapping, std::uint8_t sub, std::uint32_t v) {
+  if (!mapping) {
+    if (sub == 1)
+      pdo.cob = v;
+    else if (sub == 2)
+      pdo.type = static_cast<int>(v & 0xFF);
+    return sub == 1 || sub == 2;
+  }
+  if ((pdo.cob & cia402::kPdoInvalid) == 0) return false;
+  if (sub == 0) {
+    if (v > 8) return false;
+    pdo.count = static_cast<int>(v);
+    return pdo.bytes() <= 8;
+  }
+  if (sub > 8 || pdo.count != 0) return false;
+  const std::uint32_t object = v >> 16;
+  if (object != 0x6040 && object != 0x607A && object != 0x6041 && object != 0x6064) return false;
+  pdo.map[sub - 1U] = v;
+  return true;
 }
 
 std::uint16_t Cia402DriveSim::statusword() const {
@@ -157,7 +196,13 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
       case 0x600700:  // abort connection option: this drive always faults
         break;
       default:
-        ok = false;
+        if (index == 0x1400 || index == 0x1600) {
+          ok = write_pdo_object(rpdo_, index == 0x1600, sub, v);
+        } else if (index == 0x1800 || index == 0x1A00) {
+          ok = write_pdo_object(tpdo_, index == 0x1A00, sub, v);
+        } else {
+          ok = false;
+        }
         break;
     }
     if (ok) {
@@ -171,10 +216,19 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
     return;
   }
   if (nmt_ != NmtState::kOperational) return;  // PDOs only when operational
-  if (f.id == kRpdo1Base + self && f.len == 6) {
+  if ((rpdo_.cob & cia402::kPdoInvalid) == 0 && f.id == (rpdo_.cob & 0x7FF)) {
+    if (f.len != rpdo_.bytes()) {
+      bad_pdos_.fetch_add(1);
+      return;
+    }
     rpdos_.fetch_add(1);
-    apply_controlword(get_u16(&f.data[0]));
-    pending_target_ = static_cast<std::int32_t>(get_u32(&f.data[2]));
+    std::size_t at = 0;
+    for (int i = 0; i < rpdo_.count; ++i) {
+      const std::uint32_t e = rpdo_.map[static_cast<std::size_t>(i)];
+      if (e >> 16 == 0x6040) apply_controlword(get_u16(&f.data[at]));
+      if (e >> 16 == 0x607A) pending_target_ = static_cast<std::int32_t>(get_u32(&f.data[at]));
+      at += (e & 0xFF) / 8;
+    }
     return;
   }
   if (f.id == kSync && f.len == 0) {
@@ -183,12 +237,20 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
       const std::int32_t t = std::clamp(pending_target_, limit_min_.load(), limit_max_.load());
       plant_.command(now_ns, static_cast<double>(t) / counts_per_si_);
     }
+    if ((tpdo_.cob & cia402::kPdoInvalid) != 0) return;
     CanFrame t;
-    t.id = kTpdo1Base + self;
-    t.len = 6;
-    put_u16(&t.data[0], statusword());
-    put_u32(&t.data[2],
-            static_cast<std::uint32_t>(std::lround(plant_.measured() * counts_per_si_)));
+    t.id = tpdo_.cob & 0x7FF;
+    t.len = static_cast<std::uint8_t>(tpdo_.bytes());
+    std::size_t at = 0;
+    for (int i = 0; i < tpdo_.count; ++i) {
+      const std::uint32_t e = tpdo_.map[static_cast<std::size_t>(i)];
+      if (e >> 16 == 0x6041) put_u16(&t.data[at], statusword());
+      if (e >> 16 == 0x6064) {
+        put_u32(&t.data[at],
+                static_cast<std::uint32_t>(std::lround(plant_.measured() * counts_per_si_)));
+      }
+      at += (e & 0xFF) / 8;
+    }
     emit(t, now_ns);
   }
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -16,7 +17,11 @@ namespace facectl::sim {
 // communication watchdog), EMCY on faults, and its own position limits.
 class Cia402DriveSim final : public CanDevice {
  public:
-  Cia402DriveSim(int node, ServoPlantParams plant, double counts_per_si, double initial_si);
+  // `standard_mapping`: whether RPDO1/TPDO1 ship mapped as facectl uses them
+  // (controlword + target position; statusword + position actual). If not,
+  // they ship in the other order, and only an SDO remap makes them usable.
+  Cia402DriveSim(int node, ServoPlantParams plant, double counts_per_si, double initial_si,
+                 bool standard_mapping = true);
 
   void on_frame(const CanFrame& f, std::int64_t now_ns) override;
   void step(std::int64_t now_ns) override;
@@ -33,11 +38,21 @@ class Cia402DriveSim final : public CanDevice {
   std::int32_t limit_min() const { return limit_min_.load(); }
   std::int32_t limit_max() const { return limit_max_.load(); }
   int mode() const { return mode_.load(); }
+  std::uint64_t bad_pdos() const { return bad_pdos_.load(); }
 
  private:
   void fault(std::uint16_t code, std::int64_t now_ns);
   std::uint16_t statusword() const;
   void apply_controlword(std::uint16_t cw);
+  // A PDO's communication (0x14xx / 0x18xx) and mapping (0x16xx / 0x1Axx) objects.
+  struct Pdo {
+    std::uint32_t cob = 0;  // bit 31: invalid
+    int type = 1;
+    int count = 2;
+    std::array<std::uint32_t, 8> map{};
+    int bytes() const;
+  };
+  bool write_pdo_object(Pdo& pdo, bool mapping, std::uint8_t sub, std::uint32_t v);
 
   const int node_;
   const double counts_per_si_;
@@ -57,7 +72,8 @@ class Cia402DriveSim final : public CanDevice {
   std::atomic<std::int32_t> limit_min_{-2147483647}, limit_max_{2147483647};
   std::atomic<int> mode_{0};
   std::atomic<std::uint16_t> injected_{0};
-  std::atomic<std::uint64_t> rpdos_{0}, sdo_writes_{0};
+  std::atomic<std::uint64_t> rpdos_{0}, sdo_writes_{0}, bad_pdos_{0};
+  Pdo rpdo_, tpdo_;
 };
 
 }  // namespace facectl::sim

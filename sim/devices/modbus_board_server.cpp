@@ -31,16 +31,19 @@ std::uint16_t crc16(const std::uint8_t* p, std::size_t n) {
 
 }  // namespace
 
-ModbusBoardServer::ModbusBoardServer(std::vector<ModbusActuatorBoard*> boards)
-    : boards_(std::move(boards)) {
+ModbusBoardServer::ModbusBoardServer(std::vector<ModbusActuatorBoard*> boards,
+                                     modbus_map::Addresses at)
+    : boards_(std::move(boards)), at_(at) {
   for (std::size_t i = 0; i < boards_.size(); ++i) {
-    maps_.push_back(modbus_mapping_new(0, 0, modbus_map::kHoldingCount, modbus_map::kInputCount));
+    maps_.push_back(modbus_mapping_new_start_address(
+        0, 0, 0, 0, static_cast<unsigned>(at.control), modbus_map::kHoldingCount,
+        static_cast<unsigned>(at.status), modbus_map::kInputCount));
   }
 }
 
-std::unique_ptr<ModbusBoardServer> ModbusBoardServer::tcp(
-    std::vector<ModbusActuatorBoard*> boards) {
-  std::unique_ptr<ModbusBoardServer> s(new ModbusBoardServer(std::move(boards)));
+std::unique_ptr<ModbusBoardServer> ModbusBoardServer::tcp(std::vector<ModbusActuatorBoard*> boards,
+                                                          modbus_map::Addresses at) {
+  std::unique_ptr<ModbusBoardServer> s(new ModbusBoardServer(std::move(boards), at));
   s->tcp_ = true;
   s->ctx_ = modbus_new_tcp("127.0.0.1", 0);
   s->listen_fd_ = modbus_tcp_listen(s->ctx_, 1);
@@ -55,7 +58,7 @@ std::unique_ptr<ModbusBoardServer> ModbusBoardServer::tcp(
 
 std::unique_ptr<ModbusBoardServer> ModbusBoardServer::rtu_pty(ModbusActuatorBoard* board,
                                                               int baud) {
-  std::unique_ptr<ModbusBoardServer> s(new ModbusBoardServer({board}));
+  std::unique_ptr<ModbusBoardServer> s(new ModbusBoardServer({board}, {}));
   s->tcp_ = false;
   int master = -1;
   int slave = -1;
@@ -172,7 +175,7 @@ void ModbusBoardServer::reply_normally(const std::uint8_t* query, int length,
   if (modbus_reply(ctx_, query, length, map) < 0) return;
   if (function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ||
       function == MODBUS_FC_WRITE_SINGLE_REGISTER) {
-    const int addr = (query[header + 1] << 8) | query[header + 2];
+    const int addr = ((query[header + 1] << 8) | query[header + 2]) - at_.control;
     const int count = function == MODBUS_FC_WRITE_SINGLE_REGISTER
                           ? 1
                           : ((query[header + 3] << 8) | query[header + 4]);

@@ -30,7 +30,10 @@ struct ModbusServerFaults {
 class ModbusBoardServer {
  public:
   // Listens on 127.0.0.1 at an ephemeral port (port()).
-  static std::unique_ptr<ModbusBoardServer> tcp(std::vector<ModbusActuatorBoard*> boards);
+  // `at` moves the boards' register blocks (a board whose map starts at
+  // another address; its watchdog stays 10 after CONTROL).
+  static std::unique_ptr<ModbusBoardServer> tcp(std::vector<ModbusActuatorBoard*> boards,
+                                                modbus_map::Addresses at = {});
   // Opens a pty pair; the driver opens device() as its serial port. RTU
   // filters requests by unit id, so one board per line here.
   static std::unique_ptr<ModbusBoardServer> rtu_pty(ModbusActuatorBoard* board, int baud);
@@ -45,7 +48,7 @@ class ModbusBoardServer {
   std::uint64_t connections() const { return connections_.load(); }
 
  private:
-  explicit ModbusBoardServer(std::vector<ModbusActuatorBoard*> boards);
+  ModbusBoardServer(std::vector<ModbusActuatorBoard*> boards, modbus_map::Addresses at);
   void run();
   void serve_one();
   void handle(const std::uint8_t* query, int length);
@@ -55,6 +58,7 @@ class ModbusBoardServer {
   void close_client();
 
   std::vector<ModbusActuatorBoard*> boards_;
+  modbus_map::Addresses at_;
   std::vector<modbus_mapping_t*> maps_;
   modbus_t* ctx_ = nullptr;
   bool tcp_ = true;

@@ -105,6 +105,19 @@ TEST(Verify, AnActuatorThatNothingDrivesFails) {
   EXPECT_NE(f->message.find("actuator 'neck_pan': nothing drives it"), std::string::npos);
 }
 
+TEST(Verify, AnOvercommittedBusFailsWithItsNumbers) {
+  const auto cfg = load_rig(kSource + "/tests/verify/rigs/bus_overcommitted.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "bus budget");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->subject, "can0");
+  EXPECT_NE(f->message.find("216.0% of 125000 bit/s"), std::string::npos) << f->message;
+  // `facectl run` refuses it as it loads.
+  ConfigOverrides strict;
+  strict.rig_path = kSource + "/tests/verify/rigs/bus_overcommitted.yaml";
+  EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
+}
+
 // Soundness: millions of admissible faces (random points of the box, made
 // admissible by the tick's own projection, plus the box's extremes) never map
 // outside the range the proof reported.

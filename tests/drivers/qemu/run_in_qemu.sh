@@ -89,6 +89,8 @@ check() {
     ok=FAIL
   fi
 }
+check 'vcan0 601#2300140101020080' 'SDO: drive 1 RPDO1 invalidated for its remapping'
+check 'vcan0 601#23001A0110004160' 'SDO: drive 1 TPDO1 entry 1 = statusword 0x6041, 16 bits'
 check 'vcan0 601#2F60600008000000' 'SDO: drive 1 mode of operation = 8 (CSP)'
 check 'vcan0 601#2B17100014000000' 'SDO: drive 1 producer heartbeat = 20 ms'
 check 'vcan0 000#0101\$' 'NMT start node 1'

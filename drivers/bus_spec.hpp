@@ -1,0 +1,23 @@
+#pragma once
+
+#include <string>
+
+#include "drivers/can_bus_options.hpp"
+#include "drivers/modbus_register_map.hpp"
+#include "drivers/modbus_timing.hpp"
+
+namespace facectl {
+
+// What a rig's `buses[]` entry says about a real bus.
+struct BusSpec {
+  std::string name;
+  std::string type;                     // can | modbus_rtu | modbus_tcp
+  std::string endpoint;                 // CAN interface, serial device, or host[:port]
+  long bitrate = 0;                     // CAN bitrate or serial baud
+  std::string can_protocol = "custom";  // cia402 | custom
+  CanBusOptions can;
+  ModbusTiming modbus;
+  modbus_map::Addresses modbus_registers;
+};
+
+}  // namespace facectl
