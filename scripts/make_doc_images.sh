@@ -11,6 +11,13 @@ trap 'rm -rf "$tmp"' EXIT
 "$facectl" plot "$tmp/demo.csv" --actuator jaw_pitch --actuator lip_corner_up_l \
   --actuator eye_yaw_l --out docs/images/demo
 
+# Verify's show check: the default rig's lip corner, which follows the
+# reduced face model's lip-corner point, through the demo show.
+"$facectl" verify config/rigs/default.yaml --ticks 1000 --show config/shows/demo.yaml \
+  --plots "$tmp/verify" > /dev/null
+mkdir -p docs/images/verify
+cp "$tmp/verify/lip_corner_up_l.svg" docs/images/verify/
+
 # An e-stop at 3 s: outputs drop on the tick that reads it (exit code 3 by design).
 "$facectl" run --duration 5 --inject estop@3 --record "$tmp/estop.csv" --quiet || [ $? -eq 3 ]
 "$facectl" plot "$tmp/estop.csv" --actuator jaw_pitch --out docs/images/estop
