@@ -11,12 +11,18 @@
 # gamepad against the hidapi reader, and the recorded frames are checked for
 # the driver's own, byte for byte.
 #
-# Usage: run_can_in_qemu.sh GUEST_TEST_BINARY WORK_DIR
+# With FACECTL_BINARY and HEAD_YAML, the guest also holds a stripped
+# `facectl` and the head file, and the guest test runs `facectl bus doctor`
+# on a vcan rig.
+#
+# Usage: run_can_in_qemu.sh GUEST_TEST_BINARY WORK_DIR [FACECTL_BINARY HEAD_YAML]
 # Exit: 0 pass, 1 fail, 77 skipped (a tool is missing; scripts/setup.sh installs them).
 set -euo pipefail
 
 test_bin=$1
 work=$2
+facectl_bin=${3:-}
+head_yaml=${4:-}
 
 skip() { echo "SKIP: $*"; exit 77; }
 command -v qemu-system-x86_64 >/dev/null || skip "qemu-system-x86_64 not installed (package qemu-system-x86)"
@@ -53,6 +59,12 @@ for m in can can-raw can-dev vcan hid hid-generic uhid; do
   cp "$(modinfo -k "$kver" -n "$m")" "$root/lib/modules/$m.ko"
 done
 guest_test=$(basename "$test_bin")
+if [ -n "$facectl_bin" ] && command -v strip >/dev/null; then
+  copy_with_libs "$facectl_bin"
+  strip "$root/bin/$(basename "$facectl_bin")"
+  mkdir -p "$root/cfg"
+  cp "$head_yaml" "$root/cfg/head.yaml"
+fi
 
 cat > "$root/init" <<INIT
 #!/bin/busybox sh

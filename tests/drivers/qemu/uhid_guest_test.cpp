@@ -1,13 +1,15 @@
 // Runs inside the QEMU guest: a virtual gamepad made through /dev/uhid (the
 // uhid module), read by HidGamepad through hidapi's hidraw backend, as a real
 // USB or Bluetooth pad would be. Covers enumeration, opening by vendor and
-// product, decoding, draining a backlog, and hot-plug.
+// product, decoding, draining a backlog, and hot-plug; and puppeteering from
+// it with record mode, whose show file loads back.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <linux/input.h>
 #include <linux/uhid.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +17,8 @@
 
 #include "drivers/hid_gamepad.hpp"
 #include "drivers/monotonic_clock.hpp"
+#include "firmware-host/gamepad_puppeteer.hpp"
+#include "firmware-host/show.hpp"
 
 namespace facectl {
 namespace {
@@ -143,6 +147,59 @@ TEST(Uhid, AVirtualGamepadIsEnumeratedReadDecodedAndSurvivesHotPlug) {
       1000));
   std::printf("[uhid] unplugged and plugged back: opened %llu times, reading again (y %+.2f)\n",
               static_cast<unsigned long long>(gp.opens()), s.axes[1]);
+}
+
+TEST(Uhid, PuppeteeringFromTheVirtualGamepadRecordsAShowThatLoadsBack) {
+  VirtualGamepad pad;
+  ASSERT_TRUE(wait_for([&] { return !enumerate_hid(kVendor, kProduct).empty(); }, 3000));
+  HidGamepad gp({"", kVendor, kProduct}, layout());
+  // A small head: two muscles, then the mandible and the rigid DOFs.
+  const FaceLayout face({"zygomaticus_major_l", "zygomaticus_major_r"});
+  std::array<double, kMaxFaceSignals> neutral{};
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  GamepadMapping mapping(
+      {{GamepadTerm::Source::kAxis, 1, face.jaw_pitch(), 9 * kDeg, 9 * kDeg, 0.0},
+       {GamepadTerm::Source::kButton, 0, 0, 0.8, 0.0}});
+  LatestValueMailbox<FaceCommand> mailbox;
+  ShowRecorder recorder(face, neutral);
+  GamepadPuppeteer puppeteer([&](GamepadState& s) { return gp.latest(s); }, mapping, neutral,
+                             mailbox, 250.0, &recorder);
+  puppeteer.start();
+  ASSERT_TRUE(wait_for([&] { return puppeteer.connected(); }, 3000)) << "not opened";
+  // The jaw closed for 100 ms, half a second of sweep with button a pressed
+  // halfway, then a hold.
+  pad.report(0, -127, 0x00);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  for (int i = 0; i <= 100; ++i) {
+    pad.report(0, static_cast<std::int8_t>(-127 + 2 * i), i > 50 ? 0x01 : 0x00);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  puppeteer.stop();
+  FaceCommand last;
+  ASSERT_TRUE(mailbox.consume(last));
+  EXPECT_NEAR(last.values[face.jaw_pitch()], (9.0 + 9.0 * 73.0 / 127.0) * kDeg, 1e-9);
+  EXPECT_DOUBLE_EQ(last.values[0], 0.8);
+
+  recorder.write("/tmp/uhid_take.yaml", "uhid_take");
+  const Show show = Show::load("/tmp/uhid_take.yaml", face, neutral, ExpressionLibrary{});
+  std::array<double, kMaxFaceSignals> pose{};
+  show.evaluate(show.duration(), pose);
+  EXPECT_NEAR(pose[face.jaw_pitch()], last.values[face.jaw_pitch()], 1e-6);
+  EXPECT_DOUBLE_EQ(pose[0], 0.8);
+  const double end_jaw_deg = pose[face.jaw_pitch()] / kDeg;
+  // It starts at the centred stick (9 degrees) and the sweep closes the jaw first.
+  show.evaluate(0.0, pose);
+  EXPECT_NEAR(pose[face.jaw_pitch()], 9.0 * kDeg, 1e-6);
+  double lowest = 1.0;
+  for (const auto& k : show.keyframes()) lowest = std::min(lowest, k.values[face.jaw_pitch()]);
+  EXPECT_LT(lowest, 0.5 * kDeg);
+  EXPECT_GT(show.duration(), 0.4);
+  std::printf(
+      "[uhid] puppeteered %llu commands; recorded %zu keyframes over %.2f s; the show "
+      "loads back and ends at jaw %.2f deg\n",
+      static_cast<unsigned long long>(puppeteer.published()), show.keyframes().size(),
+      show.duration(), end_jaw_deg);
 }
 
 }  // namespace

@@ -3,12 +3,15 @@
 // CiA 402 drives and custom boards on their own sockets on the same
 // interface, in real time. candump records the wire for the script to check.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <string>
 #include <thread>
 
 #include "drivers/bus_doctor.hpp"
@@ -225,6 +228,54 @@ TEST(Vcan, BusDoctorFindsTheDrivesOnARealSocket) {
       diagnose_can("vcan0", host, "cia402", rotary(2), CanBusOptions{}, 250.0, 1'000'000, 0.5);
   std::printf("[vcan] bus doctor:\n%s", r.to_text().c_str());
   EXPECT_FALSE(r.has_problems());
+}
+
+// `facectl bus doctor` as a user runs it, on a rig of three CiA 402 drives
+// on vcan0 of which two answer (the script puts /bin/facectl and the head
+// file /cfg/head.yaml into the guest).
+TEST(Vcan, FacectlBusDoctorNamesTheDriveThatDoesNotAnswer) {
+  if (access("/bin/facectl", X_OK) != 0) GTEST_SKIP() << "no /bin/facectl in this guest";
+  std::string rig =
+      "rig:\n  name: vcan\n  buses:\n    - { name: can0, type: can, interface: vcan0, "
+      "bitrate: 1000000, protocol: cia402, rate_divider: 4 }\n  actuators:\n";
+  const char* signals[] = {"jaw_pitch_deg", "jaw_yaw_deg", "neck_pan_deg"};
+  for (int i = 1; i <= 3; ++i) {
+    rig += "    - { name: a" + std::to_string(i) +
+           ", kind: rotary, bus: can0, address: " + std::to_string(i) +
+           ", position_deg: { min: -20, max: 20 }, max_velocity_deg_s: 100, "
+           "max_acceleration_deg_s2: 1000, rest_deg: 0, map: { terms: { " +
+           signals[i - 1] + ": 1 } } }\n";
+  }
+  std::FILE* f = std::fopen("/tmp/doctor_rig.yaml", "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs(rig.c_str(), f);
+  std::fclose(f);
+  f = std::fopen("/tmp/doctor_runtime.yaml", "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("head: /cfg/head.yaml\nrig: /tmp/doctor_rig.yaml\nexpressions: unused.yaml\n", f);
+  std::fclose(f);
+
+  SocketCanTransport wire(kIf, false);
+  sim::Cia402DriveSim d1(1, fast_plant(), 131072.0 / (2 * 3.14159265358979), 0.0);
+  sim::Cia402DriveSim d2(2, fast_plant(), 131072.0 / (2 * 3.14159265358979), 0.0);
+  sim::CanDeviceNetwork net(wire, {&d1, &d2});
+  net.start(200);
+  const int status = std::system(
+      "/bin/facectl bus doctor /tmp/doctor_rig.yaml --config /tmp/doctor_runtime.yaml "
+      "--listen 0.5 > /tmp/doctor.txt 2>&1");
+  std::string out;
+  if (std::FILE* in = std::fopen("/tmp/doctor.txt", "r")) {
+    char buf[512];
+    while (std::fgets(buf, sizeof buf, in) != nullptr) out += buf;
+    std::fclose(in);
+  }
+  std::printf("[vcan] facectl bus doctor (exit %d):\n%s", WEXITSTATUS(status), out.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 1) << "a drive is missing: problems found";
+  EXPECT_NE(out.find("  ok   load: can0:"), std::string::npos);
+  EXPECT_NE(out.find("  ok   drive 1: SDO round trip"), std::string::npos);
+  EXPECT_NE(out.find("  ok   drive 2: SDO round trip"), std::string::npos);
+  EXPECT_NE(out.find("  FAIL drive 3"), std::string::npos);
+  EXPECT_EQ(d1.sdo_writes(), 0u) << "the doctor only reads";
 }
 
 TEST(Vcan, EncodeAndSendPerCycleThroughTheRealSocket) {
