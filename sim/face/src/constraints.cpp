@@ -9,7 +9,8 @@
 // instead of SSE2's 2) and the loader picks the variant the CPU has (GCC target_clones).
 // Both variants do the same IEEE double operations with no FMA contraction, so the bits
 // do not depend on the variant or the machine.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(FACECTL_NO_VECTOR_CLONES)
 #define FACECTL_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define FACECTL_VECTOR_CLONES
