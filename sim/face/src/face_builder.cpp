@@ -211,6 +211,18 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     m.muscles.push_back(std::move(mu));
   }
   m.muscle_w.assign(m.muscle_rest.size(), 1.0);
+  for (std::size_t k = 0; k < m.muscles.size(); ++k) {
+    if (k == 0 || m.muscles[k].layer != m.muscles[k - 1].layer)
+      m.muscle_layers.push_back({static_cast<int>(k), static_cast<int>(k), {}, {}});
+    FaceModel::MuscleLayer& ml = m.muscle_layers.back();
+    ml.end = static_cast<int>(k) + 1;
+    append(ml.distances, m.muscles[k].distances);
+    append(ml.bending, m.muscles[k].bending);
+  }
+  for (FaceModel::MuscleLayer& ml : m.muscle_layers) {
+    order_in_runs(ml.distances, m.muscle_rest);
+    order_in_runs(ml.bending, m.muscle_rest);
+  }
   for (const auto& t : tops) m.muscle_tops.insert(m.muscle_tops.end(), t.begin(), t.end());
   vertex_normals(m.muscle_rest, m.muscle_tops, m.muscle_rest_normals);
 
@@ -273,6 +285,19 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
                         .cross(m.skin.v.get(m.skin_area.c[t]) - m.skin.v.get(a));
     const double cosine = cr.dot(n) / std::max(cr.norm(), 1e-30);
     m.skin_area_sign.push_back(std::abs(cosine) < 0.5 ? 0.0 : (cosine < 0 ? -1.0 : 1.0));
+  }
+  add_orientations(m.skin_upright, m.skin.v, m.skin.tris, spec.skin.min_projected_area, 1.0);
+  {
+    Adjacency& ua = m.upright_of_vertex;
+    ua.start.assign(ns + 1, 0);
+    const OrientationConstraints& o = m.skin_upright;
+    for (const auto* v : {&o.a, &o.b, &o.c})
+      for (int i : *v) ++ua.start[i + 1];
+    for (int i = 0; i < ns; ++i) ua.start[i + 1] += ua.start[i];
+    ua.nbr.resize(ua.start[ns]);
+    std::vector<int> fill(ua.start.begin(), ua.start.end() - 1);
+    for (std::size_t c = 0; c < o.size(); ++c)
+      for (int v : {o.a[c], o.b[c], o.c[c]}) ua.nbr[fill[v]++] = static_cast<int>(c);
   }
   m.skin_volume = make_volume(m.skin.v, m.skin.tris, m.axes.yaw_point, spec.skin.volume);
 
@@ -337,6 +362,10 @@ FaceData make_face_data(const FaceModel& m) {
   d.scratch = make_muscle_scratch(max_line, max_grid);
   d.contraction.assign(m.muscles.size(), 0.0);
   d.hit_particle.assign(ns, 0);
+  d.untangle_list.reserve(m.skin_upright.size());
+  d.untangle_next.reserve(m.skin_upright.size());
+  d.vertex_mark.assign(ns, 0);
+  d.upright_mark.assign(m.skin_upright.size(), 0);
   d.hit_target.resize(ns);
   return d;
 }

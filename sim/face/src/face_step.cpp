@@ -22,9 +22,16 @@ void update_lid_drivers(const FaceModel& m, FaceData& d, const double closure[2]
   }
 }
 
+// Layer by layer, deepest first; within a layer the muscles' one iteration each, with
+// their distance and bending sets projected together (FaceModel::MuscleLayer).
 void step_muscles(const FaceModel& m, FaceData& d) {
-  for (std::size_t k = 0; k < m.muscles.size(); ++k)
-    step_muscle(m.muscles[k], d.contraction[k], d.skull, d.muscles, m.muscle_w, d.scratch, d.grad);
+  for (const FaceModel::MuscleLayer& L : m.muscle_layers) {
+    project(L.distances, d.muscles, m.muscle_w);
+    project(L.bending, d.muscles, m.muscle_w);
+    for (int k = L.first; k < L.end; ++k)
+      finish_muscle_step(m.muscles[k], d.contraction[k], d.skull, d.muscles, m.muscle_w, d.scratch,
+                         d.grad);
+  }
 }
 
 void update_anchor_targets(const FaceModel& m, FaceData& d) {
@@ -61,6 +68,44 @@ void detect_teeth(const FaceModel& m, FaceData& d, const Points& p) {
       d.hit_target.set(d.hits, t);
       ++d.hits;
     }
+  }
+}
+
+// Gauss–Seidel on the violated no-inversion constraints alone, until none is violated (at
+// most kUntangleRounds rounds): each round projects the list in index order, then lists
+// the violated constraints next to a vertex it moved. A violated constraint is projected
+// onto 1.5 times its bound, a margin so that a neighbour's correction does not at once
+// undo it (projecting onto the bound itself ping-pongs between neighbours for hundreds of
+// rounds). Usually empty; where the anchors fold the skin (the mouth corners) about 25
+// rounds over a few hundred constraints clear it. Deterministic and allocation-free (the
+// lists' capacity is reserved).
+void untangle(const FaceModel& m, FaceData& d, Points& p) {
+  constexpr int kUntangleRounds = 256;
+  constexpr double kUntangleTarget = 1.5;
+  const OrientationConstraints& o = m.skin_upright;
+  std::vector<int>& list = d.untangle_list;
+  std::vector<int>& next = d.untangle_next;
+  list.clear();
+  for (std::size_t i = 0; i < o.size(); ++i)
+    if (orientation_value(o, i, p) < 0) list.push_back(static_cast<int>(i));
+  for (int round = 0; round < kUntangleRounds && !list.empty(); ++round) {
+    const int id = ++d.untangle_stamp;
+    for (int i : list)
+      if (project_one(o, static_cast<std::size_t>(i), p, m.skin_w, 1.0, kUntangleTarget))
+        for (int v : {o.a[i], o.b[i], o.c[i]}) d.vertex_mark[v] = id;
+    next.clear();
+    for (int i : list)
+      for (int v : {o.a[i], o.b[i], o.c[i]}) {
+        if (d.vertex_mark[v] != id) continue;
+        for (int k = m.upright_of_vertex.start[v]; k < m.upright_of_vertex.start[v + 1]; ++k) {
+          const int c = m.upright_of_vertex.nbr[k];
+          if (d.upright_mark[c] == id) continue;
+          d.upright_mark[c] = id;
+          if (orientation_value(o, static_cast<std::size_t>(c), p) < 0) next.push_back(c);
+        }
+      }
+    std::sort(next.begin(), next.end());
+    list.swap(next);
   }
 }
 
@@ -117,6 +162,7 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
     project_signed(m.skin_area, p, m.skin_w, d.anchor_normals, m.skin_area_sign);
     project(m.skin_volume, p, m.skin_w, d.grad);
     project(m.anchors, p, m.skin_w, d.anchor_targets);
+    project(m.skin_upright, p, m.skin_w);
     project(m.lids, p, m.skin_w, d.lid_targets);
     project_contacts(d, p);
   }
@@ -128,6 +174,7 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
     p.z[i] = x.z[i] + w * (p.z[i] - x.z[i]);
   }
   for (std::size_t j = 0; j < m.lids.size(); ++j) p.set(m.lids.particle[j], d.lid_targets.get(j));
+  untangle(m, d, p);
   // The weighting can move a contact back inside; re-detect so no vertex ends inside.
   if (in.teeth_collision) {
     detect_teeth(m, d, p);

@@ -161,6 +161,7 @@ HeadSpec load_head_spec(const std::string& dir) {
       h.skin.anchor = num(face, sk, "anchor", h.skin.anchor);
       h.skin.volume = num(face, sk, "volume", h.skin.volume);
       h.skin.damping = num(face, sk, "damping", h.skin.damping);
+      h.skin.min_projected_area = num(face, sk, "min_projected_area", h.skin.min_projected_area);
     }
     read_muscle_stiffness(face, solver["sheet"], h.sheet);
     read_muscle_stiffness(face, solver["sphincter"], h.sphincter);

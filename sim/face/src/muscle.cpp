@@ -96,6 +96,7 @@ void build_muscle_constraints(Muscle& m, const Points& p, const MuscleStiffness&
         dist(bot(m, r, c), top(m, r + 1, c), wall);
         dist(bot(m, r + 1, c), top(m, r, c), wall);
       }
+  order_in_runs(m.distances, p);
   if (k.bend > 0) add_bending(m.bending, p, m.surface, k.bend);
   m.volume = make_volume(p, m.surface, Vec3::Zero(), k.volume);
   for (int i = 0; i < R * C; ++i) m.attach.add(m.first + i, k.position);
@@ -228,9 +229,16 @@ void place_muscle(Muscle& m, double thickness, const std::function<Vec3(const Ve
 
 void step_muscle(const Muscle& m, double c, const Points& skull, Points& pos,
                  const std::vector<double>& w, MuscleScratch& s, Points& grad) {
-  muscle_targets(m, c, skull, pos, s);
+  // The goals depend only on the layers beneath, so they may be computed after the
+  // muscle's own distance and bending projections (finish_muscle_step) with equal result.
   project(m.distances, pos, w);
   project(m.bending, pos, w);
+  finish_muscle_step(m, c, skull, pos, w, s, grad);
+}
+
+void finish_muscle_step(const Muscle& m, double c, const Points& skull, Points& pos,
+                        const std::vector<double>& w, MuscleScratch& s, Points& grad) {
+  muscle_targets(m, c, skull, pos, s);
   project(m.volume, pos, w, grad);
   project(m.attach, pos, w, s.targets);
 }

@@ -17,16 +17,26 @@ namespace facectl::face {
 struct DistanceConstraints {
   std::vector<int> a, b;
   std::vector<double> rest, k;
+  std::vector<int> runs;  // see order_in_runs(); empty: one constraint at a time
   void add(int ia, int ib, double r, double stiffness);
   std::size_t size() const { return a.size(); }
 };
 
-// C = acos(n1·n2) − rest for triangles (a,b,c) and (a,b,d) sharing edge ab (eq. 3.20),
-// with n1 = (pb−pa)×(pc−pa), n2 = (pb−pa)×(pd−pa) normalised; gradient from Müller 2006.
+// Signed dihedral angle of triangles (a,b,c) and (a,b,d) sharing edge ab (eq. 3.20 with a
+// sign): φ is the angle from n1 = e×(pc−pa) to n2 = e×(pd−pa) about e = pb−pa, in (−π, π]
+// (|φ| is the thesis's acos(n̂1·n̂2); a flat pair has |φ| = π). C = φ − rest, with the
+// exact gradient of Bridson, Marino and Fedkiw (2003) instead of Müller 2006's acos form,
+// whose correction vanishes at flat and fully folded pairs and which cannot tell a fold
+// from its mirror image. cos_rest/sin_rest are the rest angle's cosine and sine; the
+// projection evaluates φ − rest from them without trigonometry (docs/FACE_MODEL.md).
 struct BendingConstraints {
   std::vector<int> a, b, c, d;
-  std::vector<double> rest, k;
+  std::vector<double> rest, cos_rest, sin_rest, k;
+  std::vector<int> runs;  // see order_in_runs()
+  // Rest angle given in radians (tests, hand-made sets).
   void add(int ia, int ib, int ic, int id, double r, double stiffness);
+  // Rest angle measured on `p` (bit-identical to what the projection measures there).
+  void add_at_rest(const Points& p, int ia, int ib, int ic, int id, double stiffness);
   std::size_t size() const { return a.size(); }
 };
 
@@ -34,7 +44,21 @@ struct BendingConstraints {
 struct AreaConstraints {
   std::vector<int> a, b, c;
   std::vector<double> rest, k;
+  std::vector<int> runs;  // see order_in_runs()
   void add(int ia, int ib, int ic, double r, double stiffness);
+  std::size_t size() const { return a.size(); }
+};
+
+// No-inversion (not in the thesis): C = ((pb−pa)×(pc−pa))·n − min ≥ 0, unilateral, where n
+// is the triangle's unit rest normal and min = fraction·2·(rest area): the triangle's area
+// projected on its rest normal may not fall below that fraction of its rest area, so it
+// cannot turn through 90° (or collapse) without the constraint pushing back. Linear in
+// each vertex, so its gradient is exact and cheap: ∇b = (pc−pa)×n, ∇c = n×(pb−pa).
+struct OrientationConstraints {
+  std::vector<int> a, b, c;
+  std::vector<double> nx, ny, nz, min, k;
+  std::vector<int> runs;  // see order_in_runs()
+  void add(int ia, int ib, int ic, const Vec3& unit_normal, double min_value, double stiffness);
   std::size_t size() const { return a.size(); }
 };
 
@@ -57,6 +81,7 @@ struct Attachments {
 };
 
 double distance_value(const DistanceConstraints& s, std::size_t i, const Points& p);
+// The signed dihedral angle φ of BendingConstraints, in (−π, π]; 0 when degenerate.
 double bending_angle(const Points& p, int a, int b, int c, int d);
 double area_value(const AreaConstraints& s, std::size_t i, const Points& p);
 double volume_of(const VolumeConstraint& v, const Points& p);
@@ -70,16 +95,40 @@ void project(const AreaConstraints& s, Points& p, const std::vector<double>& w);
 // the constraint had at rest (+1 or −1).
 void project_signed(const AreaConstraints& s, Points& p, const std::vector<double>& w,
                     const Points& ref_normal, const std::vector<double>& rest_sign);
+void project(const OrientationConstraints& s, Points& p, const std::vector<double>& w);
+// Projects constraint i alone if it is violated with its bound scaled by floor_scale, onto
+// its bound scaled by target_scale ≥ floor_scale (a margin, so that a neighbour's later
+// correction does not at once undo it); false (nothing moved) when it is satisfied.
+bool project_one(const OrientationConstraints& s, std::size_t i, Points& p,
+                 const std::vector<double>& w, double floor_scale = 1.0, double target_scale = 1.0);
+double orientation_value(const OrientationConstraints& s, std::size_t i, const Points& p,
+                         double floor_scale = 1.0);
 // `grad` is caller-owned scratch with at least p.size() entries (no allocation here).
 void project(const VolumeConstraint& v, Points& p, const std::vector<double>& w, Points& grad);
 // targets[j] is the goal of s.particle[j].
 void project(const Attachments& s, Points& p, const std::vector<double>& w, const Points& targets);
 
-// Builds the constraint sets of a closed or open triangle surface at its current shape.
+// Gauss–Seidel order for batched projection: reorders the set along a Z-order curve
+// through the constraints' centroids on `rest` and cuts it into batches of up to 8
+// constraints that share no particle, recording the batch ends in `runs`. The projection
+// then handles a batch at once, with the same result as one constraint after another in
+// the new order. add() clears the runs (back to one at a time): order a complete set.
+// Appends `from` to `to` (unordered: order_in_runs the result).
+void append(DistanceConstraints& to, const DistanceConstraints& from);
+void append(BendingConstraints& to, const BendingConstraints& from);
+void order_in_runs(DistanceConstraints& s, const Points& rest);
+void order_in_runs(BendingConstraints& s, const Points& rest);
+void order_in_runs(AreaConstraints& s, const Points& rest);
+void order_in_runs(OrientationConstraints& s, const Points& rest);
+
+// Builds the constraint sets of a closed or open triangle surface at its current shape,
+// ordered in runs (order_in_runs).
 void add_edge_distances(DistanceConstraints& s, const Points& p, const std::vector<Tri>& tris,
                         double k);
 void add_bending(BendingConstraints& s, const Points& p, const std::vector<Tri>& tris, double k);
 void add_areas(AreaConstraints& s, const Points& p, const std::vector<Tri>& tris, double k);
+void add_orientations(OrientationConstraints& s, const Points& p, const std::vector<Tri>& tris,
+                      double min_fraction, double k);
 VolumeConstraint make_volume(const Points& p, const std::vector<Tri>& tris, const Vec3& origin,
                              double k);
 

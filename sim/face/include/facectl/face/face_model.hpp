@@ -30,7 +30,9 @@ struct FaceModel {
   DistanceConstraints skin_stretch;
   BendingConstraints skin_bending;
   AreaConstraints skin_area;
-  std::vector<double> skin_area_sign;  // orientation vs. the anchor normal at rest
+  std::vector<double> skin_area_sign;   // orientation vs. the anchor normal at rest
+  OrientationConstraints skin_upright;  // no-inversion (SkinStiffness::min_projected_area)
+  Adjacency upright_of_vertex;          // vertex → its skin_upright constraints (CSR)
   VolumeConstraint skin_volume;
   // Skin anchors (L2593): vertex i follows the point carried in the frame of its support.
   std::vector<SurfacePoint> anchor_support;
@@ -54,6 +56,16 @@ struct FaceModel {
   // Muscles, deepest layer first. command_slot[m] is the index into the commanded
   // contractions, or −1 for a passive muscle.
   std::vector<Muscle> muscles;
+  // Muscles of one layer rest only on lower layers and share no particle, so their single
+  // iterations commute: the solver projects a layer's distance and bending constraints as
+  // one set (batched across muscles, order_in_runs), then each muscle's volume and
+  // attachments. Same result as muscle after muscle with those sets in that order.
+  struct MuscleLayer {
+    int first = 0, end = 0;  // muscles [first, end)
+    DistanceConstraints distances;
+    BendingConstraints bending;
+  };
+  std::vector<MuscleLayer> muscle_layers;
   std::vector<int> command_slot;
   std::vector<std::uint8_t> is_oculi;  // orbicularis oculi ring of side 0/1, else 2
   Points muscle_rest;
@@ -85,6 +97,9 @@ struct FaceData {
   std::vector<double> contraction;  // per model muscle
   ConvexHull lower_teeth;
   RigidTransform jaw;
+  // End-of-frame untangling (step_face): violated no-inversion constraints, marks.
+  std::vector<int> untangle_list, untangle_next, vertex_mark, upright_mark;
+  int untangle_stamp = 0;
   std::vector<int> hit_particle;  // teeth contacts of this frame
   Points hit_target;
   int hits = 0;

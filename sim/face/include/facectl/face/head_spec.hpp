@@ -36,6 +36,9 @@ struct MuscleSpec {
 
 struct SkinStiffness {
   double stretch = 0.15, bending = 0.95, area = 0.95, anchor = 0.2, volume = 1.0, damping = 0.2;
+  // No-inversion constraint (not in the thesis, docs/FACE_MODEL.md): each triangle's area
+  // projected on its rest normal stays ≥ this fraction of its rest area.
+  double min_projected_area = 0.25;
 };
 
 struct HeadSpec {

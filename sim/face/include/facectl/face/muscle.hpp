@@ -64,6 +64,10 @@ void place_muscle(Muscle& m, double thickness, const std::function<Vec3(const Ve
 // the current supports, then distances, bending, volume and attachments in that order.
 void step_muscle(const Muscle& m, double c, const Points& skull, Points& pos,
                  const std::vector<double>& w, MuscleScratch& s, Points& grad);
+// The rest of step_muscle() after its distance and bending projections: attachment goals,
+// volume, attachments (the face solver projects a layer's distances and bending at once).
+void finish_muscle_step(const Muscle& m, double c, const Points& skull, Points& pos,
+                        const std::vector<double>& w, MuscleScratch& s, Points& grad);
 // Scratch sized for muscle m (the builder sizes one for the largest muscle).
 MuscleScratch make_muscle_scratch(std::size_t max_line, std::size_t max_grid);
 // Builds the box mesh and constraints for particles already placed in `pos` at
