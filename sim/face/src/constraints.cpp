@@ -459,6 +459,7 @@ FACECTL_VECTOR_CLONES void project(const OrientationConstraints& s, Points& p,
     double e1[3][kBatch], e2[3][kBatch], n[3][kBatch];
     double wa[kBatch], wb[kBatch], wc[kBatch], k[kBatch], lo[kBatch];
     double da[3][kBatch], db[3][kBatch], dc[3][kBatch];  // corrections
+    double act[kBatch];                                  // 1 where violated
     for (int j = 0; j < kBatch; ++j) {
       const std::size_t i = i0 + (j < m ? j : 0);
       ia[j] = s.a[i], ib[j] = s.b[i], ic[j] = s.c[i], k[j] = s.k[i], lo[j] = s.min[i];
@@ -474,10 +475,17 @@ FACECTL_VECTOR_CLONES void project(const OrientationConstraints& s, Points& p,
       da[0][j] = u.ax, da[1][j] = u.ay, da[2][j] = u.az;
       db[0][j] = u.bx, db[1][j] = u.by, db[2][j] = u.bz;
       dc[0][j] = u.cx, dc[1][j] = u.cy, dc[2][j] = u.cz;
+      act[j] = u.active ? 1.0 : 0.0;
     }
-    scatter_add(P, ia, da, m);
-    scatter_add(P, ib, db, m);
-    scatter_add(P, ic, dc, m);
+    // Unilateral: most constraints are satisfied and move nothing, so only the violated
+    // ones are written back.
+    for (int j = 0; j < m; ++j)
+      if (act[j] != 0)
+        for (int c = 0; c < 3; ++c) {
+          P.q[c][ia[j]] += da[c][j];
+          P.q[c][ib[j]] += db[c][j];
+          P.q[c][ic[j]] += dc[c][j];
+        }
   });
 }
 

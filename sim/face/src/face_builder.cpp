@@ -362,8 +362,8 @@ FaceData make_face_data(const FaceModel& m) {
   d.scratch = make_muscle_scratch(max_line, max_grid);
   d.contraction.assign(m.muscles.size(), 0.0);
   d.hit_particle.assign(ns, 0);
-  d.untangle_list.reserve(m.skin_upright.size());
-  d.untangle_next.reserve(m.skin_upright.size());
+  d.untangle_list.assign(m.skin_upright.size(), 0);
+  d.untangle_next.assign(m.skin_upright.size(), 0);
   d.vertex_mark.assign(ns, 0);
   d.upright_mark.assign(m.skin_upright.size(), 0);
   d.hit_target.resize(ns);

@@ -1,6 +1,7 @@
 // One frame of the layered solver, in the order of thesis §5.7 (L2764–L2788).
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "facectl/face/face_model.hpp"
 
@@ -77,35 +78,39 @@ void detect_teeth(const FaceModel& m, FaceData& d, const Points& p) {
 // onto 1.5 times its bound, a margin so that a neighbour's correction does not at once
 // undo it (projecting onto the bound itself ping-pongs between neighbours for hundreds of
 // rounds). Usually empty; where the anchors fold the skin (the mouth corners) about 25
-// rounds over a few hundred constraints clear it. Deterministic and allocation-free (the
-// lists' capacity is reserved).
+// rounds over a few hundred constraints clear it. Deterministic and allocation-free.
 void untangle(const FaceModel& m, FaceData& d, Points& p) {
   constexpr int kUntangleRounds = 256;
   constexpr double kUntangleTarget = 1.5;
   const OrientationConstraints& o = m.skin_upright;
-  std::vector<int>& list = d.untangle_list;
-  std::vector<int>& next = d.untangle_next;
-  list.clear();
+  int* list = d.untangle_list.data();  // both sized to o.size(): no allocation
+  int* next = d.untangle_next.data();
+  int n = 0;
   for (std::size_t i = 0; i < o.size(); ++i)
-    if (orientation_value(o, i, p) < 0) list.push_back(static_cast<int>(i));
-  for (int round = 0; round < kUntangleRounds && !list.empty(); ++round) {
-    const int id = ++d.untangle_stamp;
-    for (int i : list)
+    if (orientation_value(o, i, p) < 0) list[n++] = static_cast<int>(i);
+  for (int round = 0; round < kUntangleRounds && n > 0; ++round) {
+    const int id = ++d.untangle_stamp;  // never reset, so marks of earlier frames never match
+    for (int j = 0; j < n; ++j) {
+      const int i = list[j];
       if (project_one(o, static_cast<std::size_t>(i), p, m.skin_w, 1.0, kUntangleTarget))
         for (int v : {o.a[i], o.b[i], o.c[i]}) d.vertex_mark[v] = id;
-    next.clear();
-    for (int i : list)
+    }
+    int nn = 0;
+    for (int j = 0; j < n; ++j) {
+      const int i = list[j];
       for (int v : {o.a[i], o.b[i], o.c[i]}) {
         if (d.vertex_mark[v] != id) continue;
         for (int k = m.upright_of_vertex.start[v]; k < m.upright_of_vertex.start[v + 1]; ++k) {
           const int c = m.upright_of_vertex.nbr[k];
           if (d.upright_mark[c] == id) continue;
-          d.upright_mark[c] = id;
-          if (orientation_value(o, static_cast<std::size_t>(c), p) < 0) next.push_back(c);
+          d.upright_mark[c] = id;  // each constraint is listed at most once a round
+          if (orientation_value(o, static_cast<std::size_t>(c), p) < 0) next[nn++] = c;
         }
       }
-    std::sort(next.begin(), next.end());
-    list.swap(next);
+    }
+    std::sort(next, next + nn);
+    std::swap(list, next);
+    n = nn;
   }
 }
 
