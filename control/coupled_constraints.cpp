@@ -128,22 +128,4 @@ std::uint32_t CoupledConstraints::project(double* x, double* worst) const {
   return fired;
 }
 
-double CoupledConstraints::feasible_fraction(const double* from, const double* to,
-                                             std::uint32_t* limiting) const {
-  double a = 1.0;
-  std::uint32_t bits = 0;
-  for (std::size_t c = 0; c < count_; ++c) {
-    const Constraint& k = constraints_[c];
-    const double at_from = k.value(from);
-    const double at_to = k.value(to);
-    const double allowed = std::max(k.bound, at_from);
-    if (at_to <= allowed + kTolerance) continue;
-    // at_from + a·(at_to − at_from) <= allowed, with at_to > allowed >= at_from.
-    a = std::min(a, std::max(0.0, (allowed - at_from) / (at_to - at_from)));
-    bits |= 1u << c;
-  }
-  if (limiting != nullptr) *limiting = bits;
-  return a;
-}
-
 }  // namespace facectl

@@ -47,13 +47,6 @@ class CoupledConstraints {
   // entry (bit i = constraint i), and writes the largest violation to *worst.
   std::uint32_t project(double* x, double* worst = nullptr) const;
 
-  // The largest fraction a in [0, 1] of the step from `from` to `to` that
-  // keeps every constraint at or below max(bound, its value at `from`): a step
-  // that starts admissible stays admissible, one that starts in violation
-  // does not make it worse. Bit per limiting constraint in *limiting.
-  double feasible_fraction(const double* from, const double* to,
-                           std::uint32_t* limiting = nullptr) const;
-
  private:
   std::array<Constraint, kMaxConstraints> constraints_{};
   std::size_t count_ = 0;

@@ -341,7 +341,7 @@ StaticProof prove(const LoadedConfig& cfg) {
     out.findings.push_back(
         {Severity::kInfo, "actuator coupled limit", k.name,
          excess > 1e-9 ? "the mapping can ask for " + fmt("%.4g", excess) +
-                             " beyond it; the tick projects such targets and shortens steps"
+                             " beyond it; the tick projects such targets and brakes toward them"
                        : "the mapping never asks beyond it",
          excess > 1e-9 ? describe_face(m, tidy(m, set, obj, worst->at)) : ""});
   }

@@ -59,9 +59,10 @@ for m in can can-raw can-dev vcan hid hid-generic uhid; do
   cp "$(modinfo -k "$kver" -n "$m")" "$root/lib/modules/$m.ko"
 done
 guest_test=$(basename "$test_bin")
-if [ -n "$facectl_bin" ] && command -v strip >/dev/null; then
+if [ -n "$facectl_bin" ]; then
   copy_with_libs "$facectl_bin"
-  strip "$root/bin/$(basename "$facectl_bin")"
+  # Stripping only shrinks the initramfs; the guest test needs the binary either way.
+  if command -v strip >/dev/null; then strip "$root/bin/$(basename "$facectl_bin")"; fi
   mkdir -p "$root/cfg"
   cp "$head_yaml" "$root/cfg/head.yaml"
 fi
