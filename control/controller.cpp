@@ -157,6 +157,90 @@ void Controller::keep_actuator_constraints(double dt, LimitFlags* flags) {
   }
 }
 
+void Controller::limit_mechanism(double dt, LimitFlags* flags) {
+  // Limiting each strut on its own would bend the jaw's path out of the
+  // envelope in a fast move (each strut lags differently). So the pose is
+  // limited in pitch, yaw and protrusion, inside the envelope, with rates the
+  // model builder proved every strut can follow, and the struts take the
+  // strokes of that pose.
+  const MandibleMechanism& mech = *model_.mapping.mechanism;
+  const SafetyState state = safety_.state();
+  face::MandiblePose target{face_[model_.layout.jaw_pitch()], face_[model_.layout.jaw_yaw()],
+                            face_[model_.layout.jaw_protrusion()]};
+  if (state == SafetyState::kEnabling) {
+    const double b = safety_.enable_blend();
+    target.pitch_rad = pose_start_.pitch_rad + b * (target.pitch_rad - pose_start_.pitch_rad);
+    target.yaw_rad = pose_start_.yaw_rad + b * (target.yaw_rad - pose_start_.yaw_rad);
+    target.protrusion_m =
+        pose_start_.protrusion_m + b * (target.protrusion_m - pose_start_.protrusion_m);
+  } else if (state == SafetyState::kStopping) {
+    target = model_.mandible_rest;
+  }
+  const MandibleVector held = mech.held_in(to_vector(target));
+  const double goal[3] = {held[0], held[1], held[2]};
+  LimitFlags pose_flags = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (!mech.driven[k]) {
+      pose_limiter_[k] = {goal[k], 0.0, 0.0};
+      continue;
+    }
+    pose_flags |= limit_step(model_.mandible_limits[k], pose_limiter_[k], goal[k], dt);
+  }
+  const face::MandiblePose pose{pose_limiter_[0].position, pose_limiter_[1].position,
+                                pose_limiter_[2].position};
+  MandibleStrokes strokes{};
+  const MandibleSolveResult r = solve(mech, pose, strokes);
+  for (std::size_t s = 0; s < mech.struts(); ++s) {
+    const std::size_t i = mech.strut[s].actuator;
+    LimiterState& l = limiter_[i];
+    const double v = (strokes[s] - l.position) / dt;
+    l = {strokes[s], v, (v - l.velocity) / dt};
+    flags[i] = pose_flags | (r.clamped ? kLimitMapping : 0);
+    if ((mapping_clamps_ >> i) & 1u) flags[i] |= kLimitMapping;
+    command_[i] = strokes[s];
+  }
+}
+
+void Controller::start_mechanism() {
+  const MandibleMechanism& mech = *model_.mapping.mechanism;
+  MandibleStrokes measured{};
+  for (std::size_t s = 0; s < mech.struts(); ++s) measured[s] = measured_[mech.strut[s].actuator];
+  pose_start_ = forward(mech, measured, model_.mandible_rest).value_or(model_.mandible_rest);
+  const double here[3] = {pose_start_.pitch_rad, pose_start_.yaw_rad, pose_start_.protrusion_m};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const ActuatorLimits& l = model_.mandible_limits[k];
+    pose_limiter_[k] = {std::clamp(here[k], l.soft_min, l.soft_max), 0.0, 0.0};
+  }
+  // The struts start where the (clamped) pose puts them: within the noise of
+  // where they are, because mechanism_out_of_envelope() refused anything else.
+  MandibleStrokes strokes{};
+  solve(mech, {pose_limiter_[0].position, pose_limiter_[1].position, pose_limiter_[2].position},
+        strokes);
+  for (std::size_t s = 0; s < mech.struts(); ++s) {
+    const std::size_t i = mech.strut[s].actuator;
+    limiter_[i] = {strokes[s], 0.0, 0.0};
+    command_[i] = strokes[s];
+  }
+}
+
+bool Controller::mechanism_out_of_envelope() const {
+  // Struts measured at no pose of the mandible, or at one outside the envelope
+  // by more than measurement noise: enabling would jump the jaw (or it is
+  // jammed or miscalibrated). The state machine refuses to enable on it.
+  if (!model_.mapping.mechanism) return false;
+  const MandibleMechanism& mech = *model_.mapping.mechanism;
+  MandibleStrokes measured{};
+  for (std::size_t s = 0; s < mech.struts(); ++s) measured[s] = measured_[mech.strut[s].actuator];
+  const auto pose = forward(mech, measured, model_.mandible_rest);
+  if (!pose) return true;
+  constexpr double kAngle = 0.5 * 3.14159265358979323846 / 180.0, kLength = 0.5e-3;
+  const MandibleEnvelope& e = model_.envelope;
+  return pose->pitch_rad < e.pitch.min - kAngle || pose->pitch_rad > e.pitch.max + kAngle ||
+         pose->yaw_rad < e.yaw.min - kAngle || pose->yaw_rad > e.yaw.max + kAngle ||
+         pose->protrusion_m < e.protrusion.min - kLength ||
+         pose->protrusion_m > e.protrusion.max + kLength;
+}
+
 bool Controller::limit_actuators(double dt, LimitFlags* flags) {
   bool breach = false;
   std::copy_n(limiter_.begin(), model_.actuators.size(), pre_step_.begin());
@@ -165,6 +249,7 @@ bool Controller::limit_actuators(double dt, LimitFlags* flags) {
     if ((mapping_clamps_ >> i) & 1u) flags[i] |= kLimitMapping;
     command_[i] = limiter_[i].position;
   }
+  if (model_.mapping.mechanism) limit_mechanism(dt, flags);
   if (model_.actuator_constraints.size() != 0) keep_actuator_constraints(dt, flags);
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     const ActuatorLimits& l = model_.actuators[i].limits;
@@ -191,7 +276,7 @@ bool Controller::feedback_out_of_range() const {
     const ActuatorLimits& l = model_.actuators[i].limits;
     if (!(l.position_min <= measured_[i] && measured_[i] <= l.position_max)) return true;
   }
-  return false;
+  return mechanism_out_of_envelope();
 }
 
 bool Controller::at_rest(double dt) {
@@ -231,6 +316,7 @@ void Controller::enter_state(SafetyState state) {
       limiter_[i] = {here, 0.0, 0.0};
       command_[i] = here;
     }
+    if (model_.mapping.mechanism) start_mechanism();
     settled_time_ = 0.0;
   }
   if (!outputs) {

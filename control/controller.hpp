@@ -103,6 +103,11 @@ class Controller {
   void choose_targets();
   bool limit_actuators(double dt, LimitFlags* flags);  // true if the backstop acted
   void keep_actuator_constraints(double dt, LimitFlags* flags);
+  // The mandible mechanism's struts: the pose is limited in its own DOFs and
+  // the struts follow it (docs/MANDIBLE_MECHANISM.md, "Moving the struts together").
+  void limit_mechanism(double dt, LimitFlags* flags);
+  void start_mechanism();  // ENABLING: the pose limiter starts at the measured pose
+  bool mechanism_out_of_envelope() const;
   double worst_reach(std::size_t constraint, double dt) const;
   bool feedback_out_of_range() const;
   bool at_rest(double dt);
@@ -148,6 +153,8 @@ class Controller {
   std::array<double, kMaxActuators> measured_{};
   std::array<double, kMaxActuators> enable_start_{};
   std::array<LimiterState, kMaxActuators> limiter_{};
+  std::array<LimiterState, 3> pose_limiter_{};  // pitch, yaw, protrusion
+  face::MandiblePose pose_start_;               // where ENABLING found the jaw
 
   ControllerCounters counters_;
   std::atomic<bool> enable_request_{false};

@@ -68,6 +68,12 @@ struct ControllerModel {
   // actuators that collide at their extremes): mapped targets are projected,
   // and each limited step is shortened so the commands stay admissible.
   CoupledConstraints actuator_constraints;
+  // With a mandible mechanism (mapping.mechanism): the pose is limited in its
+  // own DOFs (pitch, yaw, protrusion; position = the envelope) and the struts
+  // follow it by inverse kinematics, so they move together. `mandible_rest` is
+  // the pose the struts' rest positions make (where STOPPING goes).
+  std::array<ActuatorLimits, 3> mandible_limits{};
+  face::MandiblePose mandible_rest;
   std::vector<ActuatorModel> actuators;  // ordered by bus
   std::vector<BusModel> buses;
   double rate_hz = 1000.0;

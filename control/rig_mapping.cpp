@@ -7,6 +7,11 @@ namespace facectl {
 
 bool RigMapping::drives(std::size_t actuator) const {
   if (linear.drives(actuator)) return true;
+  if (mechanism) {
+    for (std::size_t i = 0; i < mechanism->struts(); ++i) {
+      if (mechanism->strut[i].actuator == actuator) return true;
+    }
+  }
   return std::any_of(points.begin(), points.end(),
                      [&](const PointTerm& p) { return p.actuator == actuator && p.gain != 0.0; });
 }
@@ -71,12 +76,29 @@ std::uint64_t apply_transforms(const RigMapping& m, const MappingWorkspace& w,
   return clamped_bits;
 }
 
+std::uint64_t solve_mechanism(const RigMapping& m, MappingWorkspace& w,
+                              const std::array<double, kMaxFaceSignals>& face,
+                              std::array<double, kMaxActuators>& out) {
+  if (!m.mechanism) return 0;
+  const MandibleMechanism& mech = *m.mechanism;
+  const face::MandiblePose target{face[m.jaw_pitch], face[m.jaw_yaw], face[m.jaw_protrusion]};
+  MandibleStrokes strokes{};
+  w.mechanism = solve(mech, target, strokes);
+  std::uint64_t bits = 0;
+  for (std::size_t i = 0; i < mech.struts(); ++i) {
+    out[mech.strut[i].actuator] = strokes[i];
+    if (w.mechanism.clamped) bits |= std::uint64_t{1} << mech.strut[i].actuator;
+  }
+  return bits;
+}
+
 std::uint64_t map_to_actuators(const RigMapping& m, MappingWorkspace& w,
                                const std::array<double, kMaxFaceSignals>& face,
                                std::array<double, kMaxActuators>& out) {
   evaluate_control_points(m, w, face);
   map_effectors(m, w, face);
-  return apply_transforms(m, w, out);
+  const std::uint64_t clamped = apply_transforms(m, w, out);
+  return clamped | solve_mechanism(m, w, face, out);
 }
 
 }  // namespace facectl

@@ -9,6 +9,7 @@
 #include "control/capacity.hpp"
 #include "control/linear_mapping.hpp"
 #include "control/linkage.hpp"
+#include "control/mandible_mechanism.hpp"
 #include "facectl/face/reduced_face_model.hpp"
 
 namespace facectl {
@@ -46,6 +47,10 @@ struct RigMapping {
   std::shared_ptr<const face::ReducedFaceModel> reduced;
   std::size_t muscle_count = 0;  // face signals [0, muscle_count) are the model's muscles
   std::size_t jaw_pitch = 0, jaw_yaw = 0, jaw_protrusion = 0;  // face signal indices
+  // Struts that produce the mandible pose together, solved by inverse
+  // kinematics after the per-channel transforms (their strut actuators have no
+  // linear terms, points or transform).
+  std::optional<MandibleMechanism> mechanism;
 
   std::size_t actuators() const { return linear.actuators(); }
   bool drives(std::size_t actuator) const;
@@ -56,6 +61,7 @@ struct MappingWorkspace {
   face::ReducedFaceWorkspace reduced;
   std::array<double, 3 * kMaxControlPoints> displacement{};
   std::array<double, kMaxActuators> effector{};
+  MandibleSolveResult mechanism;  // the last inverse kinematics result
 };
 
 MappingWorkspace make_mapping_workspace(const RigMapping& mapping);
@@ -74,7 +80,14 @@ void map_effectors(const RigMapping& mapping, MappingWorkspace& w,
 std::uint64_t apply_transforms(const RigMapping& mapping, const MappingWorkspace& w,
                                std::array<double, kMaxActuators>& out);
 
-// Steps 5 and 6 together. Returns apply_transforms()'s bits.
+// The mandible mechanism's strut positions for the face's jaw pose (nearest
+// reachable pose if the strokes would leave their limits). Returns a bit per
+// strut actuator if it clamped; 0 without a mechanism.
+std::uint64_t solve_mechanism(const RigMapping& mapping, MappingWorkspace& w,
+                              const std::array<double, kMaxFaceSignals>& face,
+                              std::array<double, kMaxActuators>& out);
+
+// Steps 5 and 6 together. Returns the bits of apply_transforms() and solve_mechanism().
 std::uint64_t map_to_actuators(const RigMapping& mapping, MappingWorkspace& w,
                                const std::array<double, kMaxFaceSignals>& face,
                                std::array<double, kMaxActuators>& out);

@@ -9,6 +9,7 @@
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/reduced_face_model.hpp"
 #include "firmware-host/config_node.hpp"
+#include "firmware-host/mechanism_builder.hpp"
 
 namespace facectl {
 namespace {
@@ -187,6 +188,7 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
   map.jaw_pitch = m.layout.jaw_pitch();
   map.jaw_yaw = m.layout.jaw_yaw();
   map.jaw_protrusion = m.layout.jaw_protrusion();
+  build_mechanism(head, rig, out.file_order, m, out.problems);
   const bool reads_points =
       std::any_of(rig.actuators.begin(), rig.actuators.end(),
                   [](const ActuatorConfig& a) { return !a.map.points.empty(); });
@@ -242,7 +244,8 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
     }
     if (!map.drives(i)) {
       out.problems.push_back(a.map.where + ": " + who +
-                             ": nothing drives it (no non-zero term or point in `map`)");
+                             ": nothing drives it (no non-zero term or point in `map`, and no "
+                             "strut of the mandible mechanism)");
     }
     // The mapping must stay finite over every admissible input (an overflow
     // would be a NaN command); `facectl verify` proves the tighter ranges.

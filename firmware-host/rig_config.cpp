@@ -90,7 +90,14 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   }
 
   cfg.plant_where = node.get("plant") ? node["plant"].where() : cfg.where;
-  cfg.map = parse_mapping(node["map"], layout, u.suffix);
+  // A strut of the mandible mechanism has no `map`: the mechanism's inverse
+  // kinematics drive it (checked when the model is built).
+  cfg.has_map = node.has("map");
+  if (cfg.has_map) {
+    cfg.map = parse_mapping(node["map"], layout, u.suffix);
+  } else {
+    cfg.map.where = cfg.where;
+  }
 
   if (auto r = node.get("fault_reaction")) {
     const std::string reaction = r->string();
@@ -174,7 +181,8 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
   const ConfigNode root = ConfigNode::load_file(path, "");
   root.expect_keys({"rig"});
   const ConfigNode rig = root["rig"];
-  rig.expect_keys({"name", "buses", "actuators", "mandible_envelope", "coupled_limits"});
+  rig.expect_keys(
+      {"name", "buses", "actuators", "mandible_envelope", "mandible_mechanism", "coupled_limits"});
 
   RigConfig cfg;
   cfg.file = path;
@@ -205,6 +213,7 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
     cfg.actuators.push_back(std::move(act));
   }
   if (auto env = rig.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);
+  if (auto mech = rig.get("mandible_mechanism")) cfg.mechanism = parse_mandible_mechanism(*mech);
   if (auto limits = rig.get("coupled_limits")) {
     const auto rows = limits->items();
     if (rows.size() > CoupledConstraints::kMaxConstraints) {

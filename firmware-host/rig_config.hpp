@@ -10,6 +10,7 @@
 #include "firmware-host/bus_config.hpp"
 #include "firmware-host/config_node.hpp"
 #include "firmware-host/head_config.hpp"
+#include "firmware-host/mandible_mechanism_config.hpp"
 #include "firmware-host/rig_mapping_config.hpp"
 #include "sim/plant/servo_plant.hpp"
 
@@ -17,7 +18,8 @@ namespace facectl {
 
 struct ActuatorConfig {
   ActuatorModel model;
-  MappingConfig map;
+  MappingConfig map;  // empty (where = the actuator) for a strut of the mandible mechanism
+  bool has_map = false;
   sim::ServoPlantParams plant;  // the simulated twin
   std::string where;
   std::string plant_where;     // position of its `plant` block, or of the actuator
@@ -39,6 +41,7 @@ struct RigConfig {
   std::vector<ActuatorConfig> actuators;  // in file order
   std::optional<EnvelopeSpec> envelope;
   std::vector<CoupledLimitConfig> coupled_limits;
+  std::optional<MandibleMechanismConfig> mechanism;
 };
 
 // Loads a rig against the head's face layout (mapping terms name its signals).

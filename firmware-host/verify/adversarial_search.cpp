@@ -209,6 +209,32 @@ class Search {
                   prot - m_.envelope.protrusion.min, m_.envelope.protrusion.max - prot});
     result_.envelope_margin = std::min(result_.envelope_margin, e);
     if (e < -1e-12) violation("mandible envelope", "jaw", "face pose outside the envelope");
+    if (m_.mapping.mechanism) check_mechanism(cmd);
+  }
+
+  // The pose the struts' limited commands actually put the jaw in (forward
+  // kinematics): each strut is limited on its own, so in a fast move the
+  // struts' pose can differ from the face's.
+  void check_mechanism(const std::array<double, kMaxActuators>& cmd) {
+    const MandibleMechanism& mech = *m_.mapping.mechanism;
+    MandibleStrokes strokes{};
+    for (std::size_t i = 0; i < mech.struts(); ++i) strokes[i] = cmd[mech.strut[i].actuator];
+    const auto pose = forward(mech, strokes, mechanism_pose_);
+    if (!pose) {
+      violation("mandible mechanism", "jaw", "strut commands that are no pose of the mandible");
+      return;
+    }
+    mechanism_pose_ = *pose;
+    const MandibleEnvelope& env = m_.envelope;
+    const double e = std::min({pose->pitch_rad - env.pitch.min, env.pitch.max - pose->pitch_rad,
+                               pose->yaw_rad - env.yaw.min, env.yaw.max - pose->yaw_rad,
+                               pose->protrusion_m - env.protrusion.min,
+                               env.protrusion.max - pose->protrusion_m});
+    result_.mechanism_envelope_margin = std::min(result_.mechanism_envelope_margin, e);
+    if (e < -1e-9) {
+      violation("mandible envelope", "jaw struts",
+                "strut commands put the jaw outside the envelope");
+    }
   }
 
   OfflineHead head_;
@@ -217,6 +243,7 @@ class Search {
   SearchOptions options_;
   SearchResult result_;
   bool live_ = false;
+  face::MandiblePose mechanism_pose_;  // last forward-kinematics pose: the next guess
   std::array<double, kMaxActuators> prev_cmd_{}, prev_vel_{}, prev_acc_{};
   std::array<std::uint64_t, kMaxActuators> jerk_yields_{}, coupled_overrides_{};
 };

@@ -30,6 +30,9 @@ struct SearchResult {
   double face_constraint_margin = 1e300;      // min over face coupled limits of bound − value
   double actuator_constraint_margin = 1e300;  // the same over actuator coupled limits
   double envelope_margin = 1e300;             // of the jaw inside the envelope, SI
+  // Of the pose the mandible mechanism's strut commands produce (forward
+  // kinematics), SI; stays 1e300 without a mechanism.
+  double mechanism_envelope_margin = 1e300;
   std::uint64_t violations = 0;
   std::vector<Finding> findings;  // violations (the first ones, with time) and notes
   double seconds = 0.0;

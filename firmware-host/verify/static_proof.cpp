@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "firmware-host/verify/channel_bound.hpp"
+#include "firmware-host/verify/mechanism_channels.hpp"
 
 namespace facectl::verify {
 namespace {
@@ -256,6 +257,7 @@ StaticProof prove(const LoadedConfig& cfg) {
     }
   }
 
+  const std::vector<MechanismChannel> struts = mechanism_channels(m, set);
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
     const ActuatorModel& a = m.actuators[i];
     const std::string who = a.name;
@@ -279,7 +281,14 @@ StaticProof prove(const LoadedConfig& cfg) {
                                           [&](const PointTerm& p) { return p.actuator == i; });
     std::optional<EffectorRange> effector;
     bool proven = true;
-    if (reads_points) {
+    const auto strut = std::find_if(struts.begin(), struts.end(),
+                                    [&](const MechanismChannel& c) { return c.actuator == i; });
+    if (strut != struts.end()) {
+      effector = EffectorRange{strut->lo, strut->hi, strut->at_lo, strut->at_hi};
+      r.method = strut->converged
+                     ? "branch and bound on the mandible mechanism"
+                     : "branch and bound on the mandible mechanism (budget hit: loose bound)";
+    } else if (reads_points) {
       bool converged = false;
       effector = point_effector_range(m, set, i, &converged);
       r.method = converged ? "branch and bound on the reduced model"

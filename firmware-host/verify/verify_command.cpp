@@ -108,19 +108,27 @@ int verify_command(const VerifyOptions& o) {
         "  face coupled limits: worst margin %.4g; actuator coupled limits: %.4g; "
         "mandible envelope: %.4g (SI)\n",
         search.face_constraint_margin, search.actuator_constraint_margin, search.envelope_margin);
+    if (search.mechanism_envelope_margin < 1e300) {
+      std::printf("  mandible envelope at the pose of the strut commands: worst margin %.4g (SI)\n",
+                  search.mechanism_envelope_margin);
+    }
     print_findings(search.findings, true);
     failed = failed || search.violations > 0;
     Json af = Json::array();
     for (const auto& f : search.findings) af.push_back(to_json(f));
-    report["adversarial"] = {{"ticks", search.ticks},
-                             {"seed", o.seed},
-                             {"seconds", search.seconds},
-                             {"violations", search.violations},
-                             {"face_constraint_margin", search.face_constraint_margin},
-                             {"actuator_constraint_margin", search.actuator_constraint_margin},
-                             {"envelope_margin", search.envelope_margin},
-                             {"actuators", margins},
-                             {"findings", af}};
+    report["adversarial"] = {
+        {"ticks", search.ticks},
+        {"seed", o.seed},
+        {"seconds", search.seconds},
+        {"violations", search.violations},
+        {"face_constraint_margin", search.face_constraint_margin},
+        {"actuator_constraint_margin", search.actuator_constraint_margin},
+        {"envelope_margin", search.envelope_margin},
+        {"mechanism_envelope_margin", search.mechanism_envelope_margin < 1e300
+                                          ? Json(search.mechanism_envelope_margin)
+                                          : Json(nullptr)},
+        {"actuators", margins},
+        {"findings", af}};
 
     // c. Show check.
     Json shows = Json::array();

@@ -43,8 +43,15 @@ std::vector<sim::BoardChannel> channels(const std::vector<ActuatorModel>& acts, 
     c[i].plant = testing::fast_plant();
     c[i].unit = acts[first + i].kind == ActuatorKind::kRotary ? modbus_map::Unit::kRotary
                                                               : modbus_map::Unit::kLinear;
+    c[i].initial = acts[first + i].rest;  // a powered-down head sits at rest
   }
   return c;
+}
+
+std::vector<double> rests(const std::vector<ActuatorModel>& acts) {
+  std::vector<double> r;
+  for (const ActuatorModel& a : acts) r.push_back(a.rest);
+  return r;
 }
 
 class DefaultRigOnDrivers : public ::testing::Test {
@@ -66,15 +73,13 @@ class DefaultRigOnDrivers : public ::testing::Test {
       devices.push_back(boards_.back().get());
     }
     net_ = std::make_unique<sim::CanDeviceNetwork>(link_.devices(), devices);
-    can_bus_ = std::make_unique<CustomCanBus>("can0", link_.host(), can_acts,
-                                              std::vector<double>(can.count, 0.0));
+    can_bus_ = std::make_unique<CustomCanBus>("can0", link_.host(), can_acts, rests(can_acts));
     mb1_ = std::make_unique<sim::ModbusActuatorBoard>(1, channels(mb_acts, 0, 8));
     mb2_ = std::make_unique<sim::ModbusActuatorBoard>(2, channels(mb_acts, 8, 6));
     server_ = sim::ModbusBoardServer::tcp({mb1_.get(), mb2_.get()});
     ModbusEndpoint ep;
     ep.port = server_->port();
-    modbus_bus_ =
-        std::make_unique<ModbusBus>("modbus0", ep, mb_acts, std::vector<double>(mb.count, 0.0));
+    modbus_bus_ = std::make_unique<ModbusBus>("modbus0", ep, mb_acts, rests(mb_acts));
     seams_ = {can_bus_.get(), modbus_bus_.get()};
     controller_ = std::make_unique<Controller>(model_, seams_, io_,
                                                ControllerChannels{&mailbox_, nullptr, &events_});
@@ -173,8 +178,10 @@ class DefaultRigOnDrivers : public ::testing::Test {
 TEST_F(DefaultRigOnDrivers, TheHeadRunsAndTheBoardsFollowTheController) {
   enable();
   run(500ms, [] { return false; });
+  // The jaw opened toward 0.1 rad (5.7 degrees): the digastric strut (actuator
+  // 0) shortens about 1.67 mm a degree from its 35 mm rest.
   const double jaw = controller_->commands()[0];
-  EXPECT_GT(jaw, 0.05);  // the jaw opened toward 0.1 rad (5.7 degrees)
+  EXPECT_LT(jaw, model_.actuators[0].rest - 0.005);
   EXPECT_NEAR(boards_[0]->position(0), jaw, 0.005);
   EXPECT_TRUE(mb1_->enabled());
   EXPECT_FALSE(can_bus_->status().fault) << can_bus_->status().reason;
