@@ -273,6 +273,31 @@ FapSequence parse_fap_text(std::string_view text, const std::string& source) {
   return seq;
 }
 
+std::string format_fap_text(const FapSequence& seq) {
+  std::ostringstream out;
+  out.precision(17);
+  out << seq.header.version << ' ' << seq.header.name << ' ' << seq.header.frame_rate << ' '
+      << seq.frames.size() << '\n';
+  for (const FapFrame& f : seq.frames) {
+    for (std::size_t i = 0; i < kFapCount; ++i) out << (i ? " " : "") << (f.mask[i] ? 1 : 0);
+    out << '\n' << f.number;
+    if (f.mask[0]) {
+      out << ' ' << f.viseme.select1 << ' ' << f.viseme.select2 << ' ' << f.viseme.blend << ' '
+          << f.viseme.def;
+    }
+    if (f.mask[1]) {
+      const ExpressionParams& e = f.expression;
+      out << ' ' << e.select1 << ' ' << e.intensity1 << ' ' << e.select2 << ' ' << e.intensity2
+          << ' ' << e.init_face << ' ' << e.def;
+    }
+    for (std::size_t i = 2; i < kFapCount; ++i) {
+      if (f.mask[i]) out << ' ' << f.values[i];
+    }
+    out << '\n';
+  }
+  return out.str();
+}
+
 FapSequence load_fap_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot open the FAP file");

@@ -106,6 +106,9 @@ class FapReader {
 
 // Parses a whole FAP text: everything or a FapFormatError, never part of it.
 FapSequence parse_fap_text(std::string_view text, const std::string& source);
+// Writes a sequence in the same text format (values with up to 17 significant
+// digits, so parse_fap_text(format_fap_text(s)) gives s back).
+std::string format_fap_text(const FapSequence& sequence);
 // Reads and parses a file. Throws FapFormatError (or ConfigError if unreadable).
 FapSequence load_fap_file(const std::string& path);
 

@@ -54,58 +54,57 @@ struct MuscleRouteSpec {
   int fap;
   const char* point;  // control point of the reduced model standing for the FAP's FDP
   std::vector<const char*> positive, negative;
+  // Where the reduced model shows the negative group no reach at the point,
+  // a stated nominal reach (m at c = 1) instead; 0: measured.
+  double negative_nominal = 0.0;
 };
 
 // Which muscles move each FAP's feature point, for positive and negative
-// values. Where the reduced model has no control point at the FAP's FDP the
-// nearest one stands in (docs/FAP.md lists these).
+// values, chosen from what the reduced face model says each muscle moves
+// (docs/FAP.md). Where the model has no control point at the FAP's FDP the
+// nearest one stands in.
 const std::vector<MuscleRouteSpec>& muscle_route_specs() {
+  // The depressor anguli oris and depressor labii inferioris move no control
+  // point downwards in the reduced model; frowns and a lowered lower lip would
+  // be lost without them, so they get nominal reaches (docs/FAP.md).
+  constexpr double kCornerDown = 0.0045;  // the zygomaticus major's measured lift, mirrored
+  constexpr double kLowerLipDown = 0.003;
+  const std::vector<const char*> lls = {"levator_labii_superioris_l", "levator_labii_superioris_r"};
+  const std::vector<const char*> dli = {"depressor_labii_inferioris_l",
+                                        "depressor_labii_inferioris_r"};
   static const std::vector<MuscleRouteSpec> specs = {
-      {4,
-       "fdp_2_2",
-       {"orbicularis_oris"},
-       {"levator_labii_superioris_l", "levator_labii_superioris_r"}},
-      {5,
-       "fdp_2_3",
-       {"mentalis_l", "mentalis_r"},
-       {"depressor_labii_inferioris_l", "depressor_labii_inferioris_r"}},
+      {4, "fdp_2_2", {"orbicularis_oris"}, lls},
+      {5, "fdp_8_2", {"orbicularis_oris"}, dli, kLowerLipDown},
       {6, "fdp_8_3", {"risorius_l"}, {"orbicularis_oris"}},
       {7, "fdp_8_4", {"risorius_r"}, {"orbicularis_oris"}},
       {8, "fdp_2_2", {"orbicularis_oris"}, {"levator_labii_superioris_l"}},
       {9, "fdp_2_2", {"orbicularis_oris"}, {"levator_labii_superioris_r"}},
-      {10, "fdp_2_3", {"mentalis_l"}, {"depressor_labii_inferioris_l"}},
-      {11, "fdp_2_3", {"mentalis_r"}, {"depressor_labii_inferioris_r"}},
-      {12, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}},
-      {13, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}},
+      {10, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_l"}, kLowerLipDown},
+      {11, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_r"}, kLowerLipDown},
+      {12, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}, kCornerDown},
+      {13, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}, kCornerDown},
       {16, "fdp_8_2", {"orbicularis_oris"}, {}},
       {17, "fdp_8_1", {"orbicularis_oris"}, {}},
-      {18, "fdp_2_1", {"mentalis_l", "mentalis_r"}, {}},
-      {31, "fdp_4_1", {"frontalis_inner_l"}, {"corrugator_supercilii_l"}},
-      {32, "fdp_4_2", {"frontalis_inner_r"}, {"corrugator_supercilii_r"}},
-      {33, "fdp_4_3", {"frontalis_l"}, {"procerus_l"}},
-      {34, "fdp_4_4", {"frontalis_r"}, {"procerus_r"}},
-      {35, "fdp_4_5", {"frontalis_outer_l"}, {"orbicularis_oculi_l"}},
-      {36, "fdp_4_6", {"frontalis_outer_r"}, {"orbicularis_oculi_r"}},
+      {31, "fdp_4_1", {"frontalis_inner_l"}, {"procerus_l"}},
+      {32, "fdp_4_2", {"frontalis_inner_r"}, {"procerus_r"}},
+      {33, "fdp_4_3", {"frontalis_l"}, {"corrugator_supercilii_l"}},
+      {34, "fdp_4_4", {"frontalis_r"}, {"corrugator_supercilii_r"}},
+      {35, "fdp_4_5", {"frontalis_outer_l"}, {}},
+      {36, "fdp_4_6", {"frontalis_outer_r"}, {}},
       {37, "fdp_4_1", {"corrugator_supercilii_l"}, {}},
       {38, "fdp_4_2", {"corrugator_supercilii_r"}, {}},
-      {41, "fdp_5_1", {"orbicularis_oculi_l"}, {}},
-      {42, "fdp_5_2", {"orbicularis_oculi_r"}, {}},
-      {51,
-       "fdp_8_1",
-       {"orbicularis_oris"},
-       {"levator_labii_superioris_l", "levator_labii_superioris_r"}},
-      {52,
-       "fdp_8_2",
-       {"mentalis_l", "mentalis_r"},
-       {"depressor_labii_inferioris_l", "depressor_labii_inferioris_r"}},
+      {41, "fdp_5_1", {"zygomaticus_major_l"}, {}},
+      {42, "fdp_5_2", {"zygomaticus_major_r"}, {}},
+      {51, "fdp_8_1", {"orbicularis_oris"}, lls},
+      {52, "fdp_8_2", {"orbicularis_oris"}, dli, kLowerLipDown},
       {53, "fdp_8_3", {"risorius_l"}, {"orbicularis_oris"}},
       {54, "fdp_8_4", {"risorius_r"}, {"orbicularis_oris"}},
       {55, "fdp_8_1", {"orbicularis_oris"}, {"levator_labii_superioris_l"}},
       {56, "fdp_8_1", {"orbicularis_oris"}, {"levator_labii_superioris_r"}},
-      {57, "fdp_8_2", {"mentalis_l"}, {"depressor_labii_inferioris_l"}},
-      {58, "fdp_8_2", {"mentalis_r"}, {"depressor_labii_inferioris_r"}},
-      {59, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}},
-      {60, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}},
+      {57, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_l"}, kLowerLipDown},
+      {58, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_r"}, kLowerLipDown},
+      {59, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}, kCornerDown},
+      {60, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}, kCornerDown},
       {63,
        "fdp_9_1",
        {"levator_labii_superioris_alaeque_nasi_l", "levator_labii_superioris_alaeque_nasi_r"},
@@ -226,7 +225,7 @@ FapMapping FapMapping::build(const HeadConfig& head, const FeaturePoints& points
   std::vector<double> c(reduced.muscles.size());
   std::vector<double> disp(3 * reduced.control_points.size());
   auto response = [&](const std::vector<const char*>& names, std::size_t point,
-                      const face::Vec3& dir) {
+                      const face::Vec3& dir, double nominal) {
     Response r;
     for (const char* n : names) {
       const auto i = L.find(n);
@@ -236,6 +235,13 @@ FapMapping FapMapping::build(const HeadConfig& head, const FeaturePoints& points
       }
       r.muscles.push_back(*i);
     }
+    if (nominal > 0.0) {
+      r.nominal = true;
+      for (std::size_t k = 0; k < r.along.size(); ++k) {
+        r.along[k] = nominal * 0.1 * static_cast<double>(k);
+      }
+      return r;
+    }
     for (std::size_t k = 0; k < r.along.size(); ++k) {
       std::fill(c.begin(), c.end(), 0.0);
       for (std::size_t i : r.muscles) c[i] = 0.1 * static_cast<double>(k);
@@ -244,7 +250,7 @@ FapMapping FapMapping::build(const HeadConfig& head, const FeaturePoints& points
       // Running maximum: the inverse needs a monotone response.
       r.along[k] = std::max(k == 0 ? 0.0 : r.along[k - 1], d.dot(dir));
     }
-    if (!(r.along.back() > 1e-5)) {
+    if (!(r.along.back() > 3e-4)) {  // 0.3 mm: the reduced model's relevance threshold
       throw ConfigError(head.file + ": muscle '" + std::string(names.front()) + "' does not move " +
                         std::string(reduced.control_points[point]) +
                         " in its FAP's direction in the reduced face model (" +
@@ -264,8 +270,10 @@ FapMapping FapMapping::build(const HeadConfig& head, const FeaturePoints& points
     MuscleRoute route;
     route.fap = spec.fap;
     route.point = spec.point;
-    route.positive = response(spec.positive, point, dir);
-    if (!spec.negative.empty()) route.negative = response(spec.negative, point, -dir);
+    route.positive = response(spec.positive, point, dir, 0.0);
+    if (!spec.negative.empty()) {
+      route.negative = response(spec.negative, point, -dir, spec.negative_nominal);
+    }
     m.muscle_routes_.push_back(std::move(route));
     m.supported_.set(static_cast<std::size_t>(spec.fap - 1));
   }
@@ -438,7 +446,8 @@ std::vector<FapRouteInfo> FapMapping::describe_routes() const {
     std::string gain = buf;
     if (!r.negative.muscles.empty()) {
       target += " / - " + names(r.negative.muscles);
-      std::snprintf(buf, sizeof buf, " / %.2f mm", r.negative.along.back() * 1e3);
+      std::snprintf(buf, sizeof buf, " / %.2f mm%s", r.negative.along.back() * 1e3,
+                    r.negative.nominal ? " (nominal)" : "");
       gain += buf;
     }
     out.push_back({r.fap, target, gain});
