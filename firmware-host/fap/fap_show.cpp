@@ -1,0 +1,59 @@
+#include "firmware-host/fap/fap_show.hpp"
+
+#include <algorithm>
+
+namespace facectl {
+
+FapShow FapShow::build(const FapSequence& sequence, const FapMapping& mapping) {
+  FapShow show;
+  show.name_ = sequence.header.name;
+  show.signal_count_ = mapping.layout().size();
+  FapState state;
+  for (const FapFrame& frame : sequence.frames) {
+    state.apply(frame);
+    std::array<double, kMaxFaceSignals> pose{};
+    mapping.map(state, frame.number, pose, &show.clamps_);
+    show.times_.push_back(sequence.time_of(frame));
+    show.poses_.push_back(pose);
+  }
+  for (int f = 1; f <= kFapCount; ++f) {
+    const auto bit = static_cast<std::size_t>(f - 1);
+    if (sequence.used[bit] && !mapping.supported()[bit]) show.ignored_.push_back(f);
+  }
+  return show;
+}
+
+void FapShow::evaluate(double t, std::array<double, kMaxFaceSignals>& out) const {
+  if (t <= times_.front()) {
+    out = poses_.front();
+    return;
+  }
+  if (t >= times_.back()) {
+    out = poses_.back();
+    return;
+  }
+  const auto next = std::upper_bound(times_.begin(), times_.end(), t);
+  const auto k = static_cast<std::size_t>(next - times_.begin());
+  const double w = (t - times_[k - 1]) / (times_[k] - times_[k - 1]);
+  for (std::size_t i = 0; i < signal_count_; ++i) {
+    out[i] = poses_[k - 1][i] + w * (poses_[k][i] - poses_[k - 1][i]);
+  }
+}
+
+std::vector<std::string> FapShow::report() const {
+  std::vector<std::string> lines;
+  for (const FapClamp& c : clamps_) lines.push_back("clamped: " + describe(c));
+  if (!ignored_.empty()) {
+    std::string s = "ignored (no counterpart on this head):";
+    for (std::size_t i = 0; i < ignored_.size(); ++i) {
+      s.append(i == 0 ? " " : ", ");
+      s.append(std::to_string(ignored_[i]));
+      s.push_back(' ');
+      s.append(fap_info(ignored_[i]).name);
+    }
+    lines.push_back(s);
+  }
+  return lines;
+}
+
+}  // namespace facectl

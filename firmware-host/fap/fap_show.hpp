@@ -1,0 +1,41 @@
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "control/capacity.hpp"
+#include "firmware-host/fap/fap_file.hpp"
+#include "firmware-host/fap/fap_mapping.hpp"
+
+namespace facectl {
+
+// A parsed FAP sequence turned into face poses, one per frame at t = frame
+// number / frame rate, so that it plays like a Show: evaluate(t) interpolates
+// linearly between frames and holds the ends. Carries the clamp report and
+// the FAPs the file uses that this head ignores.
+class FapShow {
+ public:
+  static FapShow build(const FapSequence& sequence, const FapMapping& mapping);
+
+  const std::string& name() const { return name_; }
+  double start() const { return times_.front(); }
+  double duration() const { return times_.back(); }
+  std::size_t frame_count() const { return times_.size(); }
+  void evaluate(double t, std::array<double, kMaxFaceSignals>& out) const;
+
+  const std::vector<FapClamp>& clamps() const { return clamps_; }
+  const std::vector<int>& ignored_faps() const { return ignored_; }
+  // One line per clamp and one for the ignored FAPs; empty when there is nothing to say.
+  std::vector<std::string> report() const;
+
+ private:
+  std::string name_;
+  std::vector<double> times_;
+  std::vector<std::array<double, kMaxFaceSignals>> poses_;
+  std::size_t signal_count_ = 0;
+  std::vector<FapClamp> clamps_;
+  std::vector<int> ignored_;
+};
+
+}  // namespace facectl

@@ -1,0 +1,144 @@
+#include "firmware-host/fap/fap_udp_stream.hpp"
+
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <numbers>
+#include <thread>
+
+#include "default_fap_head.hpp"
+
+namespace facectl {
+namespace {
+
+using testing::default_fap_head;
+using testing::fap_frame_text;
+
+class Sender {
+ public:
+  explicit Sender(std::uint16_t port) : fd_(::socket(AF_INET, SOCK_DGRAM, 0)) {
+    to_.sin_family = AF_INET;
+    to_.sin_port = htons(port);
+    inet_pton(AF_INET, "127.0.0.1", &to_.sin_addr);
+  }
+  ~Sender() { ::close(fd_); }
+  void send(const std::string& text) {
+    ASSERT_EQ(
+        ::sendto(fd_, text.data(), text.size(), 0, reinterpret_cast<sockaddr*>(&to_), sizeof to_),
+        static_cast<ssize_t>(text.size()));
+  }
+
+ private:
+  int fd_;
+  sockaddr_in to_{};
+};
+
+// Polls until `frames` frames and `malformed` rejections have been counted.
+void poll_until(FapUdpStream& s, std::uint64_t frames, std::uint64_t malformed) {
+  for (int i = 0; i < 200; ++i) {
+    s.wait_and_poll(10);
+    const FapUdpStats st = s.stats();
+    if (st.frames >= frames && st.malformed >= malformed) return;
+  }
+}
+
+double pitch(const std::array<double, kMaxFaceSignals>& pose) {
+  return pose[default_fap_head().head.layout.jaw_pitch()];
+}
+
+TEST(FapUdpStream, BindsToLoopbackByDefault) {
+  EXPECT_EQ(FapUdpOptions{}.bind_address, "127.0.0.1");
+  FapUdpStream s(default_fap_head().mapping, {});
+  EXPECT_NE(s.port(), 0);
+  std::array<double, kMaxFaceSignals> pose{};
+  EXPECT_FALSE(s.latest(pose));
+  EXPECT_EQ(s.poll(), 0u) << "nothing queued: returns at once";
+}
+
+TEST(FapUdpStream, BadBindAddressIsAnError) {
+  EXPECT_THROW(FapUdpStream(default_fap_head().mapping, {"not-an-address", 0}), ConfigError);
+}
+
+TEST(FapUdpStream, DeliversFramesAndRejectsBadDatagrams) {
+  LatestValueMailbox<FaceCommand> mailbox;
+  FapUdpStream stream(default_fap_head().mapping, {}, &mailbox);
+  Sender tx(stream.port());
+  tx.send("# live\n2.1 live 25 0\n");
+  tx.send(fap_frame_text(0, {{3, "400"}}));
+  poll_until(stream, 1, 0);
+  FapUdpStats st = stream.stats();
+  EXPECT_EQ(st.datagrams, 2u);
+  EXPECT_EQ(st.frames, 1u);
+  EXPECT_EQ(st.malformed, 0u);
+  std::array<double, kMaxFaceSignals> pose{};
+  ASSERT_TRUE(stream.latest(pose));
+  const double good = pitch(pose);
+  EXPECT_NEAR(good, default_fap_head().mapping.pitch_for_open_jaw(400), 1e-12);
+  EXPECT_GT(good, 0.0);
+  FaceCommand cmd;
+  ASSERT_TRUE(mailbox.consume(cmd));
+  EXPECT_EQ(cmd.values[default_fap_head().head.layout.jaw_pitch()], good);
+  EXPECT_EQ(cmd.sequence, 1u);
+
+  // Malformed: a non-numeric value; a frame without its values; an old frame number.
+  std::string bad = fap_frame_text(1, {{3, "800"}});
+  bad.replace(bad.find("800"), 3, "8x0");
+  tx.send(bad);
+  const std::string frame = fap_frame_text(2, {{3, "800"}});
+  tx.send(frame.substr(0, frame.find('\n') + 1));
+  tx.send(fap_frame_text(0, {{3, "900"}}));
+  poll_until(stream, 1, 3);
+  st = stream.stats();
+  EXPECT_EQ(st.malformed, 3u);
+  EXPECT_EQ(st.frames, 1u);
+  EXPECT_NE(st.last_error.find("datagram 5"), std::string::npos) << st.last_error;
+  EXPECT_NE(st.last_error.find(":2:"), std::string::npos) << st.last_error;
+  EXPECT_NE(st.last_error.find("greater than the previous frame's 0"), std::string::npos)
+      << st.last_error;
+  ASSERT_TRUE(stream.latest(pose));
+  EXPECT_EQ(pitch(pose), good) << "a bad datagram never changes the last good pose";
+  EXPECT_FALSE(mailbox.consume(cmd)) << "nor reaches the mailbox";
+
+  // The stream goes on after them, holding FAPs a frame does not send.
+  tx.send(fap_frame_text(3, {{12, "100"}}));
+  poll_until(stream, 2, 3);
+  ASSERT_TRUE(stream.latest(pose));
+  EXPECT_EQ(pitch(pose), good);
+  EXPECT_GT(pose[*default_fap_head().head.layout.find("zygomaticus_major_l")], 0.0);
+  EXPECT_TRUE(mailbox.consume(cmd));
+}
+
+TEST(FapUdpStream, FramesBeforeAHeaderAreRejected) {
+  FapUdpStream stream(default_fap_head().mapping, {});
+  Sender tx(stream.port());
+  tx.send(fap_frame_text(0, {{3, "100"}}));
+  poll_until(stream, 0, 1);
+  const FapUdpStats st = stream.stats();
+  EXPECT_EQ(st.malformed, 1u);
+  EXPECT_NE(st.last_error.find("header"), std::string::npos) << st.last_error;
+}
+
+TEST(FapUdpStream, ReceiverThreadFeedsTheMailbox) {
+  LatestValueMailbox<FaceCommand> mailbox;
+  FapUdpStream stream(default_fap_head().mapping, {}, &mailbox);
+  stream.start();
+  Sender tx(stream.port());
+  tx.send("2.1 live 25 0\n" + fap_frame_text(7, {{3, "300"}}));
+  FaceCommand cmd;
+  bool got = false;
+  for (int i = 0; i < 200 && !got; ++i) {
+    got = mailbox.consume(cmd);
+    if (!got) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  stream.stop();
+  ASSERT_TRUE(got);
+  EXPECT_NEAR(cmd.values[default_fap_head().head.layout.jaw_pitch()],
+              default_fap_head().mapping.pitch_for_open_jaw(300), 1e-12);
+}
+
+}  // namespace
+}  // namespace facectl
