@@ -8,7 +8,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 "$facectl" run --record "$tmp/demo.csv" --quiet
-"$facectl" plot "$tmp/demo.csv" --actuator jaw_pitch --actuator lip_corner_up_l \
+"$facectl" plot "$tmp/demo.csv" --actuator jaw_digastric --actuator lip_corner_up_l \
   --actuator eye_yaw_l --out docs/images/demo
 
 # Verify's show check: the default rig's lip corner, which follows the
@@ -20,4 +20,4 @@ cp "$tmp/verify/lip_corner_up_l.svg" docs/images/verify/
 
 # An e-stop at 3 s: outputs drop on the tick that reads it (exit code 3 by design).
 "$facectl" run --duration 5 --inject estop@3 --record "$tmp/estop.csv" --quiet || [ $? -eq 3 ]
-"$facectl" plot "$tmp/estop.csv" --actuator jaw_pitch --out docs/images/estop
+"$facectl" plot "$tmp/estop.csv" --actuator jaw_digastric --out docs/images/estop

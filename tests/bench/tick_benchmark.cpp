@@ -16,6 +16,8 @@ void BM_ControllerTick(benchmark::State& state) {
   std::size_t i = 0;
   for (auto _ : state) {
     pose[i % head.model().layout.muscle_count()] = static_cast<double>(i % 10) / 10.0;
+    // The jaw sweeps too, so the mandible mechanism's limiter and IK work.
+    pose[head.model().layout.jaw_pitch()] = 0.25 * static_cast<double>(i % 2000) / 2000.0;
     head.send(pose);
     head.step(head.period());
     if (head.telemetry()->front() != nullptr) head.telemetry()->pop();
