@@ -131,14 +131,7 @@ std::string format_value(double si, const std::string& unit) {
 }
 
 std::string unit_of(const SignalInfo& info) {
-  switch (info.kind) {
-    case SignalKind::kAngle:
-      return "deg";
-    case SignalKind::kLength:
-      return "mm";
-    default:
-      return "";
-  }
+  return std::string(yaml_unit(info.kind));
 }
 
 }  // namespace
