@@ -117,6 +117,30 @@ void untangle(const FaceModel& m, FaceData& d, Points& p) {
 void project_contacts(FaceData& d, Points& p) {
   for (int j = 0; j < d.hits; ++j) p.set(d.hit_particle[j], d.hit_target.get(j));
 }
+void project_contacts(FaceData& d, PackedPoints& p) {
+  for (int j = 0; j < d.hits; ++j) {
+    Particle& q = p.q[d.hit_particle[j]];
+    q.x = d.hit_target.x[j], q.y = d.hit_target.y[j], q.z = d.hit_target.z[j];
+  }
+}
+
+// The skin iterations, on the padded workspace (docs/FACE_MODEL.md, "Packed skin
+// workspace"): packed once, projected, unpacked once.
+void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
+  PackedPoints& q = d.skin_q;
+  pack(p, m.skin_w, q);
+  for (int it = 0; it < m.spec.skin_iterations; ++it) {
+    project(m.skin_stretch, q);
+    project(m.skin_bending, q);
+    project_signed(m.skin_area, q, d.anchor_normals, m.skin_area_sign);
+    project(m.skin_volume, q, d.grad);
+    project(m.anchors, q, d.anchor_targets);
+    project(m.skin_upright, q);
+    project(m.lids, q, d.lid_targets);
+    project_contacts(d, q);
+  }
+  unpack(q, p);
+}
 
 }  // namespace
 
@@ -161,16 +185,7 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
     detect_teeth(m, d, p);
   else
     d.hits = 0;
-  for (int it = 0; it < m.spec.skin_iterations; ++it) {
-    project(m.skin_stretch, p, m.skin_w);
-    project(m.skin_bending, p, m.skin_w);
-    project_signed(m.skin_area, p, m.skin_w, d.anchor_normals, m.skin_area_sign);
-    project(m.skin_volume, p, m.skin_w, d.grad);
-    project(m.anchors, p, m.skin_w, d.anchor_targets);
-    project(m.skin_upright, p, m.skin_w);
-    project(m.lids, p, m.skin_w, d.lid_targets);
-    project_contacts(d, p);
-  }
+  iterate_skin(m, d, p);
   // (16)–(17) influence weights; eyelid particles keep their drivers' motion.
   for (std::size_t i = 0; i < ns; ++i) {
     const double w = m.influence[i];
