@@ -72,6 +72,11 @@ struct SoaAccess {
       wl[j] = w[idx[j]];
     }
   }
+  // p[idx[j]] = pos[·][j] for the first m lanes.
+  FACECTL_INLINE void store(const Index& idx, const Lanes3& pos, const Lanes&, int m) const {
+    for (int j = 0; j < m; ++j)
+      for (int c = 0; c < 3; ++c) q[c][idx[j]] = pos[c][j];
+  }
   // p[idx[j]] += d[·][j] for the first m lanes whose `on` is nonzero.
   FACECTL_INLINE void scatter_add(const Index& idx, const Lanes3& d, int m,
                                   const Lanes* on = nullptr) const {
@@ -121,6 +126,14 @@ struct PackedAccess {
       transpose4(r[0], r[1], r[2], r[3]);
       for (int c = 0; c < 3; ++c) store4(&pos[c][h], r[c]);
       store4(&wl[h], r[3]);
+    }
+  }
+  // Writes whole slots (x, y, z and the inverse mass as gathered) for the first m lanes.
+  FACECTL_INLINE void store(const Index& idx, const Lanes3& pos, const Lanes& wl, int m) const {
+    for (int h = 0; h < m; h += 4) {
+      v4d r[4] = {load4(&pos[0][h]), load4(&pos[1][h]), load4(&pos[2][h]), load4(&wl[h])};
+      transpose4(r[0], r[1], r[2], r[3]);
+      for (int l = 0; l < 4 && h + l < m; ++l) store4(&q[idx[h + l]].x, r[l]);
     }
   }
   // Adds (dx, dy, dz, 0) to the slot: the inverse mass lane is left as it was.

@@ -2,6 +2,7 @@
 // (batched_access.hpp). Each kernel is written once over an access type and compiled for
 // the structure-of-arrays Points (muscles, tests) and for the padded skin workspace.
 #include <cmath>
+#include <cstring>
 
 #include "batched_access.hpp"
 #include "dihedral.hpp"
@@ -18,154 +19,108 @@ using batched::Lanes3;
 using batched::PackedAccess;
 using batched::SoaAccess;
 
-template <class Access>
-FACECTL_INLINE inline void distance_batches(const DistanceConstraints& s, const Access& P) {
-  for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
-    alignas(32) Index ia, ib;
-    alignas(32) Lanes3 pa, pb, da, db;  // positions, corrections
-    alignas(32) Lanes wa, wb, k, rest;
-    for (int j = 0; j < kBatch; ++j) {
-      const std::size_t i = i0 + (j < m ? j : 0);
-      ia[j] = s.a[i], ib[j] = s.b[i], k[j] = s.k[i], rest[j] = s.rest[i];
-    }
-    P.gather(ia, pa, wa);
-    P.gather(ib, pb, wb);
-    for (int j = 0; j < kBatch; ++j) {
-      const double dx = pa[0][j] - pb[0][j], dy = pa[1][j] - pb[1][j], dz = pa[2][j] - pb[2][j];
-      const double wsum = wa[j] + wb[j];
-      const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
-      const bool ok = (wsum != 0) & (len >= 1e-12);
-      // λ = −s: move each end along n by its mass share of the violation (eq. 3.18–3.19).
-      const double q = k[j] * (len - rest[j]) / (ok ? len * wsum : 1.0);
-      const double f = ok ? q : 0.0;
-      const double fa = wa[j] * f, fb = wb[j] * f;
-      da[0][j] = -(fa * dx), da[1][j] = -(fa * dy), da[2][j] = -(fa * dz);
-      db[0][j] = fb * dx, db[1][j] = fb * dy, db[2][j] = fb * dz;
-    }
-    P.scatter_add(ia, da, m);
-    P.scatter_add(ib, db, m);
-  });
+// One particle's position in one lane of a batch.
+struct P3 {
+  double x, y, z;
+};
+FACECTL_INLINE inline P3 lane(const Lanes3& p, int j) {
+  return {p[0][j], p[1][j], p[2][j]};
+}
+FACECTL_INLINE inline void set_lane(Lanes3& p, int j, const P3& v) {
+  p[0][j] = v.x, p[1][j] = v.y, p[2][j] = v.z;
 }
 
-template <class Access>
-FACECTL_INLINE inline void bending_batches(const BendingConstraints& s, const Access& P) {
-  for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
-    alignas(32) Index ia, ib, ic, id;
-    alignas(32) Lanes3 pa, pb, pc, pd;
-    alignas(32) Lanes wa, wb, wc, wd, k, cr, sr;
-    alignas(32) Lanes3 da, db, dc, dd;  // corrections
-    for (int j = 0; j < kBatch; ++j) {
-      const std::size_t i = i0 + (j < m ? j : 0);
-      ia[j] = s.a[i], ib[j] = s.b[i], ic[j] = s.c[i], id[j] = s.d[i];
-      k[j] = s.k[i], cr[j] = s.cos_rest[i], sr[j] = s.sin_rest[i];
-    }
-    P.gather(ia, pa, wa);
-    P.gather(ib, pb, wb);
-    P.gather(ic, pc, wc);
-    P.gather(id, pd, wd);
-    for (int j = 0; j < kBatch; ++j) {
-      // e = pb − pa, u = pc − pa, v = pd − pa
-      const double ex = pb[0][j] - pa[0][j], ey = pb[1][j] - pa[1][j], ez = pb[2][j] - pa[2][j];
-      const double ux = pc[0][j] - pa[0][j], uy = pc[1][j] - pa[1][j], uz = pc[2][j] - pa[2][j];
-      const double vx = pd[0][j] - pa[0][j], vy = pd[1][j] - pa[1][j], vz = pd[2][j] - pa[2][j];
-      const Dihedral h = dihedral_terms(ex, ey, ez, ux, uy, uz, vx, vy, vz);
-      const double sdel = h.sin * cr[j] - h.cos * sr[j];  // sin(φ − rest)
-      const double cdel = h.cos * cr[j] + h.sin * sr[j];  // cos(φ − rest)
-      // C = φ − rest, evaluated as 2·sin((φ − rest)/2) = sin Δ / cos(Δ/2): monotone on
-      // (−π, π), equal to the angle error to third order, no trigonometry, and no
-      // cancellation near 0 (past |Δ| = π/2 it is ±√(2(1 − cos Δ))).
-      const bool near = cdel >= 0;
-      const double sq = std::sqrt(near ? 0.5 * (1 + cdel) : 2 * (1 - cdel));
-      const double num = near ? sdel : std::copysign(sq, sdel);
-      // Exact gradient (Bridson et al. 2003): ∇c φ = −|e| n1/|n1|², ∇d φ = |e| n2/|n2|²,
-      // ∇a φ = −(1−s1)∇c φ − (1−s2)∇d φ, ∇b φ = −s1 ∇c φ − s2 ∇d φ, where s1, s2 are the
-      // wings' foot points on the edge. 1/|n1|² = |n2|²·r².
-      const double r2 = h.r * h.r;
-      const double gc = -h.le * h.N2 * r2, gd = h.le * h.N1 * r2;  // ∇c φ = gc·n1, ∇d φ = gd·n2
-      const double s1 = (ux * ex + uy * ey + uz * ez) * h.invE;
-      const double s2 = (vx * ex + vy * ey + vz * ez) * h.invE;
-      const double a1 = -(1 - s1) * gc, a2 = -(1 - s2) * gd;  // ∇a φ = a1·n1 + a2·n2
-      const double b1 = -s1 * gc, b2 = -s2 * gd;              // ∇b φ = b1·n1 + b2·n2
-      const double denom = wa[j] * (a1 * a1 * h.N1 + a2 * a2 * h.N2 + 2 * a1 * a2 * h.D) +
-                           wb[j] * (b1 * b1 * h.N1 + b2 * b2 * h.N2 + 2 * b1 * b2 * h.D) +
-                           wc[j] * gc * gc * h.N1 + wd[j] * gd * gd * h.N2;
-      // Degenerate pairs are skipped: f = 0.
-      const bool ok = h.valid & (denom >= 1e-20);
-      const double q = -k[j] * num / (ok ? (near ? sq : 1.0) * denom : 1.0);
-      const double f = ok ? q : 0.0;
-      const double fa1 = f * wa[j] * a1, fa2 = f * wa[j] * a2;
-      const double fb1 = f * wb[j] * b1, fb2 = f * wb[j] * b2;
-      const double fc = f * wc[j] * gc, fd = f * wd[j] * gd;
-      // (Written out: a loop over x, y, z here would stop the vectoriser.)
-      da[0][j] = fa1 * h.n1x + fa2 * h.n2x, db[0][j] = fb1 * h.n1x + fb2 * h.n2x;
-      da[1][j] = fa1 * h.n1y + fa2 * h.n2y, db[1][j] = fb1 * h.n1y + fb2 * h.n2y;
-      da[2][j] = fa1 * h.n1z + fa2 * h.n2z, db[2][j] = fb1 * h.n1z + fb2 * h.n2z;
-      dc[0][j] = fc * h.n1x, dc[1][j] = fc * h.n1y, dc[2][j] = fc * h.n1z;
-      dd[0][j] = fd * h.n2x, dd[1][j] = fd * h.n2y, dd[2][j] = fd * h.n2z;
-    }
-    P.scatter_add(ia, da, m);
-    P.scatter_add(ib, db, m);
-    P.scatter_add(ic, dc, m);
-    P.scatter_add(id, dd, m);
-  });
+// The lane steps below move their particles in place: p ← p + Δp, the same IEEE
+// operations as adding the correction in memory, so the sweep stays exactly Gauss–Seidel
+// and a fused kernel (two constraints on the same particles, one after the other in the
+// lane) gives the bits of the two projected in sequence.
+
+// Distance: C = |a − b| − rest.
+FACECTL_INLINE inline void stretch_step(P3& a, P3& b, double wa, double wb, double k, double rest) {
+  const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+  const double wsum = wa + wb;
+  const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const bool ok = (wsum != 0) & (len >= 1e-12);
+  // λ = −s: move each end along n by its mass share of the violation (eq. 3.18–3.19).
+  const double q = k * (len - rest) / (ok ? len * wsum : 1.0);
+  const double f = ok ? q : 0.0;
+  const double fa = wa * f, fb = wb * f;
+  a.x += -(fa * dx), a.y += -(fa * dy), a.z += -(fa * dz);
+  b.x += fb * dx, b.y += fb * dy, b.z += fb * dz;
 }
 
-// Unsigned (ref == nullptr) or signed area; see project_signed().
-template <class Access>
-FACECTL_INLINE inline void area_batches(const AreaConstraints& s, const Access& P,
-                                        const Points* ref, const std::vector<double>* rest_sign) {
-  for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
-    alignas(32) Index ia, ib, ic;
-    alignas(32) Lanes3 pa, pb, pc, rn;
-    alignas(32) Lanes wa, wb, wc, k, rest, rs;
-    alignas(32) Lanes3 da, db, dc;  // corrections
-    for (int j = 0; j < kBatch; ++j) {
-      const std::size_t i = i0 + (j < m ? j : 0);
-      ia[j] = s.a[i], ib[j] = s.b[i], ic[j] = s.c[i], k[j] = s.k[i], rest[j] = s.rest[i];
-      if (ref) {
-        rs[j] = (*rest_sign)[i];
-        rn[0][j] = ref->x[ia[j]], rn[1][j] = ref->y[ia[j]], rn[2][j] = ref->z[ia[j]];
-      } else {
-        rs[j] = 0, rn[0][j] = rn[1][j] = rn[2][j] = 0;
-      }
-    }
-    P.gather(ia, pa, wa);
-    P.gather(ib, pb, wb);
-    P.gather(ic, pc, wc);
-    for (int j = 0; j < kBatch; ++j) {
-      // e1 = pb − pa = (ax, ay, az), e2 = pc − pa = (bx, by, bz)
-      const double ax = pb[0][j] - pa[0][j], ay = pb[1][j] - pa[1][j], az = pb[2][j] - pa[2][j];
-      const double bx = pc[0][j] - pa[0][j], by = pc[1][j] - pa[1][j], bz = pc[2][j] - pa[2][j];
-      const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
-      const double len = std::sqrt(cx * cx + cy * cy + cz * cz);  // 2·area
-      // rest_sign 0 (and the unsigned variant): the sides are not told apart.
-      const double cr_ref = cx * rn[0][j] + cy * rn[1][j] + cz * rn[2][j];
-      const double sign = (rs[j] != 0) & (cr_ref * rs[j] < -0.5 * len) ? -1.0 : 1.0;
-      // With n̂ = (e1×e2)/len: g2 = ½ e2×n̂ and g3 = ½ n̂×e1 (g1 = −g2 − g3), written with
-      // (a×b)×c = b(a·c) − a(b·c) as combinations of e1 and e2; |g2| = ½|e2|, |g3| = ½|e1|
-      // and |g1| = ½|e2 − e1| because both edges lie in the plane ⟂ n̂.
-      const double e11 = ax * ax + ay * ay + az * az, e22 = bx * bx + by * by + bz * bz;
-      const double e12 = ax * bx + ay * by + az * bz;
-      const double denom = 0.25 * (wa[j] * (e11 - 2 * e12 + e22) + wb[j] * e22 + wc[j] * e11);
-      const bool ok = (len >= 1e-14) & (denom >= 1e-20);
-      const double inv = 0.5 / (ok ? len : 1.0);
-      const double g2a = e22 * inv, g2b = -e12 * inv;  // g2 = g2a·e1 + g2b·e2
-      const double g3a = -e12 * inv, g3b = e11 * inv;  // g3 = g3a·e1 + g3b·e2
-      const double g2x = g2a * ax + g2b * bx, g2y = g2a * ay + g2b * by, g2z = g2a * az + g2b * bz;
-      const double g3x = g3a * ax + g3b * bx, g3y = g3a * ay + g3b * by, g3z = g3a * az + g3b * bz;
-      // ∇(sign·A) = sign·g, so Δp = −k·(sign·A − A0)·sign·g/Σw|g|².
-      const double q = -k[j] * (sign * 0.5 * len - rest[j]) * sign / (ok ? denom : 1.0);
-      const double f = ok ? q : 0.0;
-      const double fa = f * wa[j], fb = f * wb[j], fc = f * wc[j];
-      da[0][j] = -(fa * (g2x + g3x)), da[1][j] = -(fa * (g2y + g3y)),
-      da[2][j] = -(fa * (g2z + g3z));
-      db[0][j] = fb * g2x, db[1][j] = fb * g2y, db[2][j] = fb * g2z;
-      dc[0][j] = fc * g3x, dc[1][j] = fc * g3y, dc[2][j] = fc * g3z;
-    }
-    P.scatter_add(ia, da, m);
-    P.scatter_add(ib, db, m);
-    P.scatter_add(ic, dc, m);
-  });
+// Bending of the pair (a, b, c) and (a, b, d) about edge ab: C = φ − rest.
+FACECTL_INLINE inline void bending_step(P3& a, P3& b, P3& c, P3& d, double wa, double wb, double wc,
+                                        double wd, double k, double cr, double sr) {
+  const double ex = b.x - a.x, ey = b.y - a.y, ez = b.z - a.z;  // e = pb − pa
+  const double ux = c.x - a.x, uy = c.y - a.y, uz = c.z - a.z;  // u = pc − pa
+  const double vx = d.x - a.x, vy = d.y - a.y, vz = d.z - a.z;  // v = pd − pa
+  const Dihedral h = dihedral_terms(ex, ey, ez, ux, uy, uz, vx, vy, vz);
+  const double sdel = h.sin * cr - h.cos * sr;  // sin(φ − rest)
+  const double cdel = h.cos * cr + h.sin * sr;  // cos(φ − rest)
+  // C = φ − rest, evaluated as 2·sin((φ − rest)/2) = sin Δ / cos(Δ/2): monotone on
+  // (−π, π), equal to the angle error to third order, no trigonometry, and no
+  // cancellation near 0 (past |Δ| = π/2 it is ±√(2(1 − cos Δ))).
+  const bool near = cdel >= 0;
+  const double sq = std::sqrt(near ? 0.5 * (1 + cdel) : 2 * (1 - cdel));
+  const double num = near ? sdel : std::copysign(sq, sdel);
+  // Exact gradient (Bridson et al. 2003): ∇c φ = −|e| n1/|n1|², ∇d φ = |e| n2/|n2|²,
+  // ∇a φ = −(1−s1)∇c φ − (1−s2)∇d φ, ∇b φ = −s1 ∇c φ − s2 ∇d φ, where s1, s2 are the
+  // wings' foot points on the edge. 1/|n1|² = |n2|²·r².
+  const double r2 = h.r * h.r;
+  const double gc = -h.le * h.N2 * r2, gd = h.le * h.N1 * r2;  // ∇c φ = gc·n1, ∇d φ = gd·n2
+  const double s1 = (ux * ex + uy * ey + uz * ez) * h.invE;
+  const double s2 = (vx * ex + vy * ey + vz * ez) * h.invE;
+  const double a1 = -(1 - s1) * gc, a2 = -(1 - s2) * gd;  // ∇a φ = a1·n1 + a2·n2
+  const double b1 = -s1 * gc, b2 = -s2 * gd;              // ∇b φ = b1·n1 + b2·n2
+  const double denom = wa * (a1 * a1 * h.N1 + a2 * a2 * h.N2 + 2 * a1 * a2 * h.D) +
+                       wb * (b1 * b1 * h.N1 + b2 * b2 * h.N2 + 2 * b1 * b2 * h.D) +
+                       wc * gc * gc * h.N1 + wd * gd * gd * h.N2;
+  // Degenerate pairs are skipped: f = 0.
+  const bool ok = h.valid & (denom >= 1e-20);
+  const double q = -k * num / (ok ? (near ? sq : 1.0) * denom : 1.0);
+  const double f = ok ? q : 0.0;
+  const double fa1 = f * wa * a1, fa2 = f * wa * a2;
+  const double fb1 = f * wb * b1, fb2 = f * wb * b2;
+  const double fc = f * wc * gc, fd = f * wd * gd;
+  // (Written out: a loop over x, y, z here would stop the vectoriser.)
+  a.x += fa1 * h.n1x + fa2 * h.n2x, b.x += fb1 * h.n1x + fb2 * h.n2x;
+  a.y += fa1 * h.n1y + fa2 * h.n2y, b.y += fb1 * h.n1y + fb2 * h.n2y;
+  a.z += fa1 * h.n1z + fa2 * h.n2z, b.z += fb1 * h.n1z + fb2 * h.n2z;
+  c.x += fc * h.n1x, c.y += fc * h.n1y, c.z += fc * h.n1z;
+  d.x += fd * h.n2x, d.y += fd * h.n2y, d.z += fd * h.n2z;
+}
+
+// Area of (a, b, c), signed against the reference normal rn when rs ≠ 0 (project_signed).
+FACECTL_INLINE inline void area_step(P3& a, P3& b, P3& c, double wa, double wb, double wc, double k,
+                                     double rest, const P3& rn, double rs) {
+  // e1 = pb − pa = (ax, ay, az), e2 = pc − pa = (bx, by, bz)
+  const double ax = b.x - a.x, ay = b.y - a.y, az = b.z - a.z;
+  const double bx = c.x - a.x, by = c.y - a.y, bz = c.z - a.z;
+  const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+  const double len = std::sqrt(cx * cx + cy * cy + cz * cz);  // 2·area
+  // rest_sign 0 (and the unsigned variant): the sides are not told apart.
+  const double cr_ref = cx * rn.x + cy * rn.y + cz * rn.z;
+  const double sign = (rs != 0) & (cr_ref * rs < -0.5 * len) ? -1.0 : 1.0;
+  // With n̂ = (e1×e2)/len: g2 = ½ e2×n̂ and g3 = ½ n̂×e1 (g1 = −g2 − g3), written with
+  // (a×b)×c = b(a·c) − a(b·c) as combinations of e1 and e2; |g2| = ½|e2|, |g3| = ½|e1|
+  // and |g1| = ½|e2 − e1| because both edges lie in the plane ⟂ n̂.
+  const double e11 = ax * ax + ay * ay + az * az, e22 = bx * bx + by * by + bz * bz;
+  const double e12 = ax * bx + ay * by + az * bz;
+  const double denom = 0.25 * (wa * (e11 - 2 * e12 + e22) + wb * e22 + wc * e11);
+  const bool ok = (len >= 1e-14) & (denom >= 1e-20);
+  const double inv = 0.5 / (ok ? len : 1.0);
+  const double g2a = e22 * inv, g2b = -e12 * inv;  // g2 = g2a·e1 + g2b·e2
+  const double g3a = -e12 * inv, g3b = e11 * inv;  // g3 = g3a·e1 + g3b·e2
+  const double g2x = g2a * ax + g2b * bx, g2y = g2a * ay + g2b * by, g2z = g2a * az + g2b * bz;
+  const double g3x = g3a * ax + g3b * bx, g3y = g3a * ay + g3b * by, g3z = g3a * az + g3b * bz;
+  // ∇(sign·A) = sign·g, so Δp = −k·(sign·A − A0)·sign·g/Σw|g|².
+  const double q = -k * (sign * 0.5 * len - rest) * sign / (ok ? denom : 1.0);
+  const double f = ok ? q : 0.0;
+  const double fa = f * wa, fb = f * wb, fc = f * wc;
+  a.x += -(fa * (g2x + g3x)), a.y += -(fa * (g2y + g3y)), a.z += -(fa * (g2z + g3z));
+  b.x += fb * g2x, b.y += fb * g2y, b.z += fb * g2z;
+  c.x += fc * g3x, c.y += fc * g3y, c.z += fc * g3z;
 }
 
 // One no-inversion constraint from e1 = pb − pa, e2 = pc − pa, its rest normal n and lower
@@ -197,6 +152,99 @@ FACECTL_INLINE inline UprightStep upright_step(double e1x, double e1y, double e1
           fb * gbz, fc * gcx, fc * gcy, fc * gcz, active};
 }
 
+// out[j] = v[i0 + j], the lanes past a batch of m repeating its first constraint. A full
+// batch (most of them) is one contiguous copy.
+template <class T>
+FACECTL_INLINE inline void lanes_of(const std::vector<T>& v, std::size_t i0, int m,
+                                    T (&out)[kBatch]) {
+  if (m == kBatch) {
+    std::memcpy(out, v.data() + i0, sizeof out);
+    return;
+  }
+  for (int j = 0; j < kBatch; ++j) out[j] = v[i0 + static_cast<std::size_t>(j < m ? j : 0)];
+}
+
+template <class Access>
+FACECTL_INLINE inline void distance_batches(const DistanceConstraints& s, const Access& P) {
+  for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
+    alignas(32) Index ia, ib;
+    alignas(32) Lanes3 pa, pb;
+    alignas(32) Lanes wa, wb, k, rest;
+    lanes_of(s.a, i0, m, ia), lanes_of(s.b, i0, m, ib);
+    lanes_of(s.k, i0, m, k), lanes_of(s.rest, i0, m, rest);
+    P.gather(ia, pa, wa);
+    P.gather(ib, pb, wb);
+    for (int j = 0; j < kBatch; ++j) {
+      P3 a = lane(pa, j), b = lane(pb, j);
+      stretch_step(a, b, wa[j], wb[j], k[j], rest[j]);
+      set_lane(pa, j, a), set_lane(pb, j, b);
+    }
+    P.store(ia, pa, wa, m);
+    P.store(ib, pb, wb, m);
+  });
+}
+
+// Bending pairs; with `stretch`, each pair's shared edge ab is first stretched (rest and
+// stiffness stretch->rest[i], stretch->k[i]), in the same lane.
+template <class Access>
+FACECTL_INLINE inline void bending_batches(const BendingConstraints& s, const PairStretch* stretch,
+                                           const Access& P) {
+  for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
+    alignas(32) Index ia, ib, ic, id;
+    alignas(32) Lanes3 pa, pb, pc, pd;
+    alignas(32) Lanes wa, wb, wc, wd, k, cr, sr, ks, rs;
+    lanes_of(s.a, i0, m, ia), lanes_of(s.b, i0, m, ib);
+    lanes_of(s.c, i0, m, ic), lanes_of(s.d, i0, m, id);
+    lanes_of(s.k, i0, m, k), lanes_of(s.cos_rest, i0, m, cr), lanes_of(s.sin_rest, i0, m, sr);
+    if (stretch) lanes_of(stretch->k, i0, m, ks), lanes_of(stretch->rest, i0, m, rs);
+    P.gather(ia, pa, wa);
+    P.gather(ib, pb, wb);
+    P.gather(ic, pc, wc);
+    P.gather(id, pd, wd);
+    for (int j = 0; j < kBatch; ++j) {
+      P3 a = lane(pa, j), b = lane(pb, j), c = lane(pc, j), d = lane(pd, j);
+      if (stretch) stretch_step(a, b, wa[j], wb[j], ks[j], rs[j]);
+      bending_step(a, b, c, d, wa[j], wb[j], wc[j], wd[j], k[j], cr[j], sr[j]);
+      set_lane(pa, j, a), set_lane(pb, j, b), set_lane(pc, j, c), set_lane(pd, j, d);
+    }
+    P.store(ia, pa, wa, m);
+    P.store(ib, pb, wb, m);
+    P.store(ic, pc, wc, m);
+    P.store(id, pd, wd, m);
+  });
+}
+
+// Unsigned (ref == nullptr) or signed area; see project_signed().
+template <class Access>
+FACECTL_INLINE inline void area_batches(const AreaConstraints& s, const Access& P,
+                                        const Points* ref, const std::vector<double>* rest_sign) {
+  for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
+    alignas(32) Index ia, ib, ic;
+    alignas(32) Lanes3 pa, pb, pc, rn;
+    alignas(32) Lanes wa, wb, wc, k, rest, rs;
+    lanes_of(s.a, i0, m, ia), lanes_of(s.b, i0, m, ib), lanes_of(s.c, i0, m, ic);
+    lanes_of(s.k, i0, m, k), lanes_of(s.rest, i0, m, rest);
+    if (ref) {
+      lanes_of(*rest_sign, i0, m, rs);
+      for (int j = 0; j < kBatch; ++j)
+        rn[0][j] = ref->x[ia[j]], rn[1][j] = ref->y[ia[j]], rn[2][j] = ref->z[ia[j]];
+    } else {
+      for (int j = 0; j < kBatch; ++j) rs[j] = 0, rn[0][j] = rn[1][j] = rn[2][j] = 0;
+    }
+    P.gather(ia, pa, wa);
+    P.gather(ib, pb, wb);
+    P.gather(ic, pc, wc);
+    for (int j = 0; j < kBatch; ++j) {
+      P3 a = lane(pa, j), b = lane(pb, j), c = lane(pc, j);
+      area_step(a, b, c, wa[j], wb[j], wc[j], k[j], rest[j], lane(rn, j), rs[j]);
+      set_lane(pa, j, a), set_lane(pb, j, b), set_lane(pc, j, c);
+    }
+    P.store(ia, pa, wa, m);
+    P.store(ib, pb, wb, m);
+    P.store(ic, pc, wc, m);
+  });
+}
+
 template <class Access>
 FACECTL_INLINE inline void upright_batches(const OrientationConstraints& s, const Access& P) {
   for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
@@ -205,11 +253,9 @@ FACECTL_INLINE inline void upright_batches(const OrientationConstraints& s, cons
     alignas(32) Lanes wa, wb, wc, k, lo;
     alignas(32) Lanes3 da, db, dc;  // corrections
     alignas(32) Lanes act;          // 1 where violated
-    for (int j = 0; j < kBatch; ++j) {
-      const std::size_t i = i0 + (j < m ? j : 0);
-      ia[j] = s.a[i], ib[j] = s.b[i], ic[j] = s.c[i], k[j] = s.k[i], lo[j] = s.min[i];
-      n[0][j] = s.nx[i], n[1][j] = s.ny[i], n[2][j] = s.nz[i];
-    }
+    lanes_of(s.a, i0, m, ia), lanes_of(s.b, i0, m, ib), lanes_of(s.c, i0, m, ic);
+    lanes_of(s.k, i0, m, k), lanes_of(s.min, i0, m, lo);
+    lanes_of(s.nx, i0, m, n[0]), lanes_of(s.ny, i0, m, n[1]), lanes_of(s.nz, i0, m, n[2]);
     P.gather(ia, pa, wa);
     P.gather(ib, pb, wb);
     P.gather(ic, pc, wc);
@@ -275,10 +321,19 @@ FACECTL_VECTOR_CLONES void project(const DistanceConstraints& s, PackedPoints& p
 
 FACECTL_VECTOR_CLONES void project(const BendingConstraints& s, Points& p,
                                    const std::vector<double>& w) {
-  bending_batches(s, SoaAccess(p, w));
+  bending_batches(s, nullptr, SoaAccess(p, w));
 }
 FACECTL_VECTOR_CLONES void project(const BendingConstraints& s, PackedPoints& p) {
-  bending_batches(s, PackedAccess(p));
+  bending_batches(s, nullptr, PackedAccess(p));
+}
+FACECTL_VECTOR_CLONES void project_with_stretch(const BendingConstraints& s,
+                                                const PairStretch& stretch, Points& p,
+                                                const std::vector<double>& w) {
+  bending_batches(s, &stretch, SoaAccess(p, w));
+}
+FACECTL_VECTOR_CLONES void project_with_stretch(const BendingConstraints& s,
+                                                const PairStretch& stretch, PackedPoints& p) {
+  bending_batches(s, &stretch, PackedAccess(p));
 }
 
 FACECTL_VECTOR_CLONES void project(const AreaConstraints& s, Points& p,
@@ -295,7 +350,6 @@ FACECTL_VECTOR_CLONES void project_signed(const AreaConstraints& s, PackedPoints
                                           const std::vector<double>& rest_sign) {
   area_batches(s, PackedAccess(p), &ref_normal, &rest_sign);
 }
-
 FACECTL_VECTOR_CLONES void project(const OrientationConstraints& s, Points& p,
                                    const std::vector<double>& w) {
   upright_batches(s, SoaAccess(p, w));

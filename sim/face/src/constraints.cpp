@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include "batched_access.hpp"
 #include "dihedral.hpp"
@@ -252,6 +254,28 @@ void add_orientations(OrientationConstraints& s, const Points& p, const std::vec
     if (len > 0) s.add(t[0], t[1], t[2], cr / len, min_fraction * len, k);
   }
   order_in_runs(s, p);
+}
+
+PairStretch split_pair_stretch(DistanceConstraints& edges, const BendingConstraints& bending,
+                               const Points& rest) {
+  std::map<std::pair<int, int>, std::size_t> edge_of;
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    edge_of.emplace(std::minmax(edges.a[i], edges.b[i]), i);
+  std::vector<char> paired(edges.size(), 0);
+  PairStretch out;
+  for (std::size_t i = 0; i < bending.size(); ++i) {
+    const auto e = edge_of.find(std::minmax(bending.a[i], bending.b[i]));
+    const bool first = e != edge_of.end() && !paired[e->second];
+    out.rest.push_back(first ? edges.rest[e->second] : 0.0);
+    out.k.push_back(first ? edges.k[e->second] : 0.0);
+    if (first) paired[e->second] = 1;
+  }
+  DistanceConstraints border;
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (!paired[i]) border.add(edges.a[i], edges.b[i], edges.rest[i], edges.k[i]);
+  order_in_runs(border, rest);
+  edges = std::move(border);
+  return out;
 }
 
 VolumeConstraint make_volume(const Points& p, const std::vector<Tri>& tris, const Vec3& origin,
