@@ -1,6 +1,5 @@
 // Gauss–Seidel projections of the constraint sets (thesis §3.2, errata applied), batched
-// (batched_access.hpp). Each kernel is written once over an access type and compiled for
-// the structure-of-arrays Points (muscles, tests) and for the padded skin workspace.
+// (batched_access.hpp).
 #include <cmath>
 #include <cstring>
 
@@ -16,7 +15,6 @@ using batched::Index;
 using batched::kBatch;
 using batched::Lanes;
 using batched::Lanes3;
-using batched::PackedAccess;
 using batched::SoaAccess;
 
 // One particle's position in one lane of a batch.
@@ -164,8 +162,7 @@ FACECTL_INLINE inline void lanes_of(const std::vector<T>& v, std::size_t i0, int
   for (int j = 0; j < kBatch; ++j) out[j] = v[i0 + static_cast<std::size_t>(j < m ? j : 0)];
 }
 
-template <class Access>
-FACECTL_INLINE inline void distance_batches(const DistanceConstraints& s, const Access& P) {
+FACECTL_INLINE inline void distance_batches(const DistanceConstraints& s, const SoaAccess& P) {
   for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
     alignas(32) Index ia, ib;
     alignas(32) Lanes3 pa, pb;
@@ -179,16 +176,15 @@ FACECTL_INLINE inline void distance_batches(const DistanceConstraints& s, const 
       stretch_step(a, b, wa[j], wb[j], k[j], rest[j]);
       set_lane(pa, j, a), set_lane(pb, j, b);
     }
-    P.store(ia, pa, wa, m);
-    P.store(ib, pb, wb, m);
+    P.store(ia, pa, m);
+    P.store(ib, pb, m);
   });
 }
 
 // Bending pairs; with `stretch`, each pair's shared edge ab is first stretched (rest and
 // stiffness stretch->rest[i], stretch->k[i]), in the same lane.
-template <class Access>
 FACECTL_INLINE inline void bending_batches(const BendingConstraints& s, const PairStretch* stretch,
-                                           const Access& P) {
+                                           const SoaAccess& P) {
   for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
     alignas(32) Index ia, ib, ic, id;
     alignas(32) Lanes3 pa, pb, pc, pd;
@@ -207,16 +203,15 @@ FACECTL_INLINE inline void bending_batches(const BendingConstraints& s, const Pa
       bending_step(a, b, c, d, wa[j], wb[j], wc[j], wd[j], k[j], cr[j], sr[j]);
       set_lane(pa, j, a), set_lane(pb, j, b), set_lane(pc, j, c), set_lane(pd, j, d);
     }
-    P.store(ia, pa, wa, m);
-    P.store(ib, pb, wb, m);
-    P.store(ic, pc, wc, m);
-    P.store(id, pd, wd, m);
+    P.store(ia, pa, m);
+    P.store(ib, pb, m);
+    P.store(ic, pc, m);
+    P.store(id, pd, m);
   });
 }
 
 // Unsigned (ref == nullptr) or signed area; see project_signed().
-template <class Access>
-FACECTL_INLINE inline void area_batches(const AreaConstraints& s, const Access& P,
+FACECTL_INLINE inline void area_batches(const AreaConstraints& s, const SoaAccess& P,
                                         const Points* ref, const std::vector<double>* rest_sign) {
   for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
     alignas(32) Index ia, ib, ic;
@@ -239,14 +234,13 @@ FACECTL_INLINE inline void area_batches(const AreaConstraints& s, const Access& 
       area_step(a, b, c, wa[j], wb[j], wc[j], k[j], rest[j], lane(rn, j), rs[j]);
       set_lane(pa, j, a), set_lane(pb, j, b), set_lane(pc, j, c);
     }
-    P.store(ia, pa, wa, m);
-    P.store(ib, pb, wb, m);
-    P.store(ic, pc, wc, m);
+    P.store(ia, pa, m);
+    P.store(ib, pb, m);
+    P.store(ic, pc, m);
   });
 }
 
-template <class Access>
-FACECTL_INLINE inline void upright_batches(const OrientationConstraints& s, const Access& P) {
+FACECTL_INLINE inline void upright_batches(const OrientationConstraints& s, const SoaAccess& P) {
   for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
     alignas(32) Index ia, ib, ic;
     alignas(32) Lanes3 pa, pb, pc, n;
@@ -277,63 +271,21 @@ FACECTL_INLINE inline void upright_batches(const OrientationConstraints& s, cons
   });
 }
 
-// The volume constraint over any position store `p` with per-particle inverse mass
-// `w(i)`; `grad` is caller-owned scratch.
-template <class P, class W>
-void volume_step(const VolumeConstraint& v, P& p, const W& w, Points& grad) {
-  if (v.k == 0) return;
-  for (int i : v.verts) grad.set(i, Vec3::Zero());
-  double vol = 0;
-  for (const Tri& t : v.tris) {
-    const Vec3 a = p.get(t[0]) - v.origin, b = p.get(t[1]) - v.origin, c = p.get(t[2]) - v.origin;
-    vol += a.cross(b).dot(c);
-    grad.add(t[0], b.cross(c));
-    grad.add(t[1], c.cross(a));
-    grad.add(t[2], a.cross(b));
-  }
-  double denom = 0;
-  for (int i : v.verts) denom += w(i) * grad.get(i).squaredNorm();
-  if (denom < 1e-30) return;
-  const double f = -v.k * (vol - v.rest) / denom;
-  for (int i : v.verts) p.add(i, f * w(i) * grad.get(i));
-}
-
-// PackedPoints seen as get/add of positions.
-struct PackedPositions {
-  PackedPoints& p;
-  Vec3 get(std::size_t i) const { return p.get(i); }
-  void add(std::size_t i, const Vec3& d) const {
-    p.q[i].x += d.x();
-    p.q[i].y += d.y();
-    p.q[i].z += d.z();
-  }
-};
-
 }  // namespace
 
 FACECTL_VECTOR_CLONES void project(const DistanceConstraints& s, Points& p,
                                    const std::vector<double>& w) {
   distance_batches(s, SoaAccess(p, w));
 }
-FACECTL_VECTOR_CLONES void project(const DistanceConstraints& s, PackedPoints& p) {
-  distance_batches(s, PackedAccess(p));
-}
 
 FACECTL_VECTOR_CLONES void project(const BendingConstraints& s, Points& p,
                                    const std::vector<double>& w) {
   bending_batches(s, nullptr, SoaAccess(p, w));
 }
-FACECTL_VECTOR_CLONES void project(const BendingConstraints& s, PackedPoints& p) {
-  bending_batches(s, nullptr, PackedAccess(p));
-}
 FACECTL_VECTOR_CLONES void project_with_stretch(const BendingConstraints& s,
                                                 const PairStretch& stretch, Points& p,
                                                 const std::vector<double>& w) {
   bending_batches(s, &stretch, SoaAccess(p, w));
-}
-FACECTL_VECTOR_CLONES void project_with_stretch(const BendingConstraints& s,
-                                                const PairStretch& stretch, PackedPoints& p) {
-  bending_batches(s, &stretch, PackedAccess(p));
 }
 
 FACECTL_VECTOR_CLONES void project(const AreaConstraints& s, Points& p,
@@ -345,17 +297,9 @@ FACECTL_VECTOR_CLONES void project_signed(const AreaConstraints& s, Points& p,
                                           const std::vector<double>& rest_sign) {
   area_batches(s, SoaAccess(p, w), &ref_normal, &rest_sign);
 }
-FACECTL_VECTOR_CLONES void project_signed(const AreaConstraints& s, PackedPoints& p,
-                                          const Points& ref_normal,
-                                          const std::vector<double>& rest_sign) {
-  area_batches(s, PackedAccess(p), &ref_normal, &rest_sign);
-}
 FACECTL_VECTOR_CLONES void project(const OrientationConstraints& s, Points& p,
                                    const std::vector<double>& w) {
   upright_batches(s, SoaAccess(p, w));
-}
-FACECTL_VECTOR_CLONES void project(const OrientationConstraints& s, PackedPoints& p) {
-  upright_batches(s, PackedAccess(p));
 }
 
 bool project_one(const OrientationConstraints& s, std::size_t i, Points& p,
@@ -374,13 +318,21 @@ bool project_one(const OrientationConstraints& s, std::size_t i, Points& p,
 }
 
 void project(const VolumeConstraint& v, Points& p, const std::vector<double>& w, Points& grad) {
-  volume_step(
-      v, p, [&](int i) { return w[i]; }, grad);
-}
-void project(const VolumeConstraint& v, PackedPoints& p, Points& grad) {
-  PackedPositions pos{p};
-  volume_step(
-      v, pos, [&](int i) { return p.q[i].w; }, grad);
+  if (v.k == 0) return;
+  for (int i : v.verts) grad.set(i, Vec3::Zero());
+  double vol = 0;
+  for (const Tri& t : v.tris) {
+    const Vec3 a = p.get(t[0]) - v.origin, b = p.get(t[1]) - v.origin, c = p.get(t[2]) - v.origin;
+    vol += a.cross(b).dot(c);
+    grad.add(t[0], b.cross(c));
+    grad.add(t[1], c.cross(a));
+    grad.add(t[2], a.cross(b));
+  }
+  double denom = 0;
+  for (int i : v.verts) denom += w[i] * grad.get(i).squaredNorm();
+  if (denom < 1e-30) return;
+  const double f = -v.k * (vol - v.rest) / denom;
+  for (int i : v.verts) p.add(i, f * w[i] * grad.get(i));
 }
 
 void project(const Attachments& s, Points& p, const std::vector<double>& w, const Points& targets) {
@@ -392,17 +344,6 @@ void project(const Attachments& s, Points& p, const std::vector<double>& w, cons
     p.x[i] += k * (targets.x[j] - p.x[i]);
     p.y[i] += k * (targets.y[j] - p.y[i]);
     p.z[i] += k * (targets.z[j] - p.z[i]);
-  }
-}
-void project(const Attachments& s, PackedPoints& p, const Points& targets) {
-  const std::size_t n = s.size();
-  for (std::size_t j = 0; j < n; ++j) {
-    Particle& q = p.q[s.particle[j]];
-    if (q.w == 0) continue;
-    const double k = s.k[j];
-    q.x += k * (targets.x[j] - q.x);
-    q.y += k * (targets.y[j] - q.y);
-    q.z += k * (targets.z[j] - q.z);
   }
 }
 

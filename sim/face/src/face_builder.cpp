@@ -356,7 +356,6 @@ FaceData make_face_data(const FaceModel& m) {
   d.anchor_targets.resize(ns);
   d.anchor_normals.resize(ns);
   d.grad.resize(std::max(ns, m.muscle_rest.size()));
-  pack(m.skin.v, m.skin_w, d.skin_q);  // sized once
   std::size_t max_line = 0, max_grid = 0;
   for (const Muscle& mu : m.muscles) {
     for (const auto& l : mu.lines) max_line = std::max(max_line, l.size());

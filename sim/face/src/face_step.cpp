@@ -173,30 +173,20 @@ void untangle(const FaceModel& m, FaceData& d, Points& p) {
 void project_contacts(FaceData& d, Points& p) {
   for (int j = 0; j < d.hits; ++j) p.set(d.hit_particle[j], d.hit_target.get(j));
 }
-void project_contacts(FaceData& d, PackedPoints& p) {
-  for (int j = 0; j < d.hits; ++j) {
-    Particle& q = p.q[d.hit_particle[j]];
-    q.x = d.hit_target.x[j], q.y = d.hit_target.y[j], q.z = d.hit_target.z[j];
-  }
-}
 
-// The skin iterations, on the padded workspace (docs/FACE_MODEL.md, "Packed skin
-// workspace"): packed once, projected, unpacked once. Each interior edge's stretch rides
-// with its bending pair ("Fused edge sweep").
-void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
-  PackedPoints& q = d.skin_q;
-  pack(p, m.skin_w, q);
+// The skin iterations. Each interior edge's stretch rides with its bending pair
+// (docs/FACE_MODEL.md, "Fused edge sweep").
+void iterate_skin(const FaceModel& m, FaceData& d, Points& q) {
   for (int it = 0; it < m.spec.skin_iterations; ++it) {
-    project(m.skin_stretch, q);  // border edges
-    project_with_stretch(m.skin_bending, m.skin_pair_stretch, q);
-    project_signed(m.skin_area, q, d.anchor_normals, m.skin_area_sign);
-    project(m.skin_volume, q, d.grad);
-    project(m.anchors, q, d.anchor_targets);
-    project(m.skin_upright, q);  // after the anchors, which fold the surface
-    project(m.lids, q, d.lid_targets);
+    project(m.skin_stretch, q, m.skin_w);  // border edges
+    project_with_stretch(m.skin_bending, m.skin_pair_stretch, q, m.skin_w);
+    project_signed(m.skin_area, q, m.skin_w, d.anchor_normals, m.skin_area_sign);
+    project(m.skin_volume, q, m.skin_w, d.grad);
+    project(m.anchors, q, m.skin_w, d.anchor_targets);
+    project(m.skin_upright, q, m.skin_w);  // after the anchors, which fold the surface
+    project(m.lids, q, m.skin_w, d.lid_targets);
     project_contacts(d, q);
   }
-  unpack(q, p);
 }
 
 }  // namespace

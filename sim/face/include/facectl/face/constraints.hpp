@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "facectl/face/mesh.hpp"
-#include "facectl/face/packed_points.hpp"
 #include "facectl/face/points.hpp"
 
 namespace facectl::face {
@@ -122,17 +121,6 @@ void project(const Attachments& s, Points& p, const std::vector<double>& w, cons
 // interleaved order stretch 0, bending 0, stretch 1, bending 1, ...
 void project_with_stretch(const BendingConstraints& s, const PairStretch& stretch, Points& p,
                           const std::vector<double>& w);
-
-// The same projections on the padded skin workspace (inverse masses in its fourth lane):
-// the same arithmetic in the same order, so the same bits as on a Points.
-void project(const DistanceConstraints& s, PackedPoints& p);
-void project(const BendingConstraints& s, PackedPoints& p);
-void project_signed(const AreaConstraints& s, PackedPoints& p, const Points& ref_normal,
-                    const std::vector<double>& rest_sign);
-void project(const OrientationConstraints& s, PackedPoints& p);
-void project_with_stretch(const BendingConstraints& s, const PairStretch& stretch, PackedPoints& p);
-void project(const VolumeConstraint& v, PackedPoints& p, Points& grad);
-void project(const Attachments& s, PackedPoints& p, const Points& targets);
 
 // Gauss–Seidel order for batched projection: reorders the set along a Z-order curve
 // through the constraints' centroids on `rest` and cuts it into batches of up to 8

@@ -93,8 +93,7 @@ struct FaceData {
   Points skull;
   Points muscles, muscle_normals;
   Points anchor_targets, anchor_normals, lid_targets;
-  Points grad;          // volume-gradient scratch, sized to the largest particle array
-  PackedPoints skin_q;  // padded skin workspace of the skin iterations (step_face)
+  Points grad;  // volume-gradient scratch, sized to the largest particle array
   MuscleScratch scratch;
   std::vector<double> contraction;  // per model muscle
   ConvexHull lower_teeth;
