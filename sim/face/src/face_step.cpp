@@ -176,16 +176,16 @@ void project_contacts(FaceData& d, Points& p) {
 
 // The skin iterations. Each interior edge's stretch rides with its bending pair
 // (docs/FACE_MODEL.md, "Fused edge sweep").
-void iterate_skin(const FaceModel& m, FaceData& d, Points& q) {
+void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
   for (int it = 0; it < m.spec.skin_iterations; ++it) {
-    project(m.skin_stretch, q, m.skin_w);  // border edges
-    project_with_stretch(m.skin_bending, m.skin_pair_stretch, q, m.skin_w);
-    project_signed(m.skin_area, q, m.skin_w, d.anchor_normals, m.skin_area_sign);
-    project(m.skin_volume, q, m.skin_w, d.grad);
-    project(m.anchors, q, m.skin_w, d.anchor_targets);
-    project(m.skin_upright, q, m.skin_w);  // after the anchors, which fold the surface
-    project(m.lids, q, m.skin_w, d.lid_targets);
-    project_contacts(d, q);
+    project(m.skin_stretch, p, m.skin_w);  // border edges
+    project_with_stretch(m.skin_bending, m.skin_pair_stretch, p, m.skin_w);
+    project_signed(m.skin_area, p, m.skin_w, d.anchor_normals, m.skin_area_sign);
+    project(m.skin_volume, p, m.skin_w, d.grad);
+    project(m.anchors, p, m.skin_w, d.anchor_targets);
+    project(m.skin_upright, p, m.skin_w);  // after the anchors, which fold the surface
+    project(m.lids, p, m.skin_w, d.lid_targets);
+    project_contacts(d, p);
   }
 }
 
