@@ -45,9 +45,9 @@ void BM_FullStep(benchmark::State& state) {
     benchmark::DoNotOptimize(d.skin_x.x.data());
   }
   state.counters["skin_vertices"] = static_cast<double>(m.skin.v.size());
-  state.counters["constraints"] =
-      static_cast<double>(m.skin_stretch.size() + m.skin_bending.size() + m.skin_area.size() +
-                          m.skin_upright.size() + 1 + m.anchors.size());
+  state.counters["constraints"] = static_cast<double>(
+      m.skin_stretch.size() + m.skin_pair_stretch.k.size() + m.skin_bending.size() +
+      m.skin_area.size() + m.skin_upright.size() + 1 + m.anchors.size());
 }
 BENCHMARK(BM_FullStep)
     ->Arg(0)

@@ -274,6 +274,8 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
   m.skin_w.assign(ns, 1.0);
   add_edge_distances(m.skin_stretch, m.skin.v, m.skin.tris, spec.skin.stretch);
   add_bending(m.skin_bending, m.skin.v, m.skin.tris, spec.skin.bending);
+  // An interior edge's stretch is projected with its bending pair (fused sweep).
+  m.skin_pair_stretch = split_pair_stretch(m.skin_stretch, m.skin_bending, m.skin.v);
   add_areas(m.skin_area, m.skin.v, m.skin.tris, spec.skin.area);
   for (std::size_t t = 0; t < m.skin_area.size(); ++t) {
     const int a = m.skin_area.a[t];

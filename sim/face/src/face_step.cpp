@@ -35,16 +35,65 @@ void step_muscles(const FaceModel& m, FaceData& d) {
   }
 }
 
+// Each skin anchor's target: its support point plus the rest offset in the support's frame
+// (SurfacePoint::smooth_frame on a muscle, SurfacePoint::frame on the skull). The same
+// formulas written out on plain doubles, normalising by one reciprocal each (the divisions
+// dominated). A degenerate support takes SurfacePoint's own fallbacks.
 void update_anchor_targets(const FaceModel& m, FaceData& d) {
   vertex_normals(d.muscles, m.muscle_tops, d.muscle_normals);
+  const Points& vn = d.muscle_normals;
   const std::size_t n = m.anchor_support.size();
   for (std::size_t i = 0; i < n; ++i) {
     const SurfacePoint& sp = m.anchor_support[i];
     const bool bone = sp.layer == Layer::kSkull;
     const Points& src = bone ? d.skull : d.muscles;
-    const Mat3 F = bone ? sp.frame(src) : sp.smooth_frame(src, d.muscle_normals);
-    d.anchor_targets.set(i, sp.position(src) + F * m.anchor_local.get(i));
-    d.anchor_normals.set(i, F.col(2));  // the support's outward normal
+    const int i0 = sp.i0, i1 = sp.i1, i2 = sp.i2;
+    const double t0 = sp.t0, t1 = sp.t1, t2 = sp.t2;
+    double ex = src.x[i1] - src.x[i0], ey = src.y[i1] - src.y[i0], ez = src.z[i1] - src.z[i0];
+    double nx, ny, nz;
+    bool ok;
+    if (bone) {  // normal of the triangle, first edge
+      const double ux = src.x[i2] - src.x[i0], uy = src.y[i2] - src.y[i0],
+                   uz = src.z[i2] - src.z[i0];
+      nx = ey * uz - ez * uy, ny = ez * ux - ex * uz, nz = ex * uy - ey * ux;
+      const double en = std::sqrt(ex * ex + ey * ey + ez * ez);
+      const double nn = std::sqrt(nx * nx + ny * ny + nz * nz);
+      ok = en != 0 && nn != 0;
+      if (ok) {
+        const double ie = 1 / en, in = 1 / nn;
+        ex *= ie, ey *= ie, ez *= ie, nx *= in, ny *= in, nz *= in;
+      }
+    } else {  // interpolated vertex normal, first edge made tangent
+      nx = t0 * vn.x[i0] + t1 * vn.x[i1] + t2 * vn.x[i2];
+      ny = t0 * vn.y[i0] + t1 * vn.y[i1] + t2 * vn.y[i2];
+      nz = t0 * vn.z[i0] + t1 * vn.z[i1] + t2 * vn.z[i2];
+      const double nn = std::sqrt(nx * nx + ny * ny + nz * nz);
+      ok = nn != 0;
+      if (ok) {
+        const double in = 1 / nn;
+        nx *= in, ny *= in, nz *= in;
+        const double ne = nx * ex + ny * ey + nz * ez;
+        ex -= nx * ne, ey -= ny * ne, ez -= nz * ne;
+        const double en = std::sqrt(ex * ex + ey * ey + ez * ez);
+        ok = en != 0;
+        const double ie = 1 / (ok ? en : 1.0);
+        ex *= ie, ey *= ie, ez *= ie;
+      }
+    }
+    const Vec3 o = sp.position(src);
+    if (!ok) {  // rare: SurfacePoint's fallbacks
+      const Mat3 F = bone ? sp.frame(src) : sp.smooth_frame(src, vn);
+      d.anchor_targets.set(i, o + F * m.anchor_local.get(i));
+      d.anchor_normals.set(i, F.col(2));
+      continue;
+    }
+    // Columns (ê, n̂ × ê, n̂).
+    const double bx = ny * ez - nz * ey, by = nz * ex - nx * ez, bz = nx * ey - ny * ex;
+    const double lx = m.anchor_local.x[i], ly = m.anchor_local.y[i], lz = m.anchor_local.z[i];
+    d.anchor_targets.x[i] = o.x() + (ex * lx + bx * ly + nx * lz);
+    d.anchor_targets.y[i] = o.y() + (ey * lx + by * ly + ny * lz);
+    d.anchor_targets.z[i] = o.z() + (ez * lx + bz * ly + nz * lz);
+    d.anchor_normals.x[i] = nx, d.anchor_normals.y[i] = ny, d.anchor_normals.z[i] = nz;
   }
 }
 
@@ -61,7 +110,14 @@ void detect_teeth(const FaceModel& m, FaceData& d, const Points& p) {
   d.hits = 0;
   const Vec3 vertical = m.axes.yaw_axis;                     // sagittal ∩ coronal plane
   const Vec3 forward = d.jaw.rotate(m.axes.protrusion_dir);  // the jaw's protrusion direction
+  // Broad phase over both hulls' boxes, on the raw arrays: almost every skin vertex is far
+  // from the teeth, and inside() would reject it by the same boxes, only slower.
+  const Vec3 lo = m.upper_teeth.box_min.cwiseMin(d.lower_teeth.box_min);
+  const Vec3 hi = m.upper_teeth.box_max.cwiseMax(d.lower_teeth.box_max);
   for (std::size_t i = 0; i < p.size(); ++i) {
+    if ((p.x[i] < lo.x()) | (p.x[i] > hi.x()) | (p.y[i] < lo.y()) | (p.y[i] > hi.y()) |
+        (p.z[i] < lo.z()) | (p.z[i] > hi.z()))
+      continue;
     const Vec3 q = p.get(i);
     Vec3 t;
     if (contact(m.upper_teeth, q, vertical, t) || contact(d.lower_teeth, q, forward, t)) {
@@ -118,6 +174,21 @@ void project_contacts(FaceData& d, Points& p) {
   for (int j = 0; j < d.hits; ++j) p.set(d.hit_particle[j], d.hit_target.get(j));
 }
 
+// The skin iterations. Each interior edge's stretch rides with its bending pair
+// (docs/FACE_MODEL.md, "Fused edge sweep").
+void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
+  for (int it = 0; it < m.spec.skin_iterations; ++it) {
+    project(m.skin_stretch, p, m.skin_w);  // border edges
+    project_with_stretch(m.skin_bending, m.skin_pair_stretch, p, m.skin_w);
+    project_signed(m.skin_area, p, m.skin_w, d.anchor_normals, m.skin_area_sign);
+    project(m.skin_volume, p, m.skin_w, d.grad);
+    project(m.anchors, p, m.skin_w, d.anchor_targets);
+    project(m.skin_upright, p, m.skin_w);  // after the anchors, which fold the surface
+    project(m.lids, p, m.skin_w, d.lid_targets);
+    project_contacts(d, p);
+  }
+}
+
 }  // namespace
 
 void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in) {
@@ -161,16 +232,7 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
     detect_teeth(m, d, p);
   else
     d.hits = 0;
-  for (int it = 0; it < m.spec.skin_iterations; ++it) {
-    project(m.skin_stretch, p, m.skin_w);
-    project(m.skin_bending, p, m.skin_w);
-    project_signed(m.skin_area, p, m.skin_w, d.anchor_normals, m.skin_area_sign);
-    project(m.skin_volume, p, m.skin_w, d.grad);
-    project(m.anchors, p, m.skin_w, d.anchor_targets);
-    project(m.skin_upright, p, m.skin_w);
-    project(m.lids, p, m.skin_w, d.lid_targets);
-    project_contacts(d, p);
-  }
+  iterate_skin(m, d, p);
   // (16)–(17) influence weights; eyelid particles keep their drivers' motion.
   for (std::size_t i = 0; i < ns; ++i) {
     const double w = m.influence[i];

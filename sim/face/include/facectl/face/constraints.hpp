@@ -40,6 +40,13 @@ struct BendingConstraints {
   std::size_t size() const { return a.size(); }
 };
 
+// The stretch of each bending pair's shared edge (a[i], b[i]) of a BendingConstraints,
+// so that an edge's stretch and its pair's bending are projected together, stretch first
+// (project_with_stretch). Built by split_pair_stretch().
+struct PairStretch {
+  std::vector<double> rest, k;
+};
+
 // C = ½|(pb−pa)×(pc−pa)| − rest (eq. 3.21).
 struct AreaConstraints {
   std::vector<int> a, b, c;
@@ -108,6 +115,13 @@ void project(const VolumeConstraint& v, Points& p, const std::vector<double>& w,
 // targets[j] is the goal of s.particle[j].
 void project(const Attachments& s, Points& p, const std::vector<double>& w, const Points& targets);
 
+// Fused sweep (docs/FACE_MODEL.md, "Fused edge sweep"): one gather and one store serve an
+// edge's stretch (constraint i of `stretch`, on pair i's edge ab) and then its pair's
+// bending, one after the other in each lane, which is exactly Gauss–Seidel in the
+// interleaved order stretch 0, bending 0, stretch 1, bending 1, ...
+void project_with_stretch(const BendingConstraints& s, const PairStretch& stretch, Points& p,
+                          const std::vector<double>& w);
+
 // Gauss–Seidel order for batched projection: reorders the set along a Z-order curve
 // through the constraints' centroids on `rest` and cuts it into batches of up to 8
 // constraints that share no particle, recording the batch ends in `runs`. The projection
@@ -120,6 +134,12 @@ void order_in_runs(DistanceConstraints& s, const Points& rest);
 void order_in_runs(BendingConstraints& s, const Points& rest);
 void order_in_runs(AreaConstraints& s, const Points& rest);
 void order_in_runs(OrientationConstraints& s, const Points& rest);
+
+// Moves the stretch of every edge that `bending` pairs into a PairStretch aligned with
+// `bending` (a pair's edge is a[i]–b[i]; an edge shared by several pairs rides with the
+// first, the others get k = 0); `edges` keeps the unpaired (border) edges, still in runs.
+PairStretch split_pair_stretch(DistanceConstraints& edges, const BendingConstraints& bending,
+                               const Points& rest);
 
 // Builds the constraint sets of a closed or open triangle surface at its current shape,
 // ordered in runs (order_in_runs).

@@ -27,8 +27,9 @@ struct FaceModel {
   // Skin: the mesh (positions in m), inverse masses and its constraint network.
   TriMesh skin;
   std::vector<double> skin_w;
-  DistanceConstraints skin_stretch;
+  DistanceConstraints skin_stretch;  // border edges; an interior edge's is in skin_pair_stretch
   BendingConstraints skin_bending;
+  PairStretch skin_pair_stretch;  // stretch of skin_bending's shared edges, projected with it
   AreaConstraints skin_area;
   std::vector<double> skin_area_sign;   // orientation vs. the anchor normal at rest
   OrientationConstraints skin_upright;  // no-inversion (SkinStiffness::min_projected_area)
