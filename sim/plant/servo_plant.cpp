@@ -57,8 +57,11 @@ void ServoPlant::step_first_order(double dt) {
     velocity_ = 0.0;  // the amplifier is off and the gear train holds
     return;
   }
-  const double gain =
-      params_.time_constant_s <= 0.0 ? 1.0 : 1.0 - std::exp(-dt / params_.time_constant_s);
+  if (dt != gain_dt_) {  // ticks repeat their dt: one exp per change, not per step
+    gain_dt_ = dt;
+    gain_ = params_.time_constant_s <= 0.0 ? 1.0 : 1.0 - std::exp(-dt / params_.time_constant_s);
+  }
+  const double gain = gain_;
   const double max_step = params_.max_velocity * dt;
   double step = std::clamp(gain * error, -max_step, max_step);
   if (params_.max_acceleration > 0.0) {

@@ -79,6 +79,8 @@ class ServoPlant {
   double motor_;
   double output_;
   double velocity_ = 0.0;
+  double gain_dt_ = -1.0;  // the dt gain_ was computed for
+  double gain_ = 0.0;
   std::int64_t last_ns_ = -1;
   bool enabled_ = false;
   std::mt19937_64 rng_;

@@ -32,7 +32,11 @@ void ThermalModel::step(std::int64_t now_ns, double dt, bool powered, double out
   if (powered && p_.full_effort > 0.0) effort = std::fabs(error) / p_.full_effort;
   if (at_extreme) effort = std::max(effort, p_.extreme_effort);
   effort = std::min(effort, 1.0);
-  const double alpha = 1.0 - std::exp(-dt / p_.time_constant_s);
+  if (dt != alpha_dt_) {  // ticks repeat their dt: one exp per change, not per step
+    alpha_dt_ = dt;
+    alpha_ = 1.0 - std::exp(-dt / p_.time_constant_s);
+  }
+  const double alpha = alpha_;
   duty_ += alpha * (effort - duty_);
   heat_ += alpha * (effort * effort - heat_);
   const double thermal = heat_ / (p_.rated_duty * p_.rated_duty);

@@ -51,6 +51,8 @@ class ThermalModel {
   double duty_ = 0.0;
   double heat_ = 0.0;  // averaged e²
   double continuous_s_ = 0.0;
+  double alpha_dt_ = -1.0;  // the dt alpha_ was computed for
+  double alpha_ = 0.0;
   const char* fault_ = nullptr;
   // Written once here, so that tripping in the tick formats nothing.
   std::array<char, 128> extreme_text_{};
