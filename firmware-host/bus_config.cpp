@@ -96,6 +96,7 @@ void parse_modbus(const ConfigNode& node, BusConfig& bus) {
     if (bus.endpoint.empty()) node["host"].fail("host or host:port", "an empty string");
   }
   ModbusTiming& t = bus.modbus;
+  if (auto n = node.get("network_latency_ms")) t.network_latency_s = n->number_in(0.0, 20.0) * 1e-3;
   // libmodbus's own 500 ms default is what these keys exist to avoid.
   if (auto n = node.get("response_timeout_ms"))
     t.response_timeout_s = n->number_in(1.0, 250.0) * 1e-3;
@@ -159,7 +160,7 @@ BusConfig parse_bus_config(const ConfigNode& node) {
     if (bus.type == "modbus_rtu") {
       keys.insert(keys.end(), {"device", "baud", "byte_timeout_ms"});
     } else {
-      keys.emplace_back("host");
+      keys.insert(keys.end(), {"host", "network_latency_ms"});
     }
     node.expect_keys(keys);
     parse_modbus(node, bus);
