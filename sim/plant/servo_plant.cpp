@@ -18,7 +18,7 @@ ServoPlant::ServoPlant(const ServoPlantParams& params, double initial_position)
       active_command_(initial_position),
       motor_(initial_position),
       output_(initial_position),
-      rng_(params.seed),
+      noise_(params.seed),
       thermal_(params.thermal, params.name) {}
 
 void ServoPlant::set_enabled(bool enabled) {
@@ -122,7 +122,7 @@ void ServoPlant::advance(std::int64_t now_ns) {
 
 double ServoPlant::measured() {
   if (params_.noise_stddev <= 0.0) return output_;
-  return output_ + params_.noise_stddev * noise_(rng_);
+  return output_ + params_.noise_stddev * noise_.next();
 }
 
 }  // namespace facectl::sim

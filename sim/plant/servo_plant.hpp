@@ -2,9 +2,9 @@
 
 #include <array>
 #include <cstdint>
-#include <random>
 #include <string>
 
+#include "sim/plant/measurement_noise.hpp"
 #include "sim/plant/servo_thermal.hpp"
 
 namespace facectl::sim {
@@ -83,8 +83,7 @@ class ServoPlant {
   double gain_ = 0.0;
   std::int64_t last_ns_ = -1;
   bool enabled_ = false;
-  std::mt19937_64 rng_;
-  std::normal_distribution<double> noise_{0.0, 1.0};
+  MeasurementNoise noise_;
   ThermalModel thermal_;
 };
 

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "drivers/sim_actuator_bus.hpp"
+#include "sim/plant/measurement_noise.hpp"
 
 namespace facectl::sim {
 namespace {
@@ -75,6 +77,35 @@ TEST(SimActuatorBus, IgnoresWritesWhileDisabledAndReportsInjectedFaults) {
   EXPECT_STREQ(bus.status().reason, "bus-off");
   bus.clear_fault();
   EXPECT_FALSE(bus.status().fault);
+}
+
+}  // namespace
+}  // namespace facectl::sim
+
+namespace facectl::sim {
+namespace {
+
+TEST(MeasurementNoise, HasUnitVarianceZeroMeanBoundedTailsAndDependsOnTheSeed) {
+  MeasurementNoise a(1), b(1), c(2);
+  constexpr int kSamples = 200000;
+  double sum = 0.0, sum_sq = 0.0, largest = 0.0;
+  int beyond_two = 0, differs = 0;
+  for (int i = 0; i < kSamples; ++i) {
+    const double x = a.next();
+    ASSERT_EQ(x, b.next());  // the same seed, the same bits
+    if (x != c.next()) ++differs;
+    sum += x;
+    sum_sq += x * x;
+    largest = std::max(largest, std::fabs(x));
+    if (std::fabs(x) > 2.0) ++beyond_two;
+  }
+  const double mean = sum / kSamples, variance = sum_sq / kSamples - mean * mean;
+  EXPECT_NEAR(mean, 0.0, 0.01);
+  EXPECT_NEAR(variance, 1.0, 0.02);
+  EXPECT_LE(largest, 2.0 * std::sqrt(3.0));
+  // A Gaussian puts 4.55% beyond 2σ; the four-term Irwin–Hall sum about 4.0%.
+  EXPECT_NEAR(static_cast<double>(beyond_two) / kSamples, 0.042, 0.006);
+  EXPECT_GT(differs, kSamples - 10);
 }
 
 }  // namespace
