@@ -27,16 +27,6 @@ void TelemetryWriter::start() {
 }
 
 void TelemetryWriter::write_header(std::FILE* out, const ControllerModel& model) {
-  write_header_fields(out, model);
-  std::fputc('\n', out);
-}
-
-void TelemetryWriter::write_row(std::FILE* out, const TelemetryRecord& r) {
-  write_fields(out, r);
-  std::fputc('\n', out);
-}
-
-void TelemetryWriter::write_header_fields(std::FILE* out, const ControllerModel& model) {
   std::fputs(
       "tick,time_s,dt_s,wake_latency_us,compute_us,state,transition,input_stale,envelope_flags,"
       "coupled_flags,coupled_violation,actuator_coupled_flags,actuator_coupled_violation,"
@@ -48,9 +38,10 @@ void TelemetryWriter::write_header_fields(std::FILE* out, const ControllerModel&
   for (const auto& a : model.actuators) std::fprintf(out, ",cmd.%s", a.name.c_str());
   for (const auto& a : model.actuators) std::fprintf(out, ",fb.%s", a.name.c_str());
   for (const auto& a : model.actuators) std::fprintf(out, ",lim.%s", a.name.c_str());
+  std::fputc('\n', out);
 }
 
-void TelemetryWriter::write_fields(std::FILE* out, const TelemetryRecord& r) {
+void TelemetryWriter::write_row(std::FILE* out, const TelemetryRecord& r) {
   std::fprintf(
       out, "%llu,%.6f,%.9f,%.3f,%.3f,%s,%s,%d,%u,%u,%.9g,%u,%.9g,%u,%u",
       static_cast<unsigned long long>(r.tick), r.time_s, r.dt_s, r.wake_latency_s * 1e6,
@@ -62,6 +53,7 @@ void TelemetryWriter::write_fields(std::FILE* out, const TelemetryRecord& r) {
   for (std::size_t i = 0; i < r.actuator_count; ++i) std::fprintf(out, ",%.9g", r.command[i]);
   for (std::size_t i = 0; i < r.actuator_count; ++i) std::fprintf(out, ",%.9g", r.feedback[i]);
   for (std::size_t i = 0; i < r.actuator_count; ++i) std::fprintf(out, ",%u", r.limits[i]);
+  std::fputc('\n', out);
 }
 
 std::size_t TelemetryWriter::drain() {

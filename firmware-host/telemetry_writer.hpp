@@ -33,9 +33,6 @@ class TelemetryWriter {
 
   static void write_header(std::FILE* out, const ControllerModel& model);
   static void write_row(std::FILE* out, const TelemetryRecord& rec);
-  // write_header/write_row without the newline, for files that add columns.
-  static void write_header_fields(std::FILE* out, const ControllerModel& model);
-  static void write_fields(std::FILE* out, const TelemetryRecord& rec);
 
  private:
   void run();

@@ -1,10 +1,9 @@
 #include "firmware-host/simulate/decimated_telemetry.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
-
-#include "firmware-host/telemetry_writer.hpp"
 
 namespace facectl {
 
@@ -14,8 +13,10 @@ DecimatedTelemetry::DecimatedTelemetry(const ControllerModel& model, const std::
   file_ = std::fopen(path.c_str(), "w");
   if (file_ == nullptr) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
-  TelemetryWriter::write_header_fields(file_, model);
-  for (const auto& a : model.actuators) std::fprintf(file_, ",pos.%s", a.name.c_str());
+  std::fputs("time_s,state,envelope_flags,coupled_flags,actuator_coupled_flags", file_);
+  for (const auto& a : model.actuators) {
+    std::fprintf(file_, ",cmd.%s,pos.%s,lim.%s", a.name.c_str(), a.name.c_str(), a.name.c_str());
+  }
   std::fputc('\n', file_);
 }
 
@@ -24,28 +25,24 @@ DecimatedTelemetry::~DecimatedTelemetry() {
 }
 
 void DecimatedTelemetry::add(double t, const TelemetryRecord& r, std::span<const double> positions) {
-  const std::uint32_t coupled = row_.coupled_flags | r.coupled_flags;
-  const std::uint32_t actuator_coupled = row_.actuator_coupled_flags | r.actuator_coupled_flags;
-  const std::uint8_t envelope = row_.envelope_flags | r.envelope_flags;
-  std::array<LimitFlags, kMaxActuators> limits = row_.limits;
-  for (std::size_t i = 0; i < r.actuator_count; ++i) limits[i] |= r.limits[i];
-  if (seen_++ % every_ != 0) {
-    row_.coupled_flags = coupled;
-    row_.actuator_coupled_flags = actuator_coupled;
-    row_.envelope_flags = envelope;
-    row_.limits = limits;
-    return;
+  envelope_ |= r.envelope_flags;
+  coupled_ |= r.coupled_flags;
+  actuator_coupled_ |= r.actuator_coupled_flags;
+  for (std::size_t i = 0; i < r.actuator_count; ++i) limits_[i] |= r.limits[i];
+  if (seen_++ % every_ != 0) return;
+  const std::string_view state = to_string(r.state);
+  std::fprintf(file_, "%.6f,%.*s,%u,%u,%u", t, static_cast<int>(state.size()), state.data(),
+               envelope_, coupled_, actuator_coupled_);
+  for (std::size_t i = 0; i < r.actuator_count; ++i) {
+    // Round-off below a nanometre or nanoradian is written as 0, not as e-25 noise.
+    const double cmd = std::fabs(r.command[i]) < 1e-9 ? 0.0 : r.command[i];
+    const double pos = std::fabs(positions[i]) < 1e-9 ? 0.0 : positions[i];
+    std::fprintf(file_, ",%.6g,%.6g,%u", cmd, pos, limits_[i]);
   }
-  row_ = r;
-  row_.time_s = t;
-  row_.coupled_flags = coupled;
-  row_.actuator_coupled_flags = actuator_coupled;
-  row_.envelope_flags = envelope;
-  row_.limits = limits;
-  TelemetryWriter::write_fields(file_, row_);
-  for (std::size_t i = 0; i < r.actuator_count; ++i) std::fprintf(file_, ",%.9g", positions[i]);
   std::fputc('\n', file_);
-  row_ = TelemetryRecord{};
+  envelope_ = 0;
+  coupled_ = actuator_coupled_ = 0;
+  limits_.fill(0);
 }
 
 void DecimatedTelemetry::close() {

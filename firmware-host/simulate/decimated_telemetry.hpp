@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdio>
 #include <span>
 #include <string>
@@ -9,11 +10,12 @@
 
 namespace facectl {
 
-// telemetry.csv of `facectl simulate` (docs/SIMULATE.md): the columns of
-// `facectl run --record` (docs/TELEMETRY.md) plus pos.<actuator>, the
-// simulated (true) position, one row every `every` ticks. The limiter and
-// constraint flags of a row are those of every tick since the previous row
-// (OR), so that no engagement falls between rows.
+// telemetry.csv of `facectl simulate` (docs/SIMULATE.md, "telemetry.csv"):
+// one row every `every` ticks with the show time, the safety state, the
+// envelope and coupled-limit flags and per actuator the command, the
+// simulated position and the limiter flags. Flags are those of every tick
+// since the previous row (OR), so that no engagement falls between rows.
+// Compact on purpose: an hour at 100 Hz must stay a manageable file.
 class DecimatedTelemetry {
  public:
   DecimatedTelemetry(const ControllerModel& model, const std::string& path, std::uint64_t every);
@@ -31,7 +33,10 @@ class DecimatedTelemetry {
   std::FILE* file_ = nullptr;
   std::uint64_t every_;
   std::uint64_t seen_ = 0;
-  TelemetryRecord row_{};  // the flags gathered since the last row
+  // Flags gathered since the last row.
+  std::uint8_t envelope_ = 0;
+  std::uint32_t coupled_ = 0, actuator_coupled_ = 0;
+  std::array<LimitFlags, kMaxActuators> limits_{};
 };
 
 }  // namespace facectl

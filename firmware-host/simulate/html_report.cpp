@@ -126,12 +126,18 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
          escape(p) + "\" alt=\"" + escape(name) + "\">\n";
   }
   if (!frames.empty()) {
+    // A long show has thousands of frames: the page shows at most kShown of
+    // them, evenly spaced; every frame is in the frames folder.
+    constexpr std::size_t kShown = 60;
+    const std::size_t step = (frames.size() + kShown - 1) / kShown;
     o += "<h2>Face render</h2>\n<p>Left: the full face model for the command. Right: the face "
          "the simulated actuator positions give through the inverse of the mapping. " +
-         std::to_string(frames.size()) + " frames.</p>\n<div>\n";
-    for (const std::string& f : frames) {
-      o += "<img class=\"frame\" loading=\"lazy\" src=\"" + escape(f) + "\" alt=\"" + escape(f) +
-           "\">\n";
+         std::to_string(frames.size()) + " frames in <a href=\"frames/\">frames/</a>" +
+         (step > 1 ? ", every " + std::to_string(step) + "th shown" : std::string()) +
+         ".</p>\n<div>\n";
+    for (std::size_t k = 0; k < frames.size(); k += step) {
+      o += "<img class=\"frame\" loading=\"lazy\" src=\"" + escape(frames[k]) + "\" alt=\"" +
+           escape(frames[k]) + "\">\n";
     }
     o += "</div>\n";
   }

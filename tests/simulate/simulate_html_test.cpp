@@ -52,7 +52,6 @@ TEST(SimulateHtml, RendersInHeadlessChromiumWithTheLimitLines) {
   const long pixels = static_cast<long>(img.width) * img.height;
   const long white = count_near(img, {255, 255, 255}, 8);
   EXPECT_LT(white, pixels * 98 / 100) << "the page is blank";
-  // Page content: the table, text and plots leave many distinct colours.
   const long limit = count_near(img, parse_color(kHardLimitColor), 40);
   EXPECT_GT(limit, 200) << "no hard-limit lines on the page: the plots did not render";
 }
