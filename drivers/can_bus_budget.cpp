@@ -52,23 +52,32 @@ double can_fd_frame_bits(int bytes, long bitrate, long data_bitrate) {
   return nominal + data * ratio;
 }
 
-CanBusBudget custom_can_budget(std::span<const int> addresses, const CanBusOptions& options,
-                               double tick_hz, long bitrate) {
+std::map<int, int> custom_can_boards(std::span<const int> addresses, const CanBusOptions& options) {
   const int per_frame = custom_can::channels_per_frame(options.fd, options.width);
-  std::map<int, int> channels;  // node -> highest used channel + 1
+  std::map<int, int> channels;
   for (int a : addresses) {
     const int node = (a - 1) / per_frame + 1;
     channels[node] = std::max(channels[node], (a - 1) % per_frame + 1);
   }
+  return channels;
+}
+
+double custom_can_frame_bits(int channels, const CanBusOptions& options, long bitrate) {
+  if (!options.fd) return CanBusBudget::kBitsPerFrame;
+  const long data_bitrate = options.data_bitrate > 0 ? options.data_bitrate : bitrate;
+  // Command and feedback carry the same 2 + channels·width bytes.
+  return can_fd_frame_bits(2 + channels * static_cast<int>(options.width), bitrate, data_bitrate);
+}
+
+CanBusBudget custom_can_budget(std::span<const int> addresses, const CanBusOptions& options,
+                               double tick_hz, long bitrate) {
+  const std::map<int, int> channels = custom_can_boards(addresses, options);
   const int frames = static_cast<int>(2 * channels.size());
   const double bus_hz = tick_hz / options.cycle_divider;
   if (!options.fd) return CanBusBudget::compute(frames, bus_hz, bitrate);
-  const long data_bitrate = options.data_bitrate > 0 ? options.data_bitrate : bitrate;
   double bits = 0.0;
   for (const auto& [node, used] : channels) {
-    // Command and feedback carry the same 2 + channels·width bytes.
-    bits +=
-        2.0 * can_fd_frame_bits(2 + used * static_cast<int>(options.width), bitrate, data_bitrate);
+    bits += 2.0 * custom_can_frame_bits(used, options, bitrate);
   }
   return CanBusBudget::compute_bits(frames, bits, bus_hz, bitrate);
 }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <span>
 #include <string>
 
@@ -48,6 +49,14 @@ int can_fd_length(int bytes);
 // (4 bits + its fixed stuff bit), and the CRC (17 bits up to 16 data bytes,
 // 21 above) with its fixed stuff bit every 4 bits.
 double can_fd_frame_bits(int bytes, long bitrate, long data_bitrate);
+
+// The boards of a custom-layout bus, in node order: node -> highest used
+// channel + 1 (boards and channels follow from the addresses as in CustomCanBus).
+std::map<int, int> custom_can_boards(std::span<const int> addresses, const CanBusOptions& options);
+
+// Worst-case length, in nominal bit times, of one command (or feedback) frame
+// of a custom board using `channels`: 135 classic, or its CAN FD length.
+double custom_can_frame_bits(int channels, const CanBusOptions& options, long bitrate);
 
 // The schedule of a custom-layout bus (docs/PROTOCOLS.md): one command and one
 // feedback frame per board and bus cycle. `addresses` are its actuators'

@@ -1,5 +1,6 @@
 #include "drivers/modbus_register_map.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -30,6 +31,15 @@ Placement place(int address) {
                                 " is outside 1..1976 (8 channels on each of units 1..247)");
   }
   return {(address - 1) / kChannelsPerBoard + 1, (address - 1) % kChannelsPerBoard};
+}
+
+std::map<int, int> board_channels(std::span<const int> addresses) {
+  std::map<int, int> channels;
+  for (int a : addresses) {
+    const Placement p = place(a);
+    channels[p.unit] = std::max(channels[p.unit], p.channel + 1);
+  }
+  return channels;
 }
 
 }  // namespace facectl::modbus_map

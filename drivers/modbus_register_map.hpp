@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -69,5 +70,7 @@ struct Placement {
 // Throws std::invalid_argument naming the address when it is not 1..1976
 // (unit ids 1..247).
 Placement place(int address);
+// The boards the addresses use, in unit order: unit -> highest used channel + 1.
+std::map<int, int> board_channels(std::span<const int> addresses);
 
 }  // namespace facectl::modbus_map

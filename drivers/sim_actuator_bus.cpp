@@ -5,21 +5,40 @@
 namespace facectl {
 
 SimActuatorBus::SimActuatorBus(std::string name, const std::vector<sim::ServoPlantParams>& plants,
-                               const std::vector<double>& initial_positions)
-    : name_(std::move(name)) {
+                               const std::vector<double>& initial_positions,
+                               const SimBusTiming& timing)
+    : name_(std::move(name)), timing_(timing.timing) {
   if (plants.size() != initial_positions.size()) {
     throw std::invalid_argument("sim bus: one initial position per plant");
   }
+  if (!timing.arrival_s.empty() && timing.arrival_s.size() != plants.size()) {
+    throw std::invalid_argument("sim bus: one arrival time per plant");
+  }
   plants_.reserve(plants.size());
-  for (std::size_t i = 0; i < plants.size(); ++i)
+  transfer_ns_.assign(plants.size(), 0);
+  for (std::size_t i = 0; i < plants.size(); ++i) {
     plants_.emplace_back(plants[i], initial_positions[i]);
+    if (!timing.arrival_s.empty()) {
+      transfer_ns_[i] = static_cast<std::int64_t>(timing.arrival_s[i] * 1e9 + 0.5);
+    }
+  }
 }
 
 void SimActuatorBus::read(const TickTime& time, std::span<double> positions) {
   for (std::size_t i = 0; i < plants_.size() && i < positions.size(); ++i) {
     plants_[i].advance(time.now_ns);
     positions[i] = plants_[i].measured();
+    // Latched: the first overloaded servo names the fault until it is cleared.
+    if (const char* overload = plants_[i].fault()) {
+      const char* none = nullptr;
+      fault_reason_.compare_exchange_strong(none, overload, std::memory_order_release);
+    }
   }
+}
+
+void SimActuatorBus::clear_fault() {
+  for (auto& p : plants_) p.clear_fault();
+  fault_reason_.store(nullptr, std::memory_order_release);
 }
 
 void SimActuatorBus::write(const TickTime& time, std::span<const double> positions) {
@@ -28,7 +47,7 @@ void SimActuatorBus::write(const TickTime& time, std::span<const double> positio
     return;
   }
   for (std::size_t i = 0; i < plants_.size() && i < positions.size(); ++i) {
-    plants_[i].command(time.now_ns, positions[i]);
+    plants_[i].command(time.now_ns + transfer_ns_[i], positions[i]);
   }
   ++frames_;
 }

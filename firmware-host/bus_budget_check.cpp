@@ -4,6 +4,7 @@
 #include <map>
 
 #include "drivers/modbus_register_map.hpp"
+#include "drivers/modbus_rtu_wire.hpp"
 
 namespace facectl {
 namespace {
@@ -46,14 +47,14 @@ BusBudgetResult budget_can(const BusConfig& bus, const std::vector<const Actuato
 BusBudgetResult budget_modbus(const BusConfig& bus,
                               const std::vector<const ActuatorConfig*>& acts) {
   BusBudgetResult r;
-  std::map<int, int> channels;  // unit -> highest used channel + 1
+  std::vector<int> addresses;
   for (const ActuatorConfig* a : acts) {
     if (a->model.address < 1 || a->model.address > 247 * modbus_map::kChannelsPerBoard) {
       throw ConfigError(address_range_error(*a, bus, 247 * modbus_map::kChannelsPerBoard));
     }
-    const modbus_map::Placement p = modbus_map::place(a->model.address);
-    channels[p.unit] = std::max(channels[p.unit], p.channel + 1);
+    addresses.push_back(a->model.address);
   }
+  const std::map<int, int> channels = modbus_map::board_channels(addresses);
   char buf[240];
   if (bus.type != "modbus_rtu") {
     std::snprintf(buf, sizeof buf, "%s: %zu boards over TCP (not budgeted)", bus.name.c_str(),
@@ -61,15 +62,9 @@ BusBudgetResult budget_modbus(const BusConfig& bus,
     r.text = buf;
     return r;
   }
-  // Per board and cycle: a write-multiple of CONTROL, HEARTBEAT and the
-  // targets (request 9 + 2n bytes, reply 8), and a read of the input
-  // registers (request 8, reply 5 + 2·(4 + n)); each RTU frame is followed
-  // by 3.5 characters of silence; 10 bits per character (8N1).
   double chars = 0.0;
-  for (const auto& [unit, n] : channels) {
-    chars += (9 + 2 * (2 + n)) + 8 + 8 + (5 + 2 * (4 + n)) + 4 * 3.5;
-  }
-  const double wire_s = chars * 10.0 / static_cast<double>(bus.bitrate);
+  for (const auto& [unit, n] : channels) chars += modbus_rtu::BoardCycleChars(n).total();
+  const double wire_s = modbus_rtu::chars_to_seconds(chars, bus.bitrate);
   const double period_s = bus.modbus.cycle_period_s;
   r.load = wire_s / period_s;
   r.verdict = r.load > 1.0 ? BusBudgetResult::Verdict::kWarning : BusBudgetResult::Verdict::kOk;

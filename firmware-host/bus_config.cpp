@@ -95,6 +95,8 @@ void parse_modbus(const ConfigNode& node, BusConfig& bus) {
     bus.endpoint = node["host"].string();
     if (bus.endpoint.empty()) node["host"].fail("host or host:port", "an empty string");
   }
+  if (auto n = node.get("network_latency_ms"))
+    bus.network_latency_s = n->number_in(0.0, 20.0) * 1e-3;
   ModbusTiming& t = bus.modbus;
   // libmodbus's own 500 ms default is what these keys exist to avoid.
   if (auto n = node.get("response_timeout_ms"))
@@ -159,7 +161,7 @@ BusConfig parse_bus_config(const ConfigNode& node) {
     if (bus.type == "modbus_rtu") {
       keys.insert(keys.end(), {"device", "baud", "byte_timeout_ms"});
     } else {
-      keys.emplace_back("host");
+      keys.insert(keys.end(), {"host", "network_latency_ms"});
     }
     node.expect_keys(keys);
     parse_modbus(node, bus);

@@ -4,6 +4,8 @@
 #include <numbers>
 #include <set>
 
+#include "firmware-host/plant_config.hpp"
+
 namespace facectl {
 namespace {
 
@@ -76,19 +78,7 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   m.rest = rest.number() * u.to_si;
   if (m.rest < soft.min || m.rest > soft.max) rest.fail("a rest position inside the soft range");
 
-  if (auto plant = node.get("plant")) {
-    plant->expect_keys({"time_constant_ms", "latency_ms", "noise" + s, "max_velocity" + s + "_s"});
-    if (auto n = plant->get("time_constant_ms"))
-      cfg.plant.time_constant_s = n->non_negative() * 1e-3;
-    if (auto n = plant->get("latency_ms")) cfg.plant.latency_s = n->number_in(0.0, 50.0) * 1e-3;
-    if (auto n = plant->get("noise" + s)) cfg.plant.noise_stddev = n->non_negative() * u.to_si;
-    cfg.plant.max_velocity = 1.5 * l.max_velocity;
-    if (auto n = plant->get("max_velocity" + s + "_s"))
-      cfg.plant.max_velocity = n->positive() * u.to_si;
-  } else {
-    cfg.plant.max_velocity = 1.5 * l.max_velocity;
-  }
-
+  cfg.plant = parse_plant_config(node.get("plant"), l, u.suffix, u.to_si);
   cfg.plant_where = node.get("plant") ? node["plant"].where() : cfg.where;
   // A strut of the mandible mechanism has no `map`: the mechanism's inverse
   // kinematics drive it (checked when the model is built).

@@ -15,17 +15,24 @@ std::unique_ptr<SimHardware> make_sim_hardware(const ControllerModel& model, con
   for (const BusModel& bus : model.buses) {
     std::vector<sim::ServoPlantParams> plants;
     std::vector<double> initial;
+    std::vector<int> addresses;
     for (std::size_t i = bus.first; i < bus.first + bus.count; ++i) {
       const ActuatorModel& act = model.actuators[i];
       for (const ActuatorConfig& a : rig.actuators) {
         if (a.model.name != act.name) continue;
         sim::ServoPlantParams p = a.plant;
         p.seed = seed++;  // distinct, deterministic noise per actuator
+        p.name = act.name;
         plants.push_back(p);
         initial.push_back(act.rest);
+        addresses.push_back(act.address);
       }
     }
-    hw->buses.push_back(std::make_unique<SimActuatorBus>(bus.name, plants, initial));
+    SimBusTiming timing;
+    for (const BusConfig& b : rig.buses) {
+      if (b.name == bus.name) timing = sim_bus_timing(b, addresses, model.rate_hz);
+    }
+    hw->buses.push_back(std::make_unique<SimActuatorBus>(bus.name, plants, initial, timing));
     hw->seams.push_back(hw->buses.back().get());
   }
   return hw;

@@ -11,7 +11,8 @@
 namespace facectl {
 
 // The simulated twin of a whole rig: one SimActuatorBus per configured bus
-// (its plants from each actuator's `plant:` block) and the simulated safety I/O.
+// (its plants from each actuator's `plant:` block, its transfer times from the
+// bus's type and speed at the loop rate) and the simulated safety I/O.
 struct SimHardware {
   std::vector<std::unique_ptr<SimActuatorBus>> buses;
   std::vector<ActuatorBus*> seams;  // the same buses, as the controller sees them

@@ -3,34 +3,60 @@
 #include <array>
 #include <cstdint>
 #include <random>
+#include <string>
+
+#include "sim/plant/servo_thermal.hpp"
 
 namespace facectl::sim {
 
+enum class PlantModel { kFirstOrder, kPd };
+
 struct ServoPlantParams {
-  double time_constant_s = 0.02;  // first-order response to the (delayed) command
-  double max_velocity = 10.0;     // the servo's own slew limit, SI/s
-  double latency_s = 0.002;       // transport + processing delay of a command
-  double noise_stddev = 0.0;      // measurement noise, SI
-  std::uint64_t seed = 1;         // deterministic noise
+  std::string name = "servo";  // for the thermal fault text
+  PlantModel model = PlantModel::kFirstOrder;
+  double time_constant_s = 0.02;    // first_order: lag toward the (delayed) command
+  double natural_frequency_hz = 8;  // pd: kp = ω², kd = 2ζω with ω = 2π·f
+  double damping_ratio = 0.8;       // pd: ζ
+  double max_velocity = 10.0;       // the servo's own slew limit, SI/s
+  double max_acceleration = 0.0;    // SI/s², 0 = none
+  double deadband = 0.0;            // no drive while |command − motor| <= deadband, SI
+  double backlash = 0.0;            // total play between motor and output shaft, SI
+  double latency_s = 0.002;         // transport + processing delay of a command
+  double noise_stddev = 0.0;        // measurement noise, SI
+  std::uint64_t seed = 1;           // deterministic noise
+  ThermalParams thermal;            // off unless configured (full_effort > 0 or a band)
 };
 
-// A position servo: a delay line, then a first-order lag toward the command
-// with a slew-rate limit, then measurement noise. While disabled it holds its
-// position (a braked or back-driven-free servo; the simulated boards model
-// relax separately). Steps in fixed time without allocating.
+// A position servo: a delay line, then first-order or PD dynamics toward the
+// command with speed and acceleration limits and a deadband, then gear play
+// (backlash) to the output shaft, then measurement noise of the output. While
+// disabled it holds its position (a braked or back-driven-free servo; the
+// simulated boards model relax separately). A thermal/duty model watches the
+// effort and the time held near the ends of travel and latches a fault, as a
+// smart servo's overload protection does. Steps in fixed time without allocating.
 class ServoPlant {
  public:
   explicit ServoPlant(const ServoPlantParams& params, double initial_position = 0.0);
 
+  // `position` takes effect at now_ns + latency (the caller adds bus time to now_ns).
   void command(std::int64_t now_ns, double position);
   // Enabling or disabling drops pending commands and holds the current
   // position, as a drive does (see ActuatorBus::set_enabled).
   void set_enabled(bool enabled);
   // Advances the plant to `now_ns`.
   void advance(std::int64_t now_ns);
-  double measured();  // true position plus noise
-  double position() const { return position_; }
+  double measured();  // output position plus noise
+  double position() const { return output_; }
+  double motor_position() const { return motor_; }
+  double velocity() const { return velocity_; }  // of the motor
   bool enabled() const { return enabled_; }
+
+  const PlantStats& stats() const { return thermal_.stats(); }
+  // The latched overload fault ("thermal: <name> ..."), or nullptr. The text
+  // lives as long as the plant.
+  const char* fault() const { return thermal_.fault(); }
+  // A servo reset: clears the latched fault (the thermal state stays).
+  void clear_fault() { thermal_.clear_fault(); }
 
  private:
   // Commands waiting out their latency: 64 slots, so latency × command rate
@@ -41,16 +67,23 @@ class ServoPlant {
   };
   static constexpr std::size_t kDelaySlots = 64;
 
+  void step_first_order(double dt);
+  void step_pd(double dt);
+  double limit_velocity(double v_wanted, double dt) const;
+
   ServoPlantParams params_;
   std::array<Timed, kDelaySlots> delay_{};
   std::size_t delay_head_ = 0;
   std::size_t delay_size_ = 0;
   double active_command_;
-  double position_;
+  double motor_;
+  double output_;
+  double velocity_ = 0.0;
   std::int64_t last_ns_ = -1;
   bool enabled_ = false;
   std::mt19937_64 rng_;
   std::normal_distribution<double> noise_{0.0, 1.0};
+  ThermalModel thermal_;
 };
 
 }  // namespace facectl::sim
