@@ -22,7 +22,8 @@ class ActuatorPlots {
   // One tick at show time t (0 <= t <= duration).
   void add(double t, const TelemetryRecord& r, std::span<const double> positions);
   // Writes dir/<actuator>.svg for each actuator; returns the file names, relative to dir.
-  std::vector<std::string> write(const std::string& dir, const std::vector<StateSpan>& states) const;
+  std::vector<std::string> write(const std::string& dir,
+                                 const std::vector<StateSpan>& states) const;
 
  private:
   struct Column {  // one series' extremes within a time column

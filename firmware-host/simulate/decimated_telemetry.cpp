@@ -13,7 +13,7 @@ DecimatedTelemetry::DecimatedTelemetry(const ControllerModel& model, const std::
   file_ = std::fopen(path.c_str(), "w");
   if (file_ == nullptr) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
-  std::fputs("time_s,state,envelope_flags,coupled_flags,actuator_coupled_flags", file_);
+  std::fputs("tick,time_s,state,envelope_flags,coupled_flags,actuator_coupled_flags", file_);
   for (const auto& a : model.actuators) {
     std::fprintf(file_, ",cmd.%s,pos.%s,lim.%s", a.name.c_str(), a.name.c_str(), a.name.c_str());
   }
@@ -24,15 +24,17 @@ DecimatedTelemetry::~DecimatedTelemetry() {
   if (file_ != nullptr) std::fclose(file_);
 }
 
-void DecimatedTelemetry::add(double t, const TelemetryRecord& r, std::span<const double> positions) {
+void DecimatedTelemetry::add(double t, const TelemetryRecord& r,
+                             std::span<const double> positions) {
   envelope_ |= r.envelope_flags;
   coupled_ |= r.coupled_flags;
   actuator_coupled_ |= r.actuator_coupled_flags;
   for (std::size_t i = 0; i < r.actuator_count; ++i) limits_[i] |= r.limits[i];
   if (seen_++ % every_ != 0) return;
   const std::string_view state = to_string(r.state);
-  std::fprintf(file_, "%.6f,%.*s,%u,%u,%u", t, static_cast<int>(state.size()), state.data(),
-               envelope_, coupled_, actuator_coupled_);
+  std::fprintf(file_, "%llu,%.6f,%.*s,%u,%u,%u", static_cast<unsigned long long>(seen_ - 1), t,
+               static_cast<int>(state.size()), state.data(), envelope_, coupled_,
+               actuator_coupled_);
   for (std::size_t i = 0; i < r.actuator_count; ++i) {
     // Round-off below a nanometre or nanoradian is written as 0, not as e-25 noise.
     const double cmd = std::fabs(r.command[i]) < 1e-9 ? 0.0 : r.command[i];

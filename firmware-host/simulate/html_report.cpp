@@ -54,9 +54,9 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
   o += "<h1>facectl simulate: " + escape(s["input"]["kind"].get<std::string>()) + " " +
        escape(s["input"]["name"].get<std::string>()) + "</h1>\n";
   o += "<p>Rig " + escape(s["rig"].get<std::string>()) + ", head " +
-       escape(s["head"].get<std::string>()) + ": " + number(s["simulated_s"]) +
-       " s simulated at " + number(s["rate_hz"]) + " Hz after enabling in " +
-       number(s["enable_s"]) + " s. Files: <a href=\"telemetry.csv\">telemetry.csv</a>, " +
+       escape(s["head"].get<std::string>()) + ": " + number(s["simulated_s"]) + " s simulated at " +
+       number(s["rate_hz"]) + " Hz after enabling in " + number(s["enable_s"]) +
+       " s. Files: <a href=\"telemetry.csv\">telemetry.csv</a>, " +
        "<a href=\"summary.json\">summary.json</a>, <a href=\"summary.txt\">summary.txt</a>.</p>\n";
 
   o += "<h2>Problems</h2>\n";
@@ -76,20 +76,19 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
     std::string limits;
     for (const auto& [name, t] : a["limits"].items()) {
       limits += (limits.empty() ? "" : ", ") + escape(name) + " " +
-                std::to_string(t["count"].get<unsigned long long>()) + " / " +
-                number(t["time_s"]);
+                std::to_string(t["count"].get<unsigned long long>()) + " / " + number(t["time_s"]);
     }
     const std::string name = a["name"].get<std::string>();
     bool problem = false;
-    for (const auto& p : s["problems"]) problem = problem || p.get<std::string>().rfind(name + ":", 0) == 0;
-    const bool plant = !a["plant"].is_null();
+    for (const auto& p : s["problems"])
+      problem = problem || p.get<std::string>().rfind(name + ":", 0) == 0;
     o += std::string("<tr") + (problem ? " class=\"problem\"" : "") + "><td><a href=\"#" +
          escape(name) + "\">" + escape(name) + "</a></td><td>" +
          escape(a["bus"].get<std::string>()) + "</td><td>" + escape(a["unit"].get<std::string>()) +
          "</td><td>" + number(a["tracking_rms"]) + "</td><td>" + number(a["tracking_max"]) +
-         "</td><td>" + (plant ? number(a["plant"]["thermal_peak"]) : "&ndash;") + "</td><td>" +
-         (plant ? number(a["plant"]["duty_peak"]) : "&ndash;") + "</td><td>" +
-         (limits.empty() ? "&ndash;" : limits) + "</td></tr>\n";
+         "</td><td>" + number(a["plant"]["thermal_peak"]) + "</td><td>" +
+         number(a["plant"]["duty_peak"]) + "</td><td>" + (limits.empty() ? "&ndash;" : limits) +
+         "</td></tr>\n";
   }
   o += "</table>\n";
 
@@ -114,16 +113,16 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
     o += std::string("<tr") + (over ? " class=\"problem\"" : "") + "><td>" +
          escape(b["name"].get<std::string>()) + "</td><td>" + escape(b["type"].get<std::string>()) +
          "</td><td>" + (b.contains("budget_load") ? number(b["budget_load"]) : "&ndash;") +
-         "</td><td>" + number(b["load"]) + "</td><td>" +
-         (b.contains("cycle_time_s") ? number(b["cycle_time_s"]) : "&ndash;") + "</td></tr>\n";
+         "</td><td>" + number(b["load"]) + "</td><td>" + number(b["cycle_time_s"]) + "</td></tr>\n";
   }
   o += "</table>\n";
 
   o += "<h2>Actuator plots</h2>\n";
   for (const std::string& p : plots) {
     const std::string name = p.substr(0, p.rfind('.'));
-    o += "<h3 id=\"" + escape(name) + "\">" + escape(name) + "</h3>\n<img class=\"plot\" src=\"plots/" +
-         escape(p) + "\" alt=\"" + escape(name) + "\">\n";
+    o += "<h3 id=\"" + escape(name) + "\">" + escape(name) +
+         "</h3>\n<img class=\"plot\" src=\"plots/" + escape(p) + "\" alt=\"" + escape(name) +
+         "\">\n";
   }
   if (!frames.empty()) {
     // A long show has thousands of frames: the page shows at most kShown of

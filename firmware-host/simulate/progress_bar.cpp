@@ -6,7 +6,8 @@
 
 namespace facectl {
 
-ProgressBar::ProgressBar(double total, bool enabled) : total_(std::max(total, 1e-9)), enabled_(enabled) {}
+ProgressBar::ProgressBar(double total, bool enabled)
+    : total_(std::max(total, 1e-9)), enabled_(enabled) {}
 
 bool ProgressBar::stderr_is_terminal() {
   return isatty(STDERR_FILENO) == 1;

@@ -9,14 +9,11 @@
 #include "firmware-host/simulate/decimated_telemetry.hpp"
 #include "firmware-host/simulate/html_report.hpp"
 #include "firmware-host/simulate/progress_bar.hpp"
+#include "firmware-host/simulate/render_sequence.hpp"
 #include "firmware-host/simulate/simulation_run.hpp"
 #include "firmware-host/simulate/simulation_stats.hpp"
 #include "firmware-host/simulate/simulation_summary.hpp"
 #include "firmware-host/simulate/staged_dir.hpp"
-#if __has_include("firmware-host/simulate/render_sequence.hpp")
-#include "firmware-host/simulate/render_sequence.hpp"
-#define FACECTL_HAVE_RENDER_SEQUENCE 1
-#endif
 
 namespace facectl {
 namespace {
@@ -47,9 +44,6 @@ Inputs load_inputs(const SimulateOptions& o) {
   if (!(o.duration_s >= 0.0) || !std::isfinite(o.duration_s)) {
     throw ConfigError("--duration: expected seconds >= 0, found " + std::to_string(o.duration_s));
   }
-#ifndef FACECTL_HAVE_RENDER_SEQUENCE
-  if (o.render) throw ConfigError("--render: this build has no face render sequence");
-#endif
   Inputs in;
   ConfigOverrides overrides;
   overrides.rig_path = o.rig;
@@ -77,13 +71,12 @@ int simulate_command(const SimulateOptions& o) {
     OfflineHead head(in.cfg, 8);
     const ControllerModel& m = head.model();
     SimulationStats stats(m);
-    const auto every = static_cast<std::uint64_t>(
-        std::max(1.0, std::round(m.rate_hz / o.telemetry_rate_hz)));
+    const auto every =
+        static_cast<std::uint64_t>(std::max(1.0, std::round(m.rate_hz / o.telemetry_rate_hz)));
     DecimatedTelemetry telemetry(m, (dir.path() / "telemetry.csv").string(), every);
     ActuatorPlots plots(m, duration);
     ProgressBar progress(duration, !o.quiet && ProgressBar::stderr_is_terminal());
     SimulationSinks sinks{&stats, &telemetry, &plots, &progress, {}, 25.0};
-#ifdef FACECTL_HAVE_RENDER_SEQUENCE
     std::unique_ptr<RenderSequence> render;
     if (o.render) {
       render = std::make_unique<RenderSequence>(in.cfg, dir.path());
@@ -92,14 +85,12 @@ int simulate_command(const SimulateOptions& o) {
         render->add_frame(face, positions);
       };
     }
-#endif
     const SimulationRun run = run_simulation(head, input, duration, sinks);
     telemetry.close();
     std::vector<std::string> frames;
-#ifdef FACECTL_HAVE_RENDER_SEQUENCE
     if (render) frames = render->frames();
-#endif
-    const std::vector<std::string> plot_files = plots.write((dir.path() / "plots").string(), stats.states());
+    const std::vector<std::string> plot_files =
+        plots.write((dir.path() / "plots").string(), stats.states());
     const SummaryJson summary = make_summary(in.cfg, input, run, stats, head.hardware());
     const std::string text = summary_text(summary);
     write_file(dir.path() / "summary.json", summary.dump(2) + "\n");

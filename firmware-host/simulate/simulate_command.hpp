@@ -5,15 +5,15 @@
 namespace facectl {
 
 struct SimulateOptions {
-  std::string rig;                 // rig YAML
-  std::string show;                // a show file, or
-  std::string fap;                 // an MPEG-4 FAP file
-  std::string out;                 // output folder (replaced as a whole)
-  std::string config;              // runtime config (default: the shipped one)
-  bool render = false;             // face render frames
-  double duration_s = 0.0;         // 0: the input's length
+  std::string rig;          // rig YAML
+  std::string show;         // a show file, or
+  std::string fap;          // an MPEG-4 FAP file
+  std::string out;          // output folder (replaced as a whole)
+  std::string config;       // runtime config (default: the shipped one)
+  bool render = false;      // face render frames
+  double duration_s = 0.0;  // 0: the input's length
   double telemetry_rate_hz = 100.0;
-  bool quiet = false;              // no progress bar even on a terminal
+  bool quiet = false;  // no progress bar even on a terminal
 };
 
 // `facectl simulate` (docs/SIMULATE.md). Exit 0 when the head ran the input

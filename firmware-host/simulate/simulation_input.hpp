@@ -32,7 +32,9 @@ class SimulationInput {
     }
   }
   // FAP clamps and ignored FAPs (FapShow::report()); empty for shows.
-  std::vector<std::string> notes() const { return fap_ ? fap_->report() : std::vector<std::string>{}; }
+  std::vector<std::string> notes() const {
+    return fap_ ? fap_->report() : std::vector<std::string>{};
+  }
 
  private:
   std::string name_;

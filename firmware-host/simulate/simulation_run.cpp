@@ -50,6 +50,7 @@ SimulationRun run_simulation(OfflineHead& head, const SimulationInput& input, do
   }
   run.enable_s = head.time() - start;
   run.enabled = head.controller().state() == SafetyState::kRunning;
+  run.clock_at_show_start_s = head.time();
   if (!run.enabled) return run;
 
   const PositionReader reader(m, head.hardware());
@@ -68,7 +69,8 @@ SimulationRun run_simulation(OfflineHead& head, const SimulationInput& input, do
     if (k >= next_pose) {
       input.evaluate(length > 0.0 && t > length ? std::fmod(t, length) : t, pose);
       head.send(pose);
-      next_pose = static_cast<std::uint64_t>(std::ceil(static_cast<double>(++poses) * show_period / period - 1e-9));
+      next_pose = static_cast<std::uint64_t>(
+          std::ceil(static_cast<double>(++poses) * show_period / period - 1e-9));
     }
     head.step(period);
     const TelemetryRecord* r = head.telemetry()->front();
@@ -79,7 +81,8 @@ SimulationRun run_simulation(OfflineHead& head, const SimulationInput& input, do
     if (sinks.plots != nullptr) sinks.plots->add(t, *r, pos);
     if (sinks.frame && k >= next_frame) {
       sinks.frame(face, pos);
-      next_frame = static_cast<std::uint64_t>(std::ceil(static_cast<double>(++frames) * frame_period / period - 1e-9));
+      next_frame = static_cast<std::uint64_t>(
+          std::ceil(static_cast<double>(++frames) * frame_period / period - 1e-9));
     }
     if (sinks.progress != nullptr) sinks.progress->update(t);
     drain(head);

@@ -27,10 +27,11 @@ struct SimulationSinks {
 };
 
 struct SimulationRun {
-  double enable_s = 0.0;      // simulated time from enable request to RUNNING
-  double show_s = 0.0;        // simulated time the show played
-  std::uint64_t ticks = 0;    // ticks while the show played
-  bool enabled = false;       // the head reached RUNNING
+  double enable_s = 0.0;               // simulated time from enable request to RUNNING
+  double clock_at_show_start_s = 0.0;  // the head's clock (OfflineHead::time()) at show time 0
+  double show_s = 0.0;                 // simulated time the show played
+  std::uint64_t ticks = 0;             // ticks while the show played
+  bool enabled = false;                // the head reached RUNNING
 };
 
 // Enables the head on its neutral pose (as `facectl run` does, in simulated

@@ -4,8 +4,6 @@
 #include <cstdio>
 #include <numbers>
 
-#include "firmware-host/simulate/plant_readout.hpp"
-
 namespace facectl {
 namespace {
 
@@ -30,8 +28,8 @@ bool is_problem_limit(int bit) {
 
 const char* limit_name(int bit) {
   static const char* const kNames[kLimitFlagCount] = {
-      "position", "velocity",     "acceleration", "jerk",         "approach",
-      "breach",   "invalid",      "jerk_yielded", "coupled_step", "mapping"};
+      "position", "velocity", "acceleration", "jerk",         "approach",
+      "breach",   "invalid",  "jerk_yielded", "coupled_step", "mapping"};
   return bit >= 0 && bit < kLimitFlagCount ? kNames[bit] : "?";
 }
 
@@ -80,18 +78,16 @@ SummaryJson make_summary(const LoadedConfig& cfg, const SimulationInput& input,
       if (i >= b.first && i < b.first + b.count) bus = &b;
     }
     const std::size_t bus_index = static_cast<std::size_t>(bus - m.buses.data());
-    const PlantFigures p = plant_figures(hardware.buses[bus_index]->plant(i - bus->first));
-    if (p.modelled) {
-      j["plant"] = {{"thermal_peak", r6(p.thermal_peak)},
-                    {"duty_peak", r6(p.duty_peak)},
-                    {"time_at_extreme_s", r6(p.time_at_extreme_s)},
-                    {"longest_at_extreme_s", r6(p.longest_at_extreme_s)},
-                    {"over_budget", p.over_budget},
-                    {"over_budget_time_s", r6(p.over_budget_time_s)}};
-      if (p.over_budget) problems.push_back(a.name + ": over its time-at-extreme budget");
-    } else {
-      j["plant"] = nullptr;  // no thermal/duty model in this build
-    }
+    const sim::PlantStats& p = hardware.buses[bus_index]->plant(i - bus->first).stats();
+    // The plant's clock runs from the head's start; report show time (null: never).
+    const double over_at = p.over_budget_time_s - run.clock_at_show_start_s;
+    j["plant"] = {{"thermal_peak", r6(p.thermal_peak)},
+                  {"duty_peak", r6(p.duty_peak)},
+                  {"time_at_extreme_s", r6(p.time_at_extreme_s)},
+                  {"longest_at_extreme_s", r6(p.longest_at_extreme_s)},
+                  {"over_budget", p.over_budget},
+                  {"over_budget_at_s", p.over_budget ? SummaryJson(r6(over_at)) : SummaryJson()}};
+    if (p.over_budget) problems.push_back(a.name + ": over its time-at-extreme budget");
     actuators.push_back(j);
   }
   s["actuators"] = actuators;
@@ -122,14 +118,10 @@ SummaryJson make_summary(const LoadedConfig& cfg, const SimulationInput& input,
     for (const BusBudgetResult& budget : cfg.budgets) {
       if (budget.bus == m.buses[b].name) j["budget_load"] = r6(budget.load);
     }
-    const BusFigures f = bus_figures(*hardware.buses[b]);
-    if (f.modelled) {
-      j["cycle_time_s"] = r6(f.cycle_time_s);
-      j["load"] = r6(f.load);
-      if (f.load > 1.0) problems.push_back(m.buses[b].name + ": bus cycle longer than the tick");
-    } else {
-      j["load"] = nullptr;  // no timing model in this build
-    }
+    const BusTiming& timing = hardware.buses[b]->timing();
+    j["cycle_time_s"] = r6(timing.cycle_time_s);
+    j["load"] = r6(timing.load);
+    if (timing.load > 1.0) problems.push_back(m.buses[b].name + ": bus cycle longer than the tick");
     buses.push_back(j);
   }
   s["buses"] = buses;
@@ -146,6 +138,18 @@ SummaryJson make_summary(const LoadedConfig& cfg, const SimulationInput& input,
   s["result"] = stats.faulted() || !run.enabled ? "faulted" : "ok";
   return s;
 }
+
+namespace {
+
+// A number of the summary for the text table, "-" when it is null.
+std::string cell(const SummaryJson& v) {
+  if (v.is_null()) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v.get<double>());
+  return buf;
+}
+
+}  // namespace
 
 std::string summary_text(const SummaryJson& s) {
   std::string out;
@@ -171,13 +175,10 @@ std::string summary_text(const SummaryJson& s) {
                     t["count"].get<unsigned long long>(), t["time_s"].get<double>());
       limits += buf;
     }
-    const bool plant = !a["plant"].is_null();
     add("%-24s %-5s %12.4g %12.4g %10s %10s  %s\n", a["name"].get<std::string>().c_str(),
         a["unit"].get<std::string>().c_str(), a["tracking_rms"].get<double>(),
-        a["tracking_max"].get<double>(),
-        plant ? std::to_string(a["plant"]["thermal_peak"].get<double>()).c_str() : "-",
-        plant ? std::to_string(a["plant"]["duty_peak"].get<double>()).c_str() : "-",
-        limits.empty() ? "-" : limits.c_str());
+        a["tracking_max"].get<double>(), cell(a["plant"]["thermal_peak"]).c_str(),
+        cell(a["plant"]["duty_peak"]).c_str(), limits.empty() ? "-" : limits.c_str());
   }
   add("\n%-32s %8s %10s\n", "constraint", "count", "time (s)");
   for (const char* group : {"face_constraints", "actuator_constraints"}) {
@@ -188,13 +189,11 @@ std::string summary_text(const SummaryJson& s) {
   }
   add("%-32s %8llu %10.4g\n", "face envelope", s["envelope"]["count"].get<unsigned long long>(),
       s["envelope"]["time_s"].get<double>());
-  add("\n%-16s %-12s %12s %12s\n", "bus", "type", "budget load", "sim load");
+  add("\n%-16s %-12s %12s %12s %14s\n", "bus", "type", "budget load", "sim load", "cycle (s)");
   for (const auto& b : s["buses"]) {
-    const std::string budget =
-        b.contains("budget_load") ? std::to_string(b["budget_load"].get<double>()) : "-";
-    const std::string load = b["load"].is_null() ? "-" : std::to_string(b["load"].get<double>());
-    add("%-16s %-12s %12s %12s\n", b["name"].get<std::string>().c_str(),
-        b["type"].get<std::string>().c_str(), budget.c_str(), load.c_str());
+    add("%-16s %-12s %12s %12s %14s\n", b["name"].get<std::string>().c_str(),
+        b["type"].get<std::string>().c_str(), cell(b.value("budget_load", SummaryJson())).c_str(),
+        cell(b["load"]).c_str(), cell(b["cycle_time_s"]).c_str());
   }
   for (const auto& n : s["notes"]) add("note: %s\n", n.get<std::string>().c_str());
   add("\n%zu problem(s)\n", s["problems"].size());

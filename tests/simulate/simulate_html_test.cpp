@@ -41,10 +41,11 @@ TEST(SimulateHtml, RendersInHeadlessChromiumWithTheLimitLines) {
       tmp / "log");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string png = tmp / "page.png";
-  const std::string cmd = "chromium --headless --no-sandbox --disable-gpu --hide-scrollbars "
-                          "--user-data-dir='" + (tmp / "profile") + "' --screenshot='" + png +
-                          "' --window-size=1200,1600 'file://" + (tmp / "out/index.html") +
-                          "' > '" + (tmp / "chromium.log") + "' 2>&1";
+  const std::string cmd =
+      "chromium --headless --no-sandbox --disable-gpu --hide-scrollbars "
+      "--user-data-dir='" +
+      (tmp / "profile") + "' --screenshot='" + png + "' --window-size=1200,1600 'file://" +
+      (tmp / "out/index.html") + "' > '" + (tmp / "chromium.log") + "' 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << testing::read_text(tmp.path() / "chromium.log");
   const face::Image img = face::read_png(png);
   ASSERT_EQ(img.width, 1200);

@@ -38,14 +38,14 @@ TEST_P(SimulateJaw, OpenJawMovesTheMandibleToTheGeometricPitch) {
   const int units = GetParam();
   testing::TempDir tmp;
   testing::write_text(tmp / "jaw.fap", jaw_opening(units));
-  const auto r = testing::run_facectl({"simulate", "--rig",
-                                       testing::source_path("config/rigs/default.yaml"), "--fap",
-                                       tmp / "jaw.fap", "--out", tmp / "out"},
-                                      tmp / "log");
+  const auto r =
+      testing::run_facectl({"simulate", "--rig", testing::source_path("config/rigs/default.yaml"),
+                            "--fap", tmp / "jaw.fap", "--out", tmp / "out"},
+                           tmp / "log");
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
-  const FeaturePoints fp = FeaturePoints::load(
-      face::load_head_spec(testing::source_path("config/heads/default")));
+  const FeaturePoints fp =
+      FeaturePoints::load(face::load_head_spec(testing::source_path("config/heads/default")));
   const double want = testing::expected_jaw_pitch(fp, units * testing::mns0(fp) / 1024.0);
   ASSERT_GT(want / kDeg, 2.0);  // a real opening
 

@@ -16,9 +16,14 @@ using testing::source_path;
 using testing::TempDir;
 
 std::vector<std::string> demo_args(const std::string& out) {
-  return {"simulate",   "--rig",      source_path("config/rigs/default.yaml"),
-          "--show",     source_path("config/shows/demo.yaml"),
-          "--out",      out,          "--duration",
+  return {"simulate",
+          "--rig",
+          source_path("config/rigs/default.yaml"),
+          "--show",
+          source_path("config/shows/demo.yaml"),
+          "--out",
+          out,
+          "--duration",
           "4"};
 }
 
@@ -68,7 +73,8 @@ TEST(Simulate, WritesTheDocumentedFilesAtTheTelemetryRate) {
   EXPECT_NEAR(summary["simulated_s"].get<double>(), 4.0, 1e-9);
   // The show moves the head: some actuator tracks with a non-zero error.
   double worst = 0.0;
-  for (const auto& a : summary["actuators"]) worst = std::max(worst, a["tracking_max"].get<double>());
+  for (const auto& a : summary["actuators"])
+    worst = std::max(worst, a["tracking_max"].get<double>());
   EXPECT_GT(worst, 0.0);
   const std::string html = testing::read_text(tmp.path() / "out/index.html");
   EXPECT_NE(html.find("href=\"telemetry.csv\""), std::string::npos);
