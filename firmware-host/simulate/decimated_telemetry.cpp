@@ -1,6 +1,7 @@
 #include "firmware-host/simulate/decimated_telemetry.hpp"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -35,13 +36,23 @@ void DecimatedTelemetry::add(double t, const TelemetryRecord& r,
   std::fprintf(file_, "%llu,%.6f,%.*s,%u,%u,%u", static_cast<unsigned long long>(seen_ - 1), t,
                static_cast<int>(state.size()), state.data(), envelope_, coupled_,
                actuator_coupled_);
-  for (std::size_t i = 0; i < r.actuator_count; ++i) {
+  // std::to_chars with a precision formats as printf's %.6g does, several times faster.
+  char line[64 * kMaxActuators];
+  char* p = line;
+  char* const end = line + sizeof line;
+  auto value = [&](double v) {
+    *p++ = ',';
     // Round-off below a nanometre or nanoradian is written as 0, not as e-25 noise.
-    const double cmd = std::fabs(r.command[i]) < 1e-9 ? 0.0 : r.command[i];
-    const double pos = std::fabs(positions[i]) < 1e-9 ? 0.0 : positions[i];
-    std::fprintf(file_, ",%.6g,%.6g,%u", cmd, pos, limits_[i]);
+    p = std::to_chars(p, end, std::fabs(v) < 1e-9 ? 0.0 : v, std::chars_format::general, 6).ptr;
+  };
+  for (std::size_t i = 0; i < r.actuator_count; ++i) {
+    value(r.command[i]);
+    value(positions[i]);
+    *p++ = ',';
+    p = std::to_chars(p, end, limits_[i]).ptr;
   }
-  std::fputc('\n', file_);
+  *p++ = '\n';
+  std::fwrite(line, 1, static_cast<std::size_t>(p - line), file_);
   envelope_ = 0;
   coupled_ = actuator_coupled_ = 0;
   limits_.fill(0);

@@ -5,9 +5,7 @@
 namespace facectl {
 
 SimulationStats::SimulationStats(const ControllerModel& model)
-    : actuators_(model.actuators.size()),
-      face_(model.face_constraints.size()),
-      actuator_(model.actuator_constraints.size()) {
+    : actuators_(model.actuators.size()) {
   states_.reserve(64);
 }
 
@@ -18,15 +16,11 @@ void SimulationStats::add(double t, const TelemetryRecord& r, std::span<const do
     const double e = r.command[i] - positions[i];
     a.sum_sq += e * e;
     if (std::fabs(e) > a.max_abs) a.max_abs = std::fabs(e), a.max_at_s = t;
-    for (int b = 0; b < kLimitFlagCount; ++b) {
-      a.limits[static_cast<std::size_t>(b)].see(((r.limits[i] >> b) & 1u) != 0);
-    }
+    a.limits.see(r.limits[i]);
   }
-  for (std::size_t k = 0; k < face_.size(); ++k) face_[k].see(((r.coupled_flags >> k) & 1u) != 0);
-  for (std::size_t k = 0; k < actuator_.size(); ++k) {
-    actuator_[k].see(((r.actuator_coupled_flags >> k) & 1u) != 0);
-  }
-  envelope_.see(r.envelope_flags != 0);
+  face_.see(r.coupled_flags);
+  actuator_.see(r.actuator_coupled_flags);
+  envelope_.see(r.envelope_flags != 0 ? 1u : 0u);
   if (states_.empty() || states_.back().state != r.state) {
     if (!states_.empty()) states_.back().end_s = t;
     states_.push_back({r.state, t, t});

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -15,11 +16,19 @@ namespace facectl {
 struct Tally {
   std::uint64_t count = 0;
   std::uint64_t ticks = 0;
-  bool active = false;
-  void see(bool on) {
-    if (on && !active) ++count;
-    if (on) ++ticks;
-    active = on;
+};
+
+// Tallies for the bits of a flag word, updated per tick by visiting only the
+// bits that are set (usually none), so that it costs next to nothing.
+template <std::size_t N>
+struct FlagTallies {
+  std::array<Tally, N> bits{};
+  std::uint32_t previous = 0;
+  void see(std::uint32_t flags) {
+    const std::uint32_t rising = flags & ~previous;
+    for (std::uint32_t f = flags; f != 0; f &= f - 1) ++bits[std::countr_zero(f)].ticks;
+    for (std::uint32_t f = rising; f != 0; f &= f - 1) ++bits[std::countr_zero(f)].count;
+    previous = flags;
   }
 };
 
@@ -39,7 +48,7 @@ class SimulationStats {
     double sum_sq = 0.0;  // of the tracking error, SI²
     double max_abs = 0.0;
     double max_at_s = 0.0;
-    std::array<Tally, kLimitFlagCount> limits{};  // by LimitFlag bit
+    FlagTallies<kLimitFlagCount> limits;  // by LimitFlag bit
   };
 
   explicit SimulationStats(const ControllerModel& model);
@@ -51,16 +60,16 @@ class SimulationStats {
   std::uint64_t ticks() const { return ticks_; }
   double rms(std::size_t actuator) const;
   const std::vector<Actuator>& actuators() const { return actuators_; }
-  const std::vector<Tally>& face_constraints() const { return face_; }
-  const std::vector<Tally>& actuator_constraints() const { return actuator_; }
-  const Tally& envelope() const { return envelope_; }
+  const Tally& face_constraint(std::size_t k) const { return face_.bits[k]; }
+  const Tally& actuator_constraint(std::size_t k) const { return actuator_.bits[k]; }
+  const Tally& envelope() const { return envelope_.bits[0]; }
   const std::vector<StateSpan>& states() const { return states_; }
   bool faulted() const;  // the head was in FAULT or ESTOP at some time
 
  private:
   std::vector<Actuator> actuators_;
-  std::vector<Tally> face_, actuator_;
-  Tally envelope_;
+  FlagTallies<CoupledConstraints::kMaxConstraints> face_, actuator_;
+  FlagTallies<1> envelope_;  // any clamp
   std::vector<StateSpan> states_;
   std::uint64_t ticks_ = 0;
 };

@@ -58,7 +58,7 @@ SummaryJson make_summary(const LoadedConfig& cfg, const SimulationInput& input,
     const double scale = rotary ? 180.0 / std::numbers::pi : 1e3;
     SummaryJson limits = SummaryJson::object();
     for (int b = 0; b < kLimitFlagCount; ++b) {
-      const Tally& t = st.limits[static_cast<std::size_t>(b)];
+      const Tally& t = st.limits.bits[static_cast<std::size_t>(b)];
       if (t.count == 0) continue;
       limits[limit_name(b)] = tally(t, period);
       if (is_problem_limit(b)) {
@@ -92,23 +92,27 @@ SummaryJson make_summary(const LoadedConfig& cfg, const SimulationInput& input,
   }
   s["actuators"] = actuators;
 
-  auto constraints = [&](const CoupledConstraints& c, const std::vector<Tally>& tallies,
-                         const char* what) {
+  auto constraints = [&](const CoupledConstraints& c, auto tally_of, const char* what) {
     SummaryJson list = SummaryJson::array();
-    for (std::size_t k = 0; k < tallies.size(); ++k) {
-      SummaryJson j = tally(tallies[k], period);
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const Tally& t = tally_of(k);
+      SummaryJson j = tally(t, period);
       j["name"] = c.constraint(k).name;
       list.push_back(j);
-      if (tallies[k].count > 0) {
+      if (t.count > 0) {
         problems.push_back(std::string(what) + " " + c.constraint(k).name + " projected " +
-                           std::to_string(tallies[k].count) + " time(s)");
+                           std::to_string(t.count) + " time(s)");
       }
     }
     return list;
   };
-  s["face_constraints"] = constraints(m.face_constraints, stats.face_constraints(), "face limit");
-  s["actuator_constraints"] =
-      constraints(m.actuator_constraints, stats.actuator_constraints(), "actuator limit");
+  s["face_constraints"] = constraints(
+      m.face_constraints, [&](std::size_t k) -> const Tally& { return stats.face_constraint(k); },
+      "face limit");
+  s["actuator_constraints"] = constraints(
+      m.actuator_constraints,
+      [&](std::size_t k) -> const Tally& { return stats.actuator_constraint(k); },
+      "actuator limit");
   s["envelope"] = tally(stats.envelope(), period);
   if (stats.envelope().count > 0) problems.push_back("the face envelope clamped the command");
 
