@@ -47,6 +47,22 @@ TEST(Simulate, TwoRunsGiveByteIdenticalOutputs) {
   }
 }
 
+TEST(Simulate, TwoRenderedRunsGiveByteIdenticalFrames) {
+  TempDir tmp;
+  for (const char* out : {"a", "b"}) {
+    auto args = demo_args(tmp / out);
+    args.back() = "0.5";  // --duration
+    args.push_back("--render");
+    const auto r = run_facectl(args, tmp / "log");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  const auto fa = folder_contents(tmp.path() / "a");
+  ASSERT_TRUE(fa.count("frames/frame_00000.png"));
+  ASSERT_TRUE(fa.count("frames/frame_00012.png"));  // 0.5 s at 25 fps: frames 0..12
+  EXPECT_TRUE(fa == folder_contents(tmp.path() / "b"));
+  EXPECT_NE(fa.at("index.html").find("src=\"frames/frame_00012.png\""), std::string::npos);
+}
+
 TEST(Simulate, WritesTheDocumentedFilesAtTheTelemetryRate) {
   TempDir tmp;
   auto args = demo_args(tmp / "out");
