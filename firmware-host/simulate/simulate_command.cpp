@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 
@@ -43,6 +44,14 @@ Inputs load_inputs(const SimulateOptions& o) {
   }
   if (!(o.duration_s >= 0.0) || !std::isfinite(o.duration_s)) {
     throw ConfigError("--duration: expected seconds >= 0, found " + std::to_string(o.duration_s));
+  }
+  // DIR is replaced as a whole: never a folder that is not an earlier output.
+  const std::filesystem::path out(o.out);
+  if (std::filesystem::exists(out) && !std::filesystem::is_empty(out) &&
+      !std::filesystem::exists(out / "summary.json")) {
+    throw ConfigError("--out " + o.out +
+                      ": expected a new folder or an earlier `facectl simulate` output (with "
+                      "summary.json), found another folder; not replacing it");
   }
   Inputs in;
   ConfigOverrides overrides;

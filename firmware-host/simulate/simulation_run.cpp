@@ -50,7 +50,9 @@ SimulationRun run_simulation(OfflineHead& head, const SimulationInput& input, do
   }
   run.enable_s = head.time() - start;
   run.enabled = head.controller().state() == SafetyState::kRunning;
-  run.clock_at_show_start_s = head.time();
+  // The pose published before a step is used by the tick that step runs, one
+  // period later on the head's clock: that tick is show time 0.
+  run.clock_at_show_start_s = head.time() + period;
   if (!run.enabled) return run;
 
   const PositionReader reader(m, head.hardware());

@@ -33,7 +33,7 @@ TEST_P(SimulateBadInput, GetsALineNumberedErrorAndWritesNothing) {
   if (!b.text.empty()) testing::write_text(path, b.text);
   // A folder from an earlier run: it must survive a failed one untouched.
   std::filesystem::create_directories(tmp.path() / "kept");
-  testing::write_text(tmp.path() / "kept/summary.txt", "earlier run\n");
+  testing::write_text(tmp.path() / "kept/summary.json", "{}\n");
   for (const std::string& out : {tmp / "new", tmp / "kept"}) {
     const auto r = run_facectl(
         {"simulate", "--rig", source_path("config/rigs/default.yaml"), b.flag, path, "--out", out},
@@ -46,7 +46,7 @@ TEST_P(SimulateBadInput, GetsALineNumberedErrorAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / "new"));
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / ".new.partial"));
   EXPECT_EQ(testing::folder_contents(tmp.path() / "kept").size(), 1u);
-  EXPECT_EQ(testing::read_text(tmp.path() / "kept/summary.txt"), "earlier run\n");
+  EXPECT_EQ(testing::read_text(tmp.path() / "kept/summary.json"), "{}\n");
 }
 
 INSTANTIATE_TEST_SUITE_P(Fap, SimulateBadInput,
