@@ -47,7 +47,7 @@ void ThermalModel::step(std::int64_t now_ns, double dt, bool powered, double out
 }
 
 void ThermalModel::trip(std::int64_t now_ns, const char* text) {
-  if (fault_ == nullptr) fault_ = text;
+  if (fault_ == nullptr && p_.trips) fault_ = text;
   if (!stats_.over_budget) {
     stats_.over_budget = true;
     stats_.over_budget_time_s = static_cast<double>(now_ns) * 1e-9;

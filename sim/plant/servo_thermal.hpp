@@ -29,6 +29,7 @@ struct ThermalParams {
   double full_effort = 0.0;       // error at full effort, SI; 0 = no effort model
   double time_constant_s = 60.0;  // of the duty and thermal averages
   double rated_duty = 0.5;        // the continuous effort the servo tolerates
+  bool trips = true;              // false: statistics only, the servo never faults
 };
 
 class ThermalModel {

@@ -18,7 +18,10 @@ TEST(PlantNoAllocation, SteppingEveryModelThroughAThermalTripAllocatesNothing) {
   pd.deadband = 0.001;
   pd.backlash = 0.005;
   pd.noise_stddev = 0.001;
-  pd.thermal = {0.0, 1.0, 0.05, 1.0, 0.8, 0.1, 60.0, 0.5};
+  pd.thermal.position_max = 1.0;
+  pd.thermal.extreme_band = 0.05;
+  pd.thermal.extreme_budget_s = 1.0;
+  pd.thermal.full_effort = 0.1;
   sim::ServoPlantParams first_order = pd;
   first_order.model = sim::PlantModel::kFirstOrder;
   SimBusTiming timing;
