@@ -126,7 +126,7 @@ TEST_F(RenderSequenceTest, WritesFramesWithIdenticalBytesOnASecondRun) {
 TEST_F(RenderSequenceTest, ViewsDifferWhereTheRigDoesNotReproduceTheFace) {
   const double deg = std::numbers::pi / 180;
   // Everything involved is driven: the jaw by the mechanism, eyes and neck by their servos.
-  const Face jaw = face({{"jaw_pitch", 14 * deg}, {"jaw_yaw", 2 * deg}, {"eyelid_closure_l", 0}});
+  const Face jaw = face({{"jaw_pitch", 14 * deg}, {"jaw_yaw", 2 * deg}, {"eyelid_closure_l", 0.6}});
   // Risorius has no actuator of its own: the rig only sees the lip corner it moves.
   const Face risorius = face({{"risorius_l", 1.0}, {"risorius_r", 1.0}});
   // The head did not follow at all (positions of the neutral face).
