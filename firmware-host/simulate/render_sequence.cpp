@@ -1,6 +1,7 @@
 #include "firmware-host/simulate/render_sequence.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -44,20 +45,21 @@ struct RenderSequence::State {
   FaceView left, right;
   MappingInverse inverse;
   std::unique_ptr<MappingInverseWorkspace> workspace;
-  std::array<double, kMaxFaceSignals> inverted{};
+  std::array<double, kMaxFaceSignals> commanded{}, inverted{};
   std::optional<std::size_t> eyelid_l, eyelid_r;
 
-  void settle(FaceView& view, std::span<const double> signals, int steps) const {
+  // Steps one view towards a face (within the admissible box).
+  void settle(FaceView& view, const std::array<double, kMaxFaceSignals>& signals, int steps) const {
     const FaceLayout& layout = model.layout;
     for (std::size_t k = 0; k < layout.muscle_count(); ++k) {
-      view.contractions[k] = std::clamp(signals[k], 0.0, 1.0);
+      view.contractions[k] = signals[k];
     }
     face::FaceInput in;
     in.contractions = view.contractions;
     in.jaw = {signals[layout.jaw_pitch()], signals[layout.jaw_yaw()],
               signals[layout.jaw_protrusion()]};
-    if (eyelid_l) in.eyelid_closure[0] = std::clamp(signals[*eyelid_l], 0.0, 1.0);
-    if (eyelid_r) in.eyelid_closure[1] = std::clamp(signals[*eyelid_r], 0.0, 1.0);
+    if (eyelid_l) in.eyelid_closure[0] = signals[*eyelid_l];
+    if (eyelid_r) in.eyelid_closure[1] = signals[*eyelid_r];
     for (int i = 0; i < steps; ++i) face::step_face(face, view.data, in);
   }
 };
@@ -82,6 +84,7 @@ RenderSequence::RenderSequence(const LoadedConfig& config, const std::filesystem
                                 ": the face model's commanded muscles differ from head.muscles");
   }
   s.inverse = make_mapping_inverse(s.model);
+  s.commanded = s.model.neutral;
   s.workspace =
       std::make_unique<MappingInverseWorkspace>(make_mapping_inverse_workspace(s.inverse));
   s.eyelid_l = s.model.layout.find("eyelid_closure_l");
@@ -100,9 +103,16 @@ void RenderSequence::add_frame(std::span<const double> face_values,
                                 " actuator positions, found " + std::to_string(face_values.size()) +
                                 " and " + std::to_string(positions.size()));
   }
+  // The command as the controller's sanitiser and envelope would take it: a
+  // non-finite value holds the last good one, the rest is clamped to the box.
+  for (std::size_t k = 0; k < s.inverse.signals; ++k) {
+    if (std::isfinite(face_values[k])) {
+      s.commanded[k] = std::clamp(face_values[k], s.inverse.lower[k], s.inverse.upper[k]);
+    }
+  }
   invert_mapping(s.inverse, *s.workspace, positions, s.inverted);
   const int steps = s.frames.empty() ? kFirstSteps : kWarmSteps;
-  s.settle(s.left, face_values, steps);
+  s.settle(s.left, s.commanded, steps);
   s.settle(s.right, s.inverted, steps);
 
   const face::RenderOptions view{face::View::kFront, s.options.width, s.options.height, false};
