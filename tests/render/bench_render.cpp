@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <numbers>
 
@@ -52,6 +53,31 @@ void BM_RenderFrame(benchmark::State& state) {
   std::filesystem::remove_all(dir);
 }
 BENCHMARK(BM_RenderFrame)->Unit(benchmark::kMillisecond);
+
+// A frame of a smooth show: the smile of two_frames() eased in and out over
+// 2 s at 25 frames a second, so consecutive frames differ a little.
+void BM_RenderSmoothFrame(benchmark::State& state) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("facectl-bench-smooth-" + std::to_string(getpid()));
+  const auto frames = two_frames();
+  const ControllerModel& m = config().built.model;
+  MappingWorkspace w = make_mapping_workspace(m.mapping);
+  RenderSequence seq(config(), dir);
+  seq.add_frame(frames[1].first, frames[1].second);
+  std::size_t k = 0;
+  Face face{};
+  Positions positions{};
+  for (auto _ : state) {
+    const double u = 0.5 - 0.5 * std::cos(2 * std::numbers::pi * static_cast<double>(k++) / 50);
+    for (std::size_t s = 0; s < m.layout.size(); ++s) {
+      face[s] = frames[1].first[s] + u * (frames[0].first[s] - frames[1].first[s]);
+    }
+    map_to_actuators(m.mapping, w, face, positions);
+    seq.add_frame(face, positions);
+  }
+  std::filesystem::remove_all(dir);
+}
+BENCHMARK(BM_RenderSmoothFrame)->Unit(benchmark::kMillisecond);
 
 void BM_FirstFrame(benchmark::State& state) {
   const auto dir =
