@@ -1,6 +1,7 @@
 #include "firmware-host/simulate/render_sequence.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -14,11 +15,15 @@ namespace facectl {
 
 namespace {
 
-// Full-model frames per picture. The first picture starts from rest and needs
+// Full-model frames per picture. The first picture starts from rest and takes
 // what `facectl face render` uses; later ones start from the previous
-// picture's state (warm start) and only need to follow the change.
+// picture's state (warm start) and step until no skin vertex moves more than
+// kSettledMotion in a frame, within [kMinWarmSteps, kMaxWarmSteps] (measured
+// settling: docs/SIMULATE.md, "Render frames").
 constexpr int kFirstSteps = 300;
-constexpr int kWarmSteps = 60;
+constexpr int kMinWarmSteps = 10;
+constexpr int kMaxWarmSteps = 60;
+constexpr double kSettledMotion = 1e-5;  // m
 constexpr int kDividerWidth = 4;
 constexpr std::uint8_t kDividerGrey = 60;
 
@@ -31,7 +36,14 @@ std::string head_dir(const HeadConfig& head) {
 struct FaceView {
   face::FaceData data;
   std::vector<double> contractions;
+  face::Points previous;  // skin before the last step
 };
+
+double largest_motion(const face::Points& a, const face::Points& b) {
+  double most = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) most = std::max(most, (a.get(i) - b.get(i)).norm());
+  return most;
+}
 
 }  // namespace
 
@@ -44,21 +56,32 @@ struct RenderSequence::State {
   FaceView left, right;
   MappingInverse inverse;
   std::unique_ptr<MappingInverseWorkspace> workspace;
-  std::array<double, kMaxFaceSignals> inverted{};
+  std::array<double, kMaxFaceSignals> commanded{}, inverted{};
   std::optional<std::size_t> eyelid_l, eyelid_r;
 
-  void settle(FaceView& view, std::span<const double> signals, int steps) const {
+  // Steps one view towards a face (within the admissible box).
+  void settle(FaceView& view, const std::array<double, kMaxFaceSignals>& signals,
+              bool first) const {
     const FaceLayout& layout = model.layout;
     for (std::size_t k = 0; k < layout.muscle_count(); ++k) {
-      view.contractions[k] = std::clamp(signals[k], 0.0, 1.0);
+      view.contractions[k] = signals[k];
     }
     face::FaceInput in;
     in.contractions = view.contractions;
     in.jaw = {signals[layout.jaw_pitch()], signals[layout.jaw_yaw()],
               signals[layout.jaw_protrusion()]};
-    if (eyelid_l) in.eyelid_closure[0] = std::clamp(signals[*eyelid_l], 0.0, 1.0);
-    if (eyelid_r) in.eyelid_closure[1] = std::clamp(signals[*eyelid_r], 0.0, 1.0);
-    for (int i = 0; i < steps; ++i) face::step_face(face, view.data, in);
+    if (eyelid_l) in.eyelid_closure[0] = signals[*eyelid_l];
+    if (eyelid_r) in.eyelid_closure[1] = signals[*eyelid_r];
+    if (first) {
+      for (int i = 0; i < kFirstSteps; ++i) face::step_face(face, view.data, in);
+      return;
+    }
+    for (int i = 1;; ++i) {
+      view.previous = view.data.skin_x;
+      face::step_face(face, view.data, in);
+      const bool settled = largest_motion(view.previous, view.data.skin_x) <= kSettledMotion;
+      if (i >= kMaxWarmSteps || (i >= kMinWarmSteps && settled)) return;
+    }
   }
 };
 
@@ -82,6 +105,7 @@ RenderSequence::RenderSequence(const LoadedConfig& config, const std::filesystem
                                 ": the face model's commanded muscles differ from head.muscles");
   }
   s.inverse = make_mapping_inverse(s.model);
+  s.commanded = s.model.neutral;
   s.workspace =
       std::make_unique<MappingInverseWorkspace>(make_mapping_inverse_workspace(s.inverse));
   s.eyelid_l = s.model.layout.find("eyelid_closure_l");
@@ -100,10 +124,17 @@ void RenderSequence::add_frame(std::span<const double> face_values,
                                 " actuator positions, found " + std::to_string(face_values.size()) +
                                 " and " + std::to_string(positions.size()));
   }
+  // The command as the controller's sanitiser and envelope would take it: a
+  // non-finite value holds the last good one, the rest is clamped to the box.
+  for (std::size_t k = 0; k < s.inverse.signals; ++k) {
+    if (std::isfinite(face_values[k])) {
+      s.commanded[k] = std::clamp(face_values[k], s.inverse.lower[k], s.inverse.upper[k]);
+    }
+  }
   invert_mapping(s.inverse, *s.workspace, positions, s.inverted);
-  const int steps = s.frames.empty() ? kFirstSteps : kWarmSteps;
-  s.settle(s.left, face_values, steps);
-  s.settle(s.right, s.inverted, steps);
+  const bool first = s.frames.empty();
+  s.settle(s.left, s.commanded, first);
+  s.settle(s.right, s.inverted, first);
 
   const face::RenderOptions view{face::View::kFront, s.options.width, s.options.height, false};
   const face::Image left = face::render_face(s.face, s.left.data, view);

@@ -145,6 +145,23 @@ TEST_P(MappingInverseTest, UnobservedSignalsStayNeutral) {
   }
 }
 
+// Two signals through one actuator (the hobby rig's eyes_pan turns both eyes):
+// the face nearest neutral that makes the same position, both eyes alike.
+TEST(MappingInverse, SharedActuatorGivesTheFaceNearestNeutral) {
+  const ControllerModel& m = rig("hobby").built.model;
+  const MappingInverse inv = make_mapping_inverse(m);
+  MappingInverseWorkspace w = make_mapping_inverse_workspace(inv);
+  const std::size_t l = *m.layout.find("eye_yaw_l"), r = *m.layout.find("eye_yaw_r");
+  Face face = inv.neutral;
+  face[l] = 0.3;
+  face[r] = 0.1;
+  const Positions p = map(m, face);
+  Face back{};
+  invert_mapping(inv, w, p, back);
+  EXPECT_NEAR(back[l], 0.2, 1e-6);
+  EXPECT_NEAR(back[r], 0.2, 1e-6);
+}
+
 INSTANTIATE_TEST_SUITE_P(Rigs, MappingInverseTest, ::testing::Values("default", "hobby"));
 
 // Positions the mapping cannot produce get the least-squares face: the one

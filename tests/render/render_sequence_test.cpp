@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <numbers>
 
 #include "control/rig_mapping.hpp"
@@ -126,7 +127,7 @@ TEST_F(RenderSequenceTest, WritesFramesWithIdenticalBytesOnASecondRun) {
 TEST_F(RenderSequenceTest, ViewsDifferWhereTheRigDoesNotReproduceTheFace) {
   const double deg = std::numbers::pi / 180;
   // Everything involved is driven: the jaw by the mechanism, eyes and neck by their servos.
-  const Face jaw = face({{"jaw_pitch", 14 * deg}, {"jaw_yaw", 2 * deg}, {"eyelid_closure_l", 0}});
+  const Face jaw = face({{"jaw_pitch", 14 * deg}, {"jaw_yaw", 2 * deg}, {"eyelid_closure_l", 0.6}});
   // Risorius has no actuator of its own: the rig only sees the lip corner it moves.
   const Face risorius = face({{"risorius_l", 1.0}, {"risorius_r", 1.0}});
   // The head did not follow at all (positions of the neutral face).
@@ -144,6 +145,21 @@ TEST_F(RenderSequenceTest, ViewsDifferWhereTheRigDoesNotReproduceTheFace) {
   std::printf(
       "differences (grey levels): faithful %.4f, risorius %.4f, unmoved %.4f; %.1f ms/frame\n",
       faithful, unfaithful, unmoved, 1e3 * seconds);
+}
+
+// A malformed command is drawn as the controller takes it: a non-finite value
+// holds the last good one, an out-of-range one is clamped.
+TEST_F(RenderSequenceTest, DrawsAMalformedCommandAsTheControllerTakesIt) {
+  const double deg = std::numbers::pi / 180;
+  const Face smile = face({{"zygomaticus_major_l", 1.0}, {"jaw_pitch", 10 * deg}});
+  Face bad = smile;
+  bad[*model().layout.find("zygomaticus_major_l")] = std::numeric_limits<double>::quiet_NaN();
+  bad[model().layout.jaw_pitch()] = 90 * deg;
+  const Face clamped = face({{"zygomaticus_major_l", 1.0}, {"jaw_pitch", 18 * deg}});
+  const std::vector<std::string> a = render(root_ / "a", {{smile, map(smile)}, {bad, map(smile)}});
+  const std::vector<std::string> b =
+      render(root_ / "b", {{smile, map(smile)}, {clamped, map(smile)}});
+  EXPECT_EQ(bytes(root_ / "a" / a[1]), bytes(root_ / "b" / b[1]));
 }
 
 TEST_F(RenderSequenceTest, RejectsSpansOfTheWrongSize) {
