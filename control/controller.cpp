@@ -24,6 +24,7 @@ Controller::Controller(const ControllerModel& model, std::span<ActuatorBus* cons
   std::copy(buses.begin(), buses.end(), buses_.begin());
   sanitizer_.reset(model.neutral);
   face_ = model.neutral;
+  last_measured_pose_ = model.mandible_rest;
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     command_[i] = model.actuators[i].rest;
     measured_[i] = model.actuators[i].rest;
@@ -203,9 +204,7 @@ void Controller::limit_mechanism(double dt, LimitFlags* flags) {
 
 void Controller::start_mechanism() {
   const MandibleMechanism& mech = *model_.mapping.mechanism;
-  MandibleStrokes measured{};
-  for (std::size_t s = 0; s < mech.struts(); ++s) measured[s] = measured_[mech.strut[s].actuator];
-  pose_start_ = forward(mech, measured, model_.mandible_rest).value_or(model_.mandible_rest);
+  pose_start_ = measured_mandible_pose().value_or(model_.mandible_rest);
   const double here[3] = {pose_start_.pitch_rad, pose_start_.yaw_rad, pose_start_.protrusion_m};
   for (std::size_t k = 0; k < 3; ++k) {
     const ActuatorLimits& l = model_.mandible_limits[k];
@@ -223,15 +222,26 @@ void Controller::start_mechanism() {
   }
 }
 
-bool Controller::mechanism_out_of_envelope() const {
+std::optional<face::MandiblePose> Controller::measured_mandible_pose() {
+  // Warm-started from the last tick's answer: the struts moved at most a
+  // tick's travel, so Newton needs a step or two instead of a solve from rest.
+  // From rest again if that fails, so the warm start never changes the answer's
+  // existence.
+  const MandibleMechanism& mech = *model_.mapping.mechanism;
+  MandibleStrokes measured{};
+  for (std::size_t s = 0; s < mech.struts(); ++s) measured[s] = measured_[mech.strut[s].actuator];
+  auto pose = forward(mech, measured, last_measured_pose_);
+  if (!pose) pose = forward(mech, measured, model_.mandible_rest);
+  if (pose) last_measured_pose_ = *pose;
+  return pose;
+}
+
+bool Controller::mechanism_out_of_envelope() {
   // Struts measured at no pose of the mandible, or at one outside the envelope
   // by more than measurement noise: enabling would jump the jaw (or it is
   // jammed or miscalibrated). The state machine refuses to enable on it.
   if (!model_.mapping.mechanism) return false;
-  const MandibleMechanism& mech = *model_.mapping.mechanism;
-  MandibleStrokes measured{};
-  for (std::size_t s = 0; s < mech.struts(); ++s) measured[s] = measured_[mech.strut[s].actuator];
-  const auto pose = forward(mech, measured, model_.mandible_rest);
+  const auto pose = measured_mandible_pose();
   if (!pose) return true;
   constexpr double kAngle = 0.5 * 3.14159265358979323846 / 180.0, kLength = 0.5e-3;
   const MandibleEnvelope& e = model_.envelope;
@@ -271,7 +281,7 @@ bool Controller::limit_actuators(double dt, LimitFlags* flags) {
   return breach;
 }
 
-bool Controller::feedback_out_of_range() const {
+bool Controller::feedback_out_of_range() {
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     const ActuatorLimits& l = model_.actuators[i].limits;
     if (!(l.position_min <= measured_[i] && measured_[i] <= l.position_max)) return true;

@@ -3,6 +3,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "control/actuator_bus.hpp"
@@ -107,9 +108,10 @@ class Controller {
   // the struts follow it (docs/MANDIBLE_MECHANISM.md, "Moving the struts together").
   void limit_mechanism(double dt, LimitFlags* flags);
   void start_mechanism();  // ENABLING: the pose limiter starts at the measured pose
-  bool mechanism_out_of_envelope() const;
+  std::optional<face::MandiblePose> measured_mandible_pose();
+  bool mechanism_out_of_envelope();
   double worst_reach(std::size_t constraint, double dt) const;
-  bool feedback_out_of_range() const;
+  bool feedback_out_of_range();
   bool at_rest(double dt);
   void enter_state(SafetyState state);
   void write_outputs(const TickTime& time);
@@ -155,6 +157,7 @@ class Controller {
   std::array<LimiterState, kMaxActuators> limiter_{};
   std::array<LimiterState, 3> pose_limiter_{};  // pitch, yaw, protrusion
   face::MandiblePose pose_start_;               // where ENABLING found the jaw
+  face::MandiblePose last_measured_pose_;       // warm start of the measured pose's solve
 
   ControllerCounters counters_;
   std::atomic<bool> enable_request_{false};

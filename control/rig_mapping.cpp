@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <span>
+#include <stdexcept>
 
 namespace facectl {
 
@@ -16,7 +17,13 @@ bool RigMapping::drives(std::size_t actuator) const {
                      [&](const PointTerm& p) { return p.actuator == actuator && p.gain != 0.0; });
 }
 
+void finish_points(RigMapping& mapping) {
+  if (mapping.reduced) mapping.projection = project_point_terms(*mapping.reduced, mapping.points);
+}
+
 MappingWorkspace make_mapping_workspace(const RigMapping& mapping) {
+  if (!mapping.points.empty() && mapping.projection.actuator.empty())
+    throw std::logic_error("rig mapping: points without a projection (call finish_points)");
   MappingWorkspace w;
   if (mapping.reduced) w.reduced = face::make_reduced_workspace(*mapping.reduced);
   return w;
@@ -25,19 +32,18 @@ MappingWorkspace make_mapping_workspace(const RigMapping& mapping) {
 void evaluate_control_points(const RigMapping& m, MappingWorkspace& w,
                              const std::array<double, kMaxFaceSignals>& face) {
   if (!m.reduced) return;
-  const std::size_t outputs = 3 * m.reduced->control_points.size();
-  face::evaluate(*m.reduced, w.reduced, std::span<const double>(face.data(), m.muscle_count),
-                 face[m.jaw_pitch], face[m.jaw_yaw], face[m.jaw_protrusion],
-                 std::span<double>(w.displacement.data(), outputs));
+  face::evaluate_features(*m.reduced, w.reduced,
+                          std::span<const double>(face.data(), m.muscle_count), face[m.jaw_pitch],
+                          face[m.jaw_yaw], face[m.jaw_protrusion]);
+  Eigen::Map<Eigen::VectorXd> out(w.point_effector.data(), m.projection.rows.rows());
+  out.noalias() = m.projection.rows * w.reduced.features;
 }
 
 void map_effectors(const RigMapping& m, MappingWorkspace& w,
                    const std::array<double, kMaxFaceSignals>& face) {
   m.linear.apply(face, w.effector);
-  for (const PointTerm& p : m.points) {
-    const double* d = w.displacement.data() + 3 * p.point;
-    w.effector[p.actuator] += p.gain * (d[0] * p.axis[0] + d[1] * p.axis[1] + d[2] * p.axis[2]);
-  }
+  for (std::size_t r = 0; r < m.projection.actuator.size(); ++r)
+    w.effector[m.projection.actuator[r]] += w.point_effector[r];
 }
 
 std::optional<double> transform_effector(const ChannelTransform& t, double effector,

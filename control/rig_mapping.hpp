@@ -10,20 +10,13 @@
 #include "control/linear_mapping.hpp"
 #include "control/linkage.hpp"
 #include "control/mandible_mechanism.hpp"
+#include "control/point_projection.hpp"
+#include "control/point_term.hpp"
 #include "facectl/face/reduced_face_model.hpp"
 
 namespace facectl {
 
 inline constexpr std::size_t kMaxControlPoints = 32;
-
-// A control-point source: gain · (displacement of the point · unit axis),
-// displacement from the reduced face model in metres (head frame).
-struct PointTerm {
-  std::size_t actuator = 0;
-  std::size_t point = 0;  // index into the reduced model's control points
-  std::array<double, 3> axis{};
-  double gain = 0.0;  // effector SI per metre
-};
 
 // What turns an actuator's effector value (what the face part must do) into
 // the actuator position: nothing, a monotone calibration curve, or a linkage
@@ -45,6 +38,8 @@ struct RigMapping {
   std::vector<ChannelTransform> transforms;  // one per actuator
   // The reduced face model, present iff some actuator reads a control point.
   std::shared_ptr<const face::ReducedFaceModel> reduced;
+  // `points` folded into `reduced` (finish_points() builds it), what the tick evaluates.
+  PointProjection projection;
   std::size_t muscle_count = 0;  // face signals [0, muscle_count) are the model's muscles
   std::size_t jaw_pitch = 0, jaw_yaw = 0, jaw_protrusion = 0;  // face signal indices
   // Struts that produce the mandible pose together, solved by inverse
@@ -59,14 +54,18 @@ struct RigMapping {
 // Preallocated scratch space of one mapping (one per controller).
 struct MappingWorkspace {
   face::ReducedFaceWorkspace reduced;
-  std::array<double, 3 * kMaxControlPoints> displacement{};
+  std::array<double, kMaxActuators> point_effector{};  // one per projection row
   std::array<double, kMaxActuators> effector{};
   MandibleSolveResult mechanism;  // the last inverse kinematics result
 };
 
 MappingWorkspace make_mapping_workspace(const RigMapping& mapping);
 
-// Evaluates the control points (step 5) into w.displacement.
+// Builds mapping.projection from mapping.points and mapping.reduced; call it
+// once the points are final.
+void finish_points(RigMapping& mapping);
+
+// Evaluates the control-point sources (step 5) into w.point_effector.
 void evaluate_control_points(const RigMapping& mapping, MappingWorkspace& w,
                              const std::array<double, kMaxFaceSignals>& face);
 

@@ -267,6 +267,7 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
                         std::to_string(a.plant.latency_s * 1e3) + " ms");
     }
   }
+  finish_points(map);
 
   // Actuator coupled limits, over controller order; rest must satisfy them
   // (it is where STOPPING goes, and the projection's fallback).

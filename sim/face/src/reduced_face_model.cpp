@@ -98,10 +98,16 @@ ReducedFaceWorkspace make_reduced_workspace(const ReducedFaceModel& m) {
   return {Eigen::VectorXd::Zero(m.feature_count())};
 }
 
+void evaluate_features(const ReducedFaceModel& m, ReducedFaceWorkspace& w,
+                       std::span<const double> contractions, double pitch_rad, double yaw_rad,
+                       double protrusion_m) {
+  fill_features(contractions, pitch_rad, yaw_rad, protrusion_m, m.pairs, w.features);
+}
+
 void evaluate(const ReducedFaceModel& m, ReducedFaceWorkspace& w,
               std::span<const double> contractions, double pitch_rad, double yaw_rad,
               double protrusion_m, std::span<double> out) {
-  fill_features(contractions, pitch_rad, yaw_rad, protrusion_m, m.pairs, w.features);
+  evaluate_features(m, w, contractions, pitch_rad, yaw_rad, protrusion_m);
   Eigen::Map<Eigen::VectorXd> o(out.data(), static_cast<Eigen::Index>(out.size()));
   o.noalias() = m.coefficients * w.features;
 }

@@ -49,6 +49,12 @@ struct ReducedFaceWorkspace {
 
 ReducedFaceWorkspace make_reduced_workspace(const ReducedFaceModel& m);
 
+// Fills w.features for the input (the vector evaluate() multiplies by the
+// coefficients), for callers that need only some combinations of the outputs.
+void evaluate_features(const ReducedFaceModel& m, ReducedFaceWorkspace& w,
+                       std::span<const double> contractions, double pitch_rad, double yaw_rad,
+                       double protrusion_m);
+
 // contractions: size = muscles.size(); out_displacements_m: 3·control_points.size(),
 // (x, y, z) per point in metres, head frame.
 void evaluate(const ReducedFaceModel& m, ReducedFaceWorkspace& w,

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "control/point_term.hpp"
+#include "facectl/face/reduced_face_model.hpp"
+
+namespace facectl {
+
+// The mapping's control-point sources folded into the reduced face model: one
+// row of feature coefficients per actuator that reads points, the sum over its
+// point terms of gain · (axis · the point's x, y, z coefficient rows). The tick
+// then takes one short dot product per such actuator instead of evaluating the
+// displacement of every control point the head has (the default rig reads 2 of
+// its head's 19 points).
+struct PointProjection {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows;
+  std::vector<std::size_t> actuator;  // the actuator of each row
+};
+
+PointProjection project_point_terms(const face::ReducedFaceModel& reduced,
+                                    std::span<const PointTerm> points);
+
+}  // namespace facectl
