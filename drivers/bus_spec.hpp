@@ -17,7 +17,6 @@ struct BusSpec {
   std::string can_protocol = "custom";  // cia402 | custom
   CanBusOptions can;
   ModbusTiming modbus;
-  double network_latency_s = 0.0005;  // modbus_tcp: what the simulated twin adds per command
   modbus_map::Addresses modbus_registers;
 };
 

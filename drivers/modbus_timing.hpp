@@ -13,6 +13,9 @@ struct ModbusTiming {
   double cycle_period_s = 0.001;      // I/O cycle; 0 runs back to back (benchmarks)
   double reconnect_interval_s = 0.050;
   int board_watchdog_ms = 100;  // written to each board's watchdog register on connect
+  // TCP: the one-way latency the simulated twin adds to each command (the
+  // real backend has the network's own).
+  double network_latency_s = 0.0005;
 };
 
 }  // namespace facectl

@@ -58,8 +58,8 @@ SimBusTiming sim_bus_timing(const BusSpec& bus, std::span<const int> addresses, 
   if (bus.type == "can") return can_timing(bus, addresses, tick_hz);
   if (bus.type == "modbus_rtu") return rtu_timing(bus, addresses);
   SimBusTiming t;  // modbus_tcp: the network's latency; its load is not modelled
-  t.arrival_s.assign(addresses.size(), bus.network_latency_s);
-  t.timing.cycle_time_s = bus.network_latency_s;
+  t.arrival_s.assign(addresses.size(), bus.modbus.network_latency_s);
+  t.timing.cycle_time_s = bus.modbus.network_latency_s;
   return t;
 }
 

@@ -95,9 +95,8 @@ void parse_modbus(const ConfigNode& node, BusConfig& bus) {
     bus.endpoint = node["host"].string();
     if (bus.endpoint.empty()) node["host"].fail("host or host:port", "an empty string");
   }
-  if (auto n = node.get("network_latency_ms"))
-    bus.network_latency_s = n->number_in(0.0, 20.0) * 1e-3;
   ModbusTiming& t = bus.modbus;
+  if (auto n = node.get("network_latency_ms")) t.network_latency_s = n->number_in(0.0, 20.0) * 1e-3;
   // libmodbus's own 500 ms default is what these keys exist to avoid.
   if (auto n = node.get("response_timeout_ms"))
     t.response_timeout_s = n->number_in(1.0, 250.0) * 1e-3;

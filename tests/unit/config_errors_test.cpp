@@ -171,6 +171,32 @@ TEST(ConfigErrors, APlantLatencyLongerThanItsDelayLineIsRefused) {
   }
 }
 
+TEST(ConfigErrors, PlantKeysAreCheckedAgainstTheirModel) {
+  const auto plant = [](const std::string& block) {
+    return rig_error(rig(kGoodActuator + "      plant: " + block + "\n"));
+  };
+  EXPECT_EQ(plant("{ model: pd, natural_frequency_hz: 12, deadband_deg: 0.1 }"), "no error");
+  std::string e = plant("{ model: second }");
+  EXPECT_NE(e.find("RIG:15:23: rig.actuators[0].plant.model: expected first_order or pd"),
+            std::string::npos)
+      << e;
+  e = plant("{ model: pd, time_constant_ms: 20 }");
+  EXPECT_NE(e.find("RIG:15:45: rig.actuators[0].plant.time_constant_ms: expected no "
+                   "time_constant_ms with model: pd"),
+            std::string::npos)
+      << e;
+  e = plant("{ damping_ratio: 0.5 }");
+  EXPECT_NE(e.find("plant.damping_ratio: expected no damping_ratio without model: pd"),
+            std::string::npos)
+      << e;
+  // Play beyond a tenth of travel (26 deg here) is a typo, not a servo.
+  e = plant("{ backlash_deg: 5 }");
+  EXPECT_NE(e.find("RIG:15:30: rig.actuators[0].plant.backlash_deg: expected a number in [0, 2.6], "
+                   "found '5'"),
+            std::string::npos)
+      << e;
+}
+
 TEST(ConfigErrors, RuntimeSettingsAreCheckedAgainstEachOther) {
   TempFile f(
       "runtime: { input_timeout_ms: 20, show_rate_hz: 50 }\nhead: h\nrig: r\nexpressions: e\n");

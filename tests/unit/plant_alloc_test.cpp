@@ -31,7 +31,7 @@ TEST(PlantNoAllocation, SteppingEveryModelThroughAThermalTripAllocatesNothing) {
   double pos[2] = {0, 0};
   testing::begin_counting_allocations();
   for (std::int64_t t = 0; t < 3000; ++t) {
-    const double target = t < 2500 ? 0.99 : 0.5 + 0.1 * std::sin(t * 0.01);
+    const double target = t < 2500 ? 0.99 : 0.5 + 0.1 * std::sin(static_cast<double>(t) * 0.01);
     const double cmd[2] = {target, target};
     bus.read({t * 1'000'000, 1e-3}, pos);
     bus.write({t * 1'000'000, 1e-3}, cmd);

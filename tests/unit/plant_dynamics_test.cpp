@@ -22,17 +22,34 @@ ServoPlantParams quick() {
   return p;
 }
 
-// Enabled, stepped once at t = 0, commanded at t = 0, then run to `until_ms`.
+// A plant at 0, enabled.
+ServoPlant enabled(const ServoPlantParams& p) {
+  ServoPlant plant(p, 0.0);
+  plant.set_enabled(true);
+  return plant;
+}
+
+// Commands `command` at `from_ms`, then steps each millisecond to `until_ms`.
 void run(ServoPlant& plant, double command, int from_ms, int until_ms) {
   plant.command(from_ms * kMs, command);
   for (int t = from_ms; t <= until_ms; ++t) plant.advance(t * kMs);
 }
 
+// The highest position of a 1.5 s step response to 1.0.
+double step_peak(ServoPlant& plant) {
+  double peak = 0.0;
+  plant.command(0, 1.0);
+  for (int t = 0; t <= 1500; ++t) {
+    plant.advance(t * kMs);
+    peak = std::max(peak, plant.position());
+  }
+  return peak;
+}
+
 TEST(PlantDeadband, ASmallChangeDoesNotMoveItALargerOneDoes) {
   ServoPlantParams p = quick();
   p.deadband = 0.01;
-  ServoPlant plant(p, 0.0);
-  plant.set_enabled(true);
+  ServoPlant plant = enabled(p);
   run(plant, 0.009, 0, 200);
   EXPECT_EQ(plant.position(), 0.0);
   run(plant, 0.5, 201, 400);
@@ -43,8 +60,7 @@ TEST(PlantDeadband, ASmallChangeDoesNotMoveItALargerOneDoes) {
 TEST(PlantBacklash, AReversalLosesExactlyTheGapAtTheOutput) {
   ServoPlantParams p = quick();
   p.backlash = 0.02;
-  ServoPlant plant(p, 0.0);
-  plant.set_enabled(true);
+  ServoPlant plant = enabled(p);
   run(plant, 1.0, 0, 500);
   const double motor_top = plant.motor_position();
   const double out_top = plant.position();
@@ -62,12 +78,10 @@ TEST(PlantAcceleration, TheLimitIsNeverExceeded) {
     p.natural_frequency_hz = 20;
     p.max_acceleration = 50.0;
     p.max_velocity = 5.0;
-    ServoPlant plant(p, 0.0);
-    plant.set_enabled(true);
-    plant.advance(0);
+    ServoPlant plant = enabled(p);
+    plant.command(0, 1.0);
     double last_v = 0.0, peak = 0.0;
-    for (int t = 1; t <= 2000; ++t) {
-      if (t == 1) plant.command(0, 1.0);
+    for (int t = 0; t <= 2000; ++t) {
       if (t == 600) plant.command(t * kMs, -1.0);  // a reversal mid-way
       plant.advance(t * kMs);
       peak = std::max(peak, std::fabs(plant.velocity() - last_v) / 1e-3);
@@ -84,28 +98,15 @@ TEST(PlantPd, LowDampingOvershootsThenSettles) {
   p.model = PlantModel::kPd;
   p.natural_frequency_hz = 10;
   p.damping_ratio = 0.2;
-  ServoPlant plant(p, 0.0);
-  plant.set_enabled(true);
-  plant.advance(0);
-  plant.command(0, 1.0);
-  double peak = 0.0;
-  for (int t = 1; t <= 1500; ++t) {
-    plant.advance(t * kMs);
-    peak = std::max(peak, plant.position());
-  }
+  ServoPlant plant = enabled(p);
   // Second-order step: overshoot exp(-ζπ/sqrt(1-ζ²)) = 52.7% at ζ = 0.2.
-  EXPECT_NEAR(peak - 1.0, std::exp(-0.2 * M_PI / std::sqrt(1 - 0.04)), 0.02);
+  EXPECT_NEAR(step_peak(plant) - 1.0, std::exp(-0.2 * M_PI / std::sqrt(1 - 0.04)), 0.02);
   EXPECT_NEAR(plant.position(), 1.0, 1e-3);
 
   p.damping_ratio = 1.0;  // critically damped: no overshoot
-  ServoPlant damped(p, 0.0);
-  damped.set_enabled(true);
-  damped.advance(0);
-  damped.command(0, 1.0);
-  for (int t = 1; t <= 1500; ++t) {
-    damped.advance(t * kMs);
-    ASSERT_LE(damped.position(), 1.0 + 1e-9);
-  }
+  ServoPlant damped = enabled(p);
+  EXPECT_LE(step_peak(damped), 1.0 + 1e-9);
+  EXPECT_NEAR(damped.position(), 1.0, 1e-3);
 }
 
 TEST(PlantLatency, LatencyPlusBusTimeDelaysTheFirstMotion) {
@@ -142,8 +143,7 @@ std::vector<double> trace(std::uint64_t seed) {
   p.thermal.position_max = 1.0;
   p.thermal.extreme_band = 0.1;
   p.thermal.full_effort = 0.2;
-  ServoPlant plant(p, 0.0);
-  plant.set_enabled(true);
+  ServoPlant plant = enabled(p);
   std::vector<double> out;
   for (int t = 0; t <= 3000; ++t) {
     if (t % 7 == 0) plant.command(t * kMs, std::sin(t * 0.003));

@@ -66,7 +66,7 @@ TEST(SimBusTiming, ModbusTcpAddsItsConfiguredNetworkLatency) {
   bus.type = "modbus_tcp";
   const std::vector<int> addresses = {1, 9};
   EXPECT_EQ(sim_bus_timing(bus, addresses, 1000.0).arrival_s[1], 0.0005);  // the default
-  bus.network_latency_s = 0.003;
+  bus.modbus.network_latency_s = 0.003;
   const SimBusTiming t = sim_bus_timing(bus, addresses, 1000.0);
   EXPECT_EQ(t.arrival_s[0], 0.003);
   EXPECT_EQ(t.timing.load, 0.0);
