@@ -7,6 +7,8 @@
 #include "firmware-host/face_cli.hpp"
 #include "firmware-host/plot_command.hpp"
 #include "firmware-host/run_command.hpp"
+#include "firmware-host/simulate/simulate_bench.hpp"
+#include "firmware-host/simulate/simulate_command.hpp"
 #include "firmware-host/verify/verify_command.hpp"
 
 namespace {
@@ -48,6 +50,16 @@ int run_cli(int argc, char** argv) {
   bench_loop->add_option("--chunk", bench.chunk_s, "Interleave chunk in seconds (default 1)");
   bench_loop->add_option("--rate", bench.rate_hz, "Loop rate in Hz");
   bench_loop->callback([&] { exit_code = facectl::bench_loop_command(bench); });
+  facectl::SimulateBenchOptions bench_sim;
+  CLI::App* bench_simulate = bench_cmd->add_subcommand(
+      "simulate", "Offline simulation speed (no render) as a multiple of real time");
+  bench_simulate->add_option("--config", bench_sim.config, "Runtime config (its rig and show)");
+  bench_simulate->add_option("--rig", bench_sim.rig, "Rig instead of the config's");
+  bench_simulate->add_option("--show", bench_sim.show, "Show instead of the config's");
+  bench_simulate->add_option("--duration", bench_sim.duration_s,
+                             "Simulated seconds per run, the show looping (default 600)");
+  bench_simulate->add_option("--runs", bench_sim.runs, "Runs; the median is reported (default 5)");
+  bench_simulate->callback([&] { exit_code = facectl::simulate_bench_command(bench_sim); });
 
   facectl::PlotOptions plot;
   CLI::App* plot_cmd = app.add_subcommand(
@@ -71,6 +83,26 @@ int run_cli(int argc, char** argv) {
   verify_cmd->add_option("--ticks", verify.ticks, "Adversarial search length (default 1000000)");
   verify_cmd->add_option("--seed", verify.seed, "Adversarial search seed (default 1)");
   verify_cmd->callback([&] { exit_code = facectl::verify_command(verify); });
+
+  facectl::SimulateOptions simulate;
+  CLI::App* simulate_cmd = app.add_subcommand(
+      "simulate",
+      "Run a show or an MPEG-4 FAP file through the whole pipeline offline, on the rig's "
+      "simulated twin; write telemetry, plots, a summary and an HTML report (exit 0 ok, 1 the "
+      "head faulted, 2 unusable input)");
+  simulate_cmd->add_option("--rig", simulate.rig, "Rig YAML")->required();
+  simulate_cmd->add_option("--show", simulate.show, "Show file to play");
+  simulate_cmd->add_option("--fap", simulate.fap, "MPEG-4 FAP file to play");
+  simulate_cmd->add_option("--out", simulate.out, "Output folder (replaced as a whole)")
+      ->required();
+  simulate_cmd->add_flag("--render", simulate.render, "Also write the face render frames");
+  simulate_cmd->add_option("--config", simulate.config, "Runtime config naming the head");
+  simulate_cmd->add_option("--duration", simulate.duration_s,
+                           "Simulated seconds (default: the input's length; longer loops it)");
+  simulate_cmd->add_option("--telemetry-rate", simulate.telemetry_rate_hz,
+                           "Rows per simulated second in telemetry.csv (default 100)");
+  simulate_cmd->add_flag("--quiet", simulate.quiet, "No progress bar");
+  simulate_cmd->callback([&] { exit_code = facectl::simulate_command(simulate); });
 
   facectl::BusDoctorOptions doctor;
   CLI::App* bus_cmd = app.add_subcommand("bus", "Bus tools");

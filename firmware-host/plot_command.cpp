@@ -10,15 +10,36 @@
 #include "firmware-host/telemetry_csv.hpp"
 
 namespace facectl {
-namespace {
-
-const char* state_color(const std::string& state) {
+const char* state_color(std::string_view state) {
   if (state == "ENABLING") return "#3b82f6";
   if (state == "STOPPING") return "#22c55e";
   if (state == "FAULT" || state == "ESTOP") return "#ef4444";
   if (state == "IDLE") return "#9ca3af";
   return nullptr;  // RUNNING: unshaded
 }
+
+const std::array<LimitMarkRow, 4> kLimitMarkRows = {{{"position", kLimitPosition, "#7c3aed"},
+                                                     {"velocity", kLimitVelocity, "#0891b2"},
+                                                     {"accel.", kLimitAcceleration, "#db2777"},
+                                                     {"approach", kLimitApproach, "#ea580c"}}};
+
+Plot actuator_plot_frame(const ActuatorModel& a, double& scale, std::string& unit) {
+  const bool rotary = a.kind == ActuatorKind::kRotary;
+  scale = rotary ? 180.0 / std::numbers::pi : 1e3;
+  unit = rotary ? "deg" : "mm";
+  Plot plot;
+  plot.title = a.name + " (" + a.bus + ") against its limits";
+  plot.x_label = "time (s)";
+  plot.y_label = "position (" + unit + ")";
+  plot.levels.push_back({"hardware limit", kHardLimitColor, a.limits.position_min * scale, false});
+  plot.levels.push_back({"hardware limit", kHardLimitColor, a.limits.position_max * scale, false});
+  plot.levels.push_back({"soft limit", kSoftLimitColor, a.limits.soft_min * scale, true});
+  plot.levels.push_back({"soft limit", kSoftLimitColor, a.limits.soft_max * scale, true});
+  for (const LimitMarkRow& r : kLimitMarkRows) plot.mark_rows.push_back(r.label);
+  return plot;
+}
+
+namespace {
 
 void add_state_spans(Plot& plot, const TelemetryTable& t, const std::vector<double>& time) {
   const int sc = t.find("state");
@@ -46,32 +67,22 @@ int write_actuator_plots(const ControllerModel& m, const TelemetryTable& t,
         std::find(actuators.begin(), actuators.end(), a.name) == actuators.end()) {
       continue;
     }
-    const bool rotary = a.kind == ActuatorKind::kRotary;
-    const double scale = rotary ? 180.0 / std::numbers::pi : 1e3;
-    const std::string unit = rotary ? "deg" : "mm";
+    double scale = 1.0;
+    std::string unit;
+    Plot plot = actuator_plot_frame(a, scale, unit);
     auto to_unit = [&](std::vector<double> v) {
       for (double& x : v) x *= scale;
       return v;
     };
-    Plot plot;
-    plot.title = a.name + " (" + a.bus + ") against its limits";
-    plot.x_label = "time (s)";
-    plot.y_label = "position (" + unit + ")";
     plot.series.push_back({"measured", "#f59e0b", time, to_unit(t.numbers("fb." + a.name)), 1.2});
     plot.series.push_back({"command", "#1d4ed8", time, to_unit(t.numbers("cmd." + a.name)), 1.6});
-    plot.levels.push_back({"hardware limit", "#b91c1c", a.limits.position_min * scale, false});
-    plot.levels.push_back({"hardware limit", "#b91c1c", a.limits.position_max * scale, false});
-    plot.levels.push_back({"soft limit", "#ef4444", a.limits.soft_min * scale, true});
-    plot.levels.push_back({"soft limit", "#ef4444", a.limits.soft_max * scale, true});
     add_state_spans(plot, t, time);
-    plot.mark_rows = {"position", "velocity", "accel.", "approach"};
     const std::vector<double> flags = t.numbers("lim." + a.name);
-    const int bits[] = {1, 2, 4, 16};
-    const char* colors[] = {"#7c3aed", "#0891b2", "#db2777", "#ea580c"};
     for (std::size_t i = 0; i < flags.size(); ++i) {
-      const auto f = static_cast<int>(flags[i]);
-      for (int r = 0; r < 4; ++r) {
-        if ((f & bits[r]) != 0) plot.marks.push_back({colors[r], time[i], r});
+      const auto f = static_cast<LimitFlags>(flags[i]);
+      for (int r = 0; r < static_cast<int>(kLimitMarkRows.size()); ++r) {
+        const LimitMarkRow& row = kLimitMarkRows[static_cast<std::size_t>(r)];
+        if ((f & row.bit) != 0) plot.marks.push_back({row.color, time[i], r});
       }
     }
     const std::string path = out_dir + "/" + a.name + ".svg";

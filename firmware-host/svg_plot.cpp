@@ -45,6 +45,28 @@ std::string tick_label(double v, double step) {
   return buf;
 }
 
+// A series' points, reduced per pixel column to its first, lowest, highest
+// and last point (in time order): small files that keep every peak.
+template <typename Px, typename Py>
+void write_points(std::ostream& o, const Plot::Series& s, Px px, Py py) {
+  const std::size_t n = std::min(s.x.size(), s.y.size());
+  std::size_t i = 0;
+  while (i < n) {
+    const double column = std::floor(px(s.x[i]));
+    std::size_t end = i + 1, lo = i, hi = i;
+    for (; end < n && std::floor(px(s.x[end])) == column; ++end) {
+      if (s.y[end] < s.y[lo]) lo = end;
+      if (s.y[end] > s.y[hi]) hi = end;
+    }
+    std::size_t keep[4] = {i, std::min(lo, hi), std::max(lo, hi), end - 1};
+    for (int k = 0; k < 4; ++k) {
+      if (k > 0 && keep[k] == keep[k - 1]) continue;
+      o << num(px(s.x[keep[k]])) << ',' << num(py(s.y[keep[k]])) << ' ';
+    }
+    i = end;
+  }
+}
+
 }  // namespace
 
 std::vector<double> nice_ticks(double lo, double hi, int target_count) {
@@ -122,20 +144,13 @@ std::string render_svg(const Plot& plot, int width, int height) {
     << "\" fill=\"none\" stroke=\"#888\"/>\n";
   for (const auto& l : plot.levels) {
     o << "<line x1=\"" << left << "\" x2=\"" << left + w << "\" y1=\"" << num(py(l.y)) << "\" y2=\""
-      << num(py(l.y)) << "\" stroke=\"" << l.color << "\" stroke-width=\"1.2\""
+      << num(py(l.y)) << "\" stroke=\"" << l.color << "\" stroke-width=\"2\""
       << (l.dashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
   }
   for (const auto& s : plot.series) {
     o << "<polyline fill=\"none\" stroke=\"" << s.color << "\" stroke-width=\"" << s.width
       << "\" points=\"";
-    // Keep files small: at most one point per horizontal pixel column and value change.
-    double last_px = -1e9;
-    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-      const double x = px(s.x[i]);
-      if (x - last_px < 0.5 && i + 1 != s.x.size()) continue;
-      last_px = x;
-      o << num(x) << ',' << num(py(s.y[i])) << ' ';
-    }
+    write_points(o, s, px, py);
     o << "\"/>\n";
   }
   for (const auto& m : plot.marks) {

@@ -44,6 +44,13 @@ struct Plot {
   std::vector<std::string> mark_rows;  // legend of the rows of marks
 };
 
+// Limit lines use colours nothing else in a plot uses, so that a screenshot of
+// a report can be checked for them (tests/simulate).
+inline constexpr const char* kHardLimitColor = "#ff00ff";
+inline constexpr const char* kSoftLimitColor = "#a100c4";
+
+// Series are drawn with at most four points per pixel column (first, min, max,
+// last), so that a long series makes a small file and keeps its peaks.
 std::string render_svg(const Plot& plot, int width = 960, int height = 340);
 
 // "Nice" axis ticks (1, 2, 5 times a power of ten) covering [lo, hi].

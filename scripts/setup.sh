@@ -13,6 +13,8 @@ packages=(
   # Debian's kernel with the CAN modules, a static busybox for the initramfs,
   # and can-utils and iproute2 for the guest's candump, cansend and vcan set-up.
   qemu-system-x86 linux-image-amd64 busybox-static can-utils iproute2
+  # The `facectl simulate` HTML report test takes a headless screenshot (tests/simulate).
+  chromium
 )
 
 missing=()

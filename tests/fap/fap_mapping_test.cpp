@@ -8,6 +8,7 @@
 #include "facectl/face/head_spec.hpp"
 #include "facectl/face/mandible.hpp"
 #include "firmware-host/fap/fap_show.hpp"
+#include "tests/support/jaw_geometry.hpp"
 
 namespace facectl {
 namespace testing {
@@ -77,30 +78,9 @@ TEST(Fapu, MissingFeaturePointIsNamed) {
   }
 }
 
-// The pitch that lowers the chin (fdp_2_1) by `drop` metres, found here by
-// bisection on the rotation about the condyle line 2.14 -> 2.13, independently
-// of the mapping's closed form.
-double expected_pitch(const FeaturePoints& fp, double drop) {
-  const face::Vec3 a = (fp.at("fdp_2_13") - fp.at("fdp_2_14")).normalized();
-  const face::Vec3 p = fp.at("fdp_2_13");
-  const face::Vec3 chin = fp.at("fdp_2_1");
-  auto drop_at = [&](double t) {
-    const face::Vec3 moved = face::rodrigues(a, t) * (chin - p) + p;
-    return chin.y() - moved.y();
-  };
-  // The drop grows until the condyle-chin line is vertical (about 33 deg on
-  // this head), so the bisection stays below that.
-  double lo = -0.5, hi = 0.55;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (drop_at(mid) < drop ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
 TEST(FapMapping, OpenJawSequenceReachesTheGeometricPitch) {
   const FeaturePoints fp = default_points();
-  const double mns0 = 0.5 * (fp.at("fdp_9_1").y() + fp.at("fdp_9_2").y()) - fp.at("fdp_2_2").y();
+  const double mns0 = testing::mns0(fp);
   const std::vector<double> opens = {0, 64, 128, 256, 384, 512, 600, 300, 0};
   std::vector<std::vector<std::pair<int, std::string>>> frames;
   for (double v : opens) frames.push_back({{3, std::to_string(static_cast<int>(v))}});
@@ -109,7 +89,7 @@ TEST(FapMapping, OpenJawSequenceReachesTheGeometricPitch) {
   std::array<double, kMaxFaceSignals> pose{};
   for (std::size_t k = 0; k < opens.size(); ++k) {
     show.evaluate(static_cast<double>(k) / 25.0, pose);
-    const double want = expected_pitch(fp, opens[k] * mns0 / 1024.0);
+    const double want = testing::expected_jaw_pitch(fp, opens[k] * mns0 / 1024.0);
     EXPECT_NEAR(signal(pose, "jaw_pitch") / kDeg, want / kDeg, 0.1) << "open_jaw " << opens[k];
   }
   // A real opening: half an MNS0 opens the jaw by several degrees.

@@ -19,6 +19,22 @@ void write_png(const std::string& path, const Image& img) {
     throw InputError(path + ": cannot write PNG (" + pi.message + ")");
 }
 
+Image read_png(const std::string& path) {
+  png_image pi;
+  std::memset(&pi, 0, sizeof pi);
+  pi.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&pi, path.c_str()))
+    throw InputError(path + ": cannot read PNG (" + pi.message + ")");
+  pi.format = PNG_FORMAT_RGB;
+  Image img(static_cast<int>(pi.width), static_cast<int>(pi.height), 0);
+  if (!png_image_finish_read(&pi, nullptr, img.rgb.data(), 0, nullptr)) {
+    const std::string message = pi.message;
+    png_image_free(&pi);
+    throw InputError(path + ": cannot read PNG (" + message + ")");
+  }
+  return img;
+}
+
 Image downsample(const Image& img, int f) {
   Image out(img.width / f, img.height / f, 0);
   for (int y = 0; y < out.height; ++y)

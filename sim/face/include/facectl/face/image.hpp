@@ -16,6 +16,8 @@ struct Image {
 
 // Throws InputError when the file cannot be written.
 void write_png(const std::string& path, const Image& img);
+// Any PNG, converted to 8-bit RGB. Throws InputError when it cannot be read.
+Image read_png(const std::string& path);
 // Averages factor × factor blocks (anti-aliasing after supersampled rendering).
 Image downsample(const Image& img, int factor);
 // Tiles images of equal size into a grid with `cols` columns and a `gap`-pixel border.

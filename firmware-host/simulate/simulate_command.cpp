@@ -1,0 +1,118 @@
+#include "firmware-host/simulate/simulate_command.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "firmware-host/simulate/actuator_plots.hpp"
+#include "firmware-host/simulate/decimated_telemetry.hpp"
+#include "firmware-host/simulate/html_report.hpp"
+#include "firmware-host/simulate/progress_bar.hpp"
+#include "firmware-host/simulate/render_sequence.hpp"
+#include "firmware-host/simulate/simulation_run.hpp"
+#include "firmware-host/simulate/simulation_stats.hpp"
+#include "firmware-host/simulate/simulation_summary.hpp"
+#include "firmware-host/simulate/staged_dir.hpp"
+
+namespace facectl {
+namespace {
+
+void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error(path.filename().string() + ": cannot write");
+}
+
+// The rig with the runtime config, and the show or FAP file: everything that
+// can be wrong with the input, checked before anything is written.
+struct Inputs {
+  LoadedConfig cfg;
+  std::unique_ptr<SimulationInput> input;
+};
+
+Inputs load_inputs(const SimulateOptions& o) {
+  if (o.rig.empty()) throw ConfigError("--rig: expected a rig file, found none");
+  if (o.show.empty() == o.fap.empty()) {
+    throw ConfigError("expected exactly one of --show FILE and --fap FILE");
+  }
+  if (o.out.empty()) throw ConfigError("--out: expected an output folder, found none");
+  if (!(o.telemetry_rate_hz > 0.0) || !std::isfinite(o.telemetry_rate_hz)) {
+    throw ConfigError("--telemetry-rate: expected a rate above 0 Hz, found " +
+                      std::to_string(o.telemetry_rate_hz));
+  }
+  if (!(o.duration_s >= 0.0) || !std::isfinite(o.duration_s)) {
+    throw ConfigError("--duration: expected seconds >= 0, found " + std::to_string(o.duration_s));
+  }
+  // DIR is replaced as a whole: never a folder that is not an earlier output.
+  const std::filesystem::path out(o.out);
+  if (std::filesystem::exists(out) && !std::filesystem::is_empty(out) &&
+      !std::filesystem::exists(out / "summary.json")) {
+    throw ConfigError("--out " + o.out +
+                      ": expected a new folder or an earlier `facectl simulate` output (with "
+                      "summary.json), found another folder; not replacing it");
+  }
+  Inputs in;
+  ConfigOverrides overrides;
+  overrides.rig_path = o.rig;
+  in.cfg = load_config(o.config.empty() ? default_config_path() : o.config, overrides);
+  in.input = std::make_unique<SimulationInput>(o.show.empty()
+                                                   ? SimulationInput::load_fap(in.cfg, o.fap)
+                                                   : SimulationInput::load_show(in.cfg, o.show));
+  return in;
+}
+
+}  // namespace
+
+int simulate_command(const SimulateOptions& o) {
+  Inputs in;
+  try {
+    in = load_inputs(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "facectl simulate: %s\n", e.what());
+    return 2;
+  }
+  const SimulationInput& input = *in.input;
+  const double duration = o.duration_s > 0.0 ? o.duration_s : input.duration();
+  try {
+    StagedDir dir(o.out);
+    OfflineHead head(in.cfg, 8);
+    const ControllerModel& m = head.model();
+    SimulationStats stats(m);
+    const auto every =
+        static_cast<std::uint64_t>(std::max(1.0, std::round(m.rate_hz / o.telemetry_rate_hz)));
+    DecimatedTelemetry telemetry(m, (dir.path() / "telemetry.csv").string(), every);
+    ActuatorPlots plots(m, duration);
+    ProgressBar progress(duration, !o.quiet && ProgressBar::stderr_is_terminal());
+    SimulationSinks sinks{&stats, &telemetry, &plots, &progress, {}, 25.0};
+    std::unique_ptr<RenderSequence> render;
+    if (o.render) {
+      render = std::make_unique<RenderSequence>(in.cfg, dir.path());
+      sinks.frame_rate_hz = RenderOptions{}.fps;
+      sinks.frame = [&](std::span<const double> face, std::span<const double> positions) {
+        render->add_frame(face, positions);
+      };
+    }
+    const SimulationRun run = run_simulation(head, input, duration, sinks);
+    telemetry.close();
+    std::vector<std::string> frames;
+    if (render) frames = render->frames();
+    const std::vector<std::string> plot_files =
+        plots.write((dir.path() / "plots").string(), stats.states());
+    const SummaryJson summary = make_summary(in.cfg, input, run, stats, head.hardware());
+    const std::string text = summary_text(summary);
+    write_file(dir.path() / "summary.json", summary.dump(2) + "\n");
+    write_file(dir.path() / "summary.txt", text);
+    write_file(dir.path() / "index.html", html_report(summary, plot_files, frames));
+    dir.commit();
+    std::fputs(text.c_str(), stdout);
+    std::printf("outputs in %s\n", o.out.c_str());
+    return summary["result"] == "ok" ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "facectl simulate: %s\n", e.what());
+    return 2;
+  }
+}
+
+}  // namespace facectl
