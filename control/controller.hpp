@@ -113,7 +113,14 @@ class Controller {
   double worst_reach(std::size_t constraint, double dt) const;
   bool feedback_out_of_range();
   bool at_rest(double dt);
-  void enter_state(SafetyState state);
+  void enter_state(SafetyState state, SafetyState from, TransitionReason reason, double dt);
+  // FAULT with per-actuator reactions (controller_fault_reaction.cpp,
+  // docs/SAFETY.md "Fault reaction"): true while some actuator holds or rests.
+  bool start_fault_reactions(SafetyState from, TransitionReason reason, double dt);
+  void relax_uncommandable(bool io_fault);  // a faulted bus or the safety I/O: relax
+  bool apply_fault_enables();               // false once every actuator relaxed
+  bool driving() const { return safety_.outputs_enabled() || fault_driving_; }
+  bool relaxed(std::size_t i) const { return fault_driving_ && fault_driven_[i] == 0; }
   void write_outputs(const TickTime& time);
   void publish_telemetry(const TickTiming& timing, TransitionReason transition,
                          std::uint32_t rejected, std::uint8_t envelope_flags,
@@ -169,6 +176,13 @@ class Controller {
   double settled_time_ = 0.0;
   std::array<double, kMaxActuators> settling_{};  // low-passed measured positions in STOPPING
   const char* bus_fault_reason_ = "";
+  std::array<bool, kMaxBuses> bus_faulted_{};  // this tick's BusStatus::fault
+  // FAULT: which actuators hold or rest (1), where to, and the buses they keep on.
+  bool fault_driving_ = false;
+  std::array<std::uint8_t, kMaxActuators> fault_driven_{};
+  std::array<double, kMaxActuators> fault_target_{};
+  face::MandiblePose fault_pose_;
+  std::array<bool, kMaxBuses> bus_driven_{};
 };
 
 }  // namespace facectl
