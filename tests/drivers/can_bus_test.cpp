@@ -311,7 +311,7 @@ TEST_F(CustomCan, ABoardFaultAndCorruptFramesAreToldApart) {
 
 TEST_F(CustomCan, ABoardWithAnActuatorSwitchedOffIsDisabledWhileTheOthersRun) {
   bus_->set_enabled(true);
-  rig_->until([] { return false; }, 20, 3 * kDeg);
+  rig_->until([] { return false; }, 100, 3 * kDeg);
   // Address 5 (board 2, channel 1) relaxes: the enable flag is per board.
   std::array<std::uint8_t, 12> on{};
   on.fill(1);
