@@ -493,6 +493,7 @@ void Controller::tick(const TickTiming& timing) {
   } else if (fault_driving_) {
     relax_uncommandable(in.io_fault);
   }
+  fault_holding_.store(fault_driving_, std::memory_order_relaxed);
   // Telemetry shows where the hardware is while nothing is commanded.
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     if (!driving() || relaxed(i)) command_[i] = measured_[i];

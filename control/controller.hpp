@@ -79,6 +79,11 @@ class Controller {
   std::uint64_t faults_seen() const { return faults_seen_.load(std::memory_order_relaxed); }
   // True if a shutdown disabled the outputs before rest was reached.
   bool stop_timed_out() const { return stop_timed_out_.load(std::memory_order_relaxed); }
+  // True while FAULT keeps some actuator commanded (hold or rest).
+  bool fault_holding() const { return fault_holding_.load(std::memory_order_relaxed); }
+  // Only once the loop has stopped ticking: disables every bus and drops
+  // power-enable, since a FAULT hold cannot outlive the loop commanding it.
+  void release_outputs();
 
   const ControllerModel& model() const { return model_; }
   const ControllerCounters& counters() const { return counters_; }
@@ -173,6 +178,7 @@ class Controller {
   std::atomic<SafetyState> state_mirror_{SafetyState::kIdle};
   std::atomic<std::uint64_t> faults_seen_{0};
   std::atomic<bool> stop_timed_out_{false};
+  std::atomic<bool> fault_holding_{false};
   double settled_time_ = 0.0;
   std::array<double, kMaxActuators> settling_{};  // low-passed measured positions in STOPPING
   const char* bus_fault_reason_ = "";

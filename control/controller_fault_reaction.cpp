@@ -102,4 +102,11 @@ bool Controller::apply_fault_enables() {
   return any;
 }
 
+void Controller::release_outputs() {
+  for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
+  io_.set_power_enable(false);
+  fault_driving_ = false;
+  fault_holding_.store(false, std::memory_order_relaxed);
+}
+
 }  // namespace facectl
