@@ -44,8 +44,10 @@ class ActuatorBus {
   // same as set_enabled(flag). An actuator switched on is held where it is
   // until the next write, as on set_enabled(true). Called on state changes
   // only; must not allocate. Where the protocol enables a whole board, not
-  // one channel, a board is on only while every actuator on it is.
-  virtual void set_actuators_enabled(std::span<const std::uint8_t> enabled) = 0;
+  // one channel, a board is on only while every actuator on it is, and the
+  // backend clears the flags of the actuators it switched off that way: on
+  // return, the flags say which outputs are on.
+  virtual void set_actuators_enabled(std::span<std::uint8_t> enabled) = 0;
   virtual BusStatus status() const = 0;
 };
 

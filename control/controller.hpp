@@ -123,6 +123,7 @@ class Controller {
   // docs/SAFETY.md "Fault reaction"): true while some actuator holds or rests.
   bool start_fault_reactions(SafetyState from, TransitionReason reason, double dt);
   void relax_uncommandable(bool io_fault);  // a faulted bus or the safety I/O: relax
+  bool relax_split_mechanism();             // true if it relaxed struts
   bool apply_fault_enables();               // false once every actuator relaxed
   bool driving() const { return safety_.outputs_enabled() || fault_driving_; }
   bool relaxed(std::size_t i) const { return fault_driving_ && fault_driven_[i] == 0; }

@@ -65,40 +65,48 @@ void Controller::relax_uncommandable(bool io_fault) {
       fault_driven_[i] = 0;
     }
   }
-  if (model_.mapping.mechanism) {
-    // The struts move together by IK, so one relaxed strut relaxes them all.
-    const MandibleMechanism& mech = *model_.mapping.mechanism;
-    bool all = true;
-    for (std::size_t s = 0; s < mech.struts(); ++s)
-      all = all && fault_driven_[mech.strut[s].actuator];
-    for (std::size_t s = 0; s < mech.struts() && !all; ++s) {
-      changed = changed || fault_driven_[mech.strut[s].actuator] != 0;
-      fault_driven_[mech.strut[s].actuator] = 0;
-    }
+  changed = relax_split_mechanism() || changed;
+  if (!changed) return;
+  fault_driving_ = apply_fault_enables();
+  // A backend that enables per board may have switched off more struts.
+  if (fault_driving_ && relax_split_mechanism()) fault_driving_ = apply_fault_enables();
+}
+
+bool Controller::relax_split_mechanism() {
+  // The struts move together by IK, so one relaxed strut relaxes them all.
+  if (!model_.mapping.mechanism) return false;
+  const MandibleMechanism& mech = *model_.mapping.mechanism;
+  bool all = true, any = false;
+  for (std::size_t s = 0; s < mech.struts(); ++s) {
+    all = all && fault_driven_[mech.strut[s].actuator] != 0;
+    any = any || fault_driven_[mech.strut[s].actuator] != 0;
   }
-  if (changed) fault_driving_ = apply_fault_enables();
+  if (all || !any) return false;
+  for (std::size_t s = 0; s < mech.struts(); ++s) fault_driven_[mech.strut[s].actuator] = 0;
+  return true;
 }
 
 bool Controller::apply_fault_enables() {
+  // Buses with something to drive get the per-actuator flags (which a
+  // backend may clear further); the others, and any left with nothing on,
+  // are disabled whole.
   bool any = false;
   for (std::size_t b = 0; b < bus_count_; ++b) {
     const BusModel& bus = model_.buses[b];
-    const auto first = fault_driven_.begin() + static_cast<std::ptrdiff_t>(bus.first);
-    bus_driven_[b] = std::any_of(first, first + static_cast<std::ptrdiff_t>(bus.count),
-                                 [](std::uint8_t on) { return on != 0; });
+    const std::span<std::uint8_t> flags(fault_driven_.data() + bus.first, bus.count);
+    const auto on = [&] {
+      return std::any_of(flags.begin(), flags.end(), [](std::uint8_t f) { return f != 0; });
+    };
+    if (on()) buses_[b]->set_actuators_enabled(flags);
+    bus_driven_[b] = on();
+    if (!bus_driven_[b]) buses_[b]->set_enabled(false);
     any = any || bus_driven_[b];
   }
-  for (std::size_t b = 0; b < bus_count_; ++b) {
-    const BusModel& bus = model_.buses[b];
-    if (!any || !bus_driven_[b]) {
-      buses_[b]->set_enabled(false);
-    } else {
-      buses_[b]->set_actuators_enabled(
-          std::span<const std::uint8_t>(fault_driven_.data() + bus.first, bus.count));
-    }
-  }
   // Power-enable stays on only while some actuator holds or rests.
-  if (!any) io_.set_power_enable(false);
+  if (!any) {
+    for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
+    io_.set_power_enable(false);
+  }
   return any;
 }
 

@@ -254,7 +254,7 @@ void Cia402Bus::restart_drive(Drive& d, bool wanted) {
   if (f != d.lost.c_str()) d.fault.store(nullptr, std::memory_order_release);
 }
 
-void Cia402Bus::set_actuators_enabled(std::span<const std::uint8_t> enabled) {
+void Cia402Bus::set_actuators_enabled(std::span<std::uint8_t> enabled) {
   const bool any = std::any_of(enabled.begin(), enabled.end(), [](auto on) { return on != 0; });
   if (!any || !enabled_) {
     set_enabled(any);

@@ -36,7 +36,7 @@ class Cia402Bus final : public ActuatorBus {
   void set_enabled(bool enabled) override;
   // A drive switched off while others run gets controlword 0 (disable
   // voltage: torque off) and its own position as target, every cycle.
-  void set_actuators_enabled(std::span<const std::uint8_t> enabled) override;
+  void set_actuators_enabled(std::span<std::uint8_t> enabled) override;
   BusStatus status() const override;
 
   // Frames on the wire per bus cycle: SYNC, one RPDO and one TPDO per drive,

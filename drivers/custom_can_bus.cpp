@@ -162,7 +162,7 @@ void CustomCanBus::set_enabled(bool enabled) {
   }
 }
 
-void CustomCanBus::set_actuators_enabled(std::span<const std::uint8_t> enabled) {
+void CustomCanBus::set_actuators_enabled(std::span<std::uint8_t> enabled) {
   const bool any = std::any_of(enabled.begin(), enabled.end(), [](auto on) { return on != 0; });
   if (!any || !enabled_) {
     set_enabled(any);
@@ -176,6 +176,10 @@ void CustomCanBus::set_actuators_enabled(std::span<const std::uint8_t> enabled) 
     }
     if (on && !b->wanted) b->reset_pending = true;  // as on a bus enable
     b->wanted = on;
+    for (int ch = 0; ch < b->channels && !on; ++ch) {
+      const std::size_t a = b->actuator[static_cast<std::size_t>(ch)];
+      if (a < enabled.size()) enabled[a] = 0;  // switched off with its board
+    }
   }
 }
 

@@ -35,7 +35,7 @@ class CustomCanBus final : public ActuatorBus {
   // The enable flag is per board: a board is on only while every actuator on
   // it is; a board switched off gets frames without the enable flag (torque
   // off, its heartbeat kept) carrying its measured positions.
-  void set_actuators_enabled(std::span<const std::uint8_t> enabled) override;
+  void set_actuators_enabled(std::span<std::uint8_t> enabled) override;
   BusStatus status() const override;
 
   // One command and one feedback frame per board per bus cycle.

@@ -168,7 +168,7 @@ void ModbusBus::set_enabled(bool enabled) {
   enabled_.store(enabled, std::memory_order_release);
 }
 
-void ModbusBus::set_actuators_enabled(std::span<const std::uint8_t> enabled) {
+void ModbusBus::set_actuators_enabled(std::span<std::uint8_t> enabled) {
   const bool any = std::any_of(enabled.begin(), enabled.end(), [](auto on) { return on != 0; });
   if (!any || !enabled_.load(std::memory_order_relaxed)) {
     set_enabled(any);
@@ -182,6 +182,9 @@ void ModbusBus::set_actuators_enabled(std::span<const std::uint8_t> enabled) {
     }
     rising = rising || (on && !b->wanted.load(std::memory_order_relaxed));
     b->wanted.store(on, std::memory_order_release);
+    for (const std::size_t a : b->actuator) {
+      if (!on && a < enabled.size()) enabled[a] = 0;  // switched off with its board
+    }
   }
   // Bumpless, as on a bus enable: no command written before reaches a board
   // switched on again.

@@ -71,7 +71,7 @@ class ModbusBus final : public ActuatorBus {
   // CONTROL is per board (unit): a board is on only while every actuator on
   // it is; a board switched off gets CONTROL = 0 and no targets, as on a
   // disabled bus, while the others run.
-  void set_actuators_enabled(std::span<const std::uint8_t> enabled) override;
+  void set_actuators_enabled(std::span<std::uint8_t> enabled) override;
   BusStatus status() const override;
 
   // True when the actuator's board has not confirmed a target write within

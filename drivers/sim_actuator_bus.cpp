@@ -42,7 +42,7 @@ void SimActuatorBus::set_enabled(bool enabled) {
   }
 }
 
-void SimActuatorBus::set_actuators_enabled(std::span<const std::uint8_t> enabled) {
+void SimActuatorBus::set_actuators_enabled(std::span<std::uint8_t> enabled) {
   bool any = false;
   for (std::size_t i = 0; i < plants_.size(); ++i) {
     const bool on = i < enabled.size() && enabled[i] != 0;

@@ -21,7 +21,7 @@ class SimActuatorBus final : public ActuatorBus {
   void read(const TickTime& time, std::span<double> positions) override;
   void write(const TickTime& time, std::span<const double> positions) override;
   void set_enabled(bool enabled) override;
-  void set_actuators_enabled(std::span<const std::uint8_t> enabled) override;
+  void set_actuators_enabled(std::span<std::uint8_t> enabled) override;
   BusStatus status() const override;
 
   // Fault injection (thread-safe). `reason` must be a static string.

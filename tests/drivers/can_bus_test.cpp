@@ -3,6 +3,7 @@
 // host first (read, write), then the devices. Bounds are docs/PROTOCOLS.md's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -180,7 +181,7 @@ TEST_F(Cia402, ReEnablingResetsDriveFaultsAndWalksBackToOperationEnabled) {
 TEST_F(Cia402, ADriveSwitchedOffAloneGetsDisableVoltageWhileTheOthersRun) {
   enable();
   rig_->until([] { return false; }, 200, 10 * kDeg);
-  const std::array<std::uint8_t, 3> on{1, 0, 1};
+  std::array<std::uint8_t, 3> on{1, 0, 1};
   bus_->set_actuators_enabled(on);
   rig_->until([] { return false; }, 300, -10 * kDeg);
   EXPECT_EQ(drives_[1]->state(), cia402::DriveState::kSwitchOnDisabled);
@@ -191,7 +192,8 @@ TEST_F(Cia402, ADriveSwitchedOffAloneGetsDisableVoltageWhileTheOthersRun) {
   }
   EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
   // Switched on again: the drive walks back, holding where it is until enabled.
-  bus_->set_actuators_enabled(std::array<std::uint8_t, 3>{1, 1, 1});
+  on = {1, 1, 1};
+  bus_->set_actuators_enabled(on);
   ASSERT_GT(rig_->until([&] { return all_enabled(); }, 200, -10 * kDeg), 0);
   EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
 }
@@ -317,6 +319,10 @@ TEST_F(CustomCan, ABoardWithAnActuatorSwitchedOffIsDisabledWhileTheOthersRun) {
   on.fill(1);
   on[4] = 0;
   bus_->set_actuators_enabled(on);
+  // Its board-mates are switched off with it, and the flags say so.
+  EXPECT_EQ(on[3], 0);
+  EXPECT_EQ(on[5], 0);
+  EXPECT_EQ(std::count(on.begin(), on.end(), std::uint8_t{1}), 9);
   const std::uint64_t board2_commands = boards_[1]->commands();
   rig_->until([] { return false; }, 200, 8 * kDeg);
   EXPECT_FALSE(boards_[1]->enabled());

@@ -284,10 +284,14 @@ TEST_F(ModbusTcp, ABoardSwitchedOffAloneGetsNoTargetsWhileTheOtherRuns) {
   bus_->set_enabled(true);
   start_tick();
   ASSERT_GT(wait_for([&] { return board2_.target_writes() > 50; }, 3000ms), 0);
-  // FAULT with a relax actuator on unit 2 (address 9) and hold ones on unit 1.
+  // FAULT with a relax actuator on unit 2 (address 9), hold ones elsewhere:
+  // its board-mates (addresses 10..14) are switched off with it.
   std::array<std::uint8_t, 14> on{};
-  std::fill(on.begin(), on.begin() + 8, std::uint8_t{1});
+  on.fill(1);
+  on[8] = 0;
   bus_->set_actuators_enabled(on);
+  EXPECT_EQ(std::count(on.begin(), on.begin() + 8, std::uint8_t{1}), 8);
+  EXPECT_EQ(std::count(on.begin() + 8, on.end(), std::uint8_t{0}), 6);
   ASSERT_GT(wait_for([&] { return !board2_.enabled(); }, 100ms), 0)
       << "board 2 not disabled within 100 ms";
   const std::uint64_t w1 = board1_.target_writes(), w2 = board2_.target_writes();
