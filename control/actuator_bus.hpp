@@ -38,6 +38,16 @@ class ActuatorBus {
   // write (e.g. CiA 402: target := actual before "enable operation"), never
   // resume an older target: that is what makes enabling bumpless.
   virtual void set_enabled(bool enabled) = 0;
+  // Per-actuator outputs (FAULT with per-actuator reactions, docs/SAFETY.md):
+  // one flag per actuator of this bus, 0 = output off (torque off), else on;
+  // the bus counts as enabled while any flag is set. All flags equal is the
+  // same as set_enabled(flag). An actuator switched on is held where it is
+  // until the next write, as on set_enabled(true). Called on state changes
+  // only; must not allocate. Where the protocol enables a whole board, not
+  // one channel, a board is on only while every actuator on it is, and the
+  // backend clears the flags of the actuators it switched off that way: on
+  // return, the flags say which outputs are on.
+  virtual void set_actuators_enabled(std::span<std::uint8_t> enabled) = 0;
   virtual BusStatus status() const = 0;
 };
 

@@ -94,21 +94,12 @@ void Controller::choose_targets() {
       target = enable_start_[i] + blend * (mapped_[i] - enable_start_[i]);
     } else if (state == SafetyState::kStopping) {
       target = model_.actuators[i].rest;
+    } else if (state == SafetyState::kFault) {
+      target = fault_driven_[i] != 0 ? fault_target_[i] : measured_[i];
     }
     target_[i] = target;
   }
 }
-
-namespace {
-
-// How far the limiter may still travel at speed v before it stands still: its
-// own approach plan (docs/SAFETY.md), v²/2A + v·(dt + A/2J).
-double stopping_distance(const ActuatorLimits& l, double v, double dt) {
-  const double ramp = l.max_jerk > 0.0 ? l.max_acceleration / (2.0 * l.max_jerk) : 0.0;
-  return v * v / (2.0 * l.max_acceleration) + v * (dt + ramp);
-}
-
-}  // namespace
 
 double Controller::worst_reach(std::size_t c, double dt) const {
   // Σ a·x over the constrained actuators, each taken where it would stop if
@@ -176,6 +167,8 @@ void Controller::limit_mechanism(double dt, LimitFlags* flags) {
         pose_start_.protrusion_m + b * (target.protrusion_m - pose_start_.protrusion_m);
   } else if (state == SafetyState::kStopping) {
     target = model_.mandible_rest;
+  } else if (state == SafetyState::kFault) {
+    target = fault_pose_;
   }
   const MandibleVector held = mech.held_in(to_vector(target));
   const double goal[3] = {held[0], held[1], held[2]};
@@ -259,10 +252,19 @@ bool Controller::limit_actuators(double dt, LimitFlags* flags) {
     if ((mapping_clamps_ >> i) & 1u) flags[i] |= kLimitMapping;
     command_[i] = limiter_[i].position;
   }
-  if (model_.mapping.mechanism) limit_mechanism(dt, flags);
+  if (model_.mapping.mechanism && !relaxed(model_.mapping.mechanism->strut[0].actuator)) {
+    limit_mechanism(dt, flags);
+  }
   if (model_.actuator_constraints.size() != 0) keep_actuator_constraints(dt, flags);
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     const ActuatorLimits& l = model_.actuators[i].limits;
+    if (relaxed(i)) {
+      // Torque off in FAULT: nothing is commanded; follow the measurement.
+      limiter_[i] = {measured_[i], 0.0, 0.0};
+      command_[i] = measured_[i];
+      flags[i] = 0;
+      continue;
+    }
     // Independent backstop against the hardware range, NaN included: such a
     // command is never sent, and the state machine faults on it.
     if (!(l.position_min <= command_[i] && command_[i] <= l.position_max)) {
@@ -312,7 +314,8 @@ bool Controller::at_rest(double dt) {
   return settled_time_ >= model_.rest_dwell_s;
 }
 
-void Controller::enter_state(SafetyState state) {
+void Controller::enter_state(SafetyState state, SafetyState from, TransitionReason reason,
+                             double dt) {
   const bool outputs = state == SafetyState::kEnabling || state == SafetyState::kRunning ||
                        state == SafetyState::kStopping;
   if (state == SafetyState::kEnabling) {
@@ -329,7 +332,8 @@ void Controller::enter_state(SafetyState state) {
     if (model_.mapping.mechanism) start_mechanism();
     settled_time_ = 0.0;
   }
-  if (!outputs) {
+  fault_driving_ = state == SafetyState::kFault && start_fault_reactions(from, reason, dt);
+  if (!outputs && !fault_driving_) {
     for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
     io_.set_power_enable(false);
   } else if (state == SafetyState::kEnabling) {
@@ -347,8 +351,11 @@ void Controller::enter_state(SafetyState state) {
 }
 
 void Controller::write_outputs(const TickTime& time) {
-  if (!safety_.outputs_enabled()) return;  // nothing is transmitted in IDLE, FAULT or ESTOP
+  // Nothing is transmitted in IDLE or ESTOP, nor in FAULT but to the buses of
+  // actuators that hold or rest.
+  if (!driving()) return;
   for (std::size_t b = 0; b < bus_count_; ++b) {
+    if (!safety_.outputs_enabled() && !bus_driven_[b]) continue;
     const BusModel& bus = model_.buses[b];
     buses_[b]->write(time, std::span<const double>(command_.data() + bus.first, bus.count));
   }
@@ -453,7 +460,7 @@ void Controller::tick(const TickTiming& timing) {
   // 7. Actuator limits, only while outputs are live.
   std::fill_n(flags_.begin(), model_.actuators.size(), LimitFlags{0});
   bool breach = false;
-  if (safety_.outputs_enabled()) {
+  if (driving()) {
     choose_targets();
     breach = limit_actuators(dt, flags_.data());
   }
@@ -466,6 +473,7 @@ void Controller::tick(const TickTiming& timing) {
   in.feedback_out_of_range = feedback_out_of_range();
   for (std::size_t b = 0; b < bus_count_; ++b) {
     const BusStatus st = buses_[b]->status();
+    bus_faulted_[b] = st.fault;
     if (st.fault && !in.bus_fault) {
       in.bus_fault = true;
       bus_fault_reason_ = st.reason;
@@ -480,12 +488,15 @@ void Controller::tick(const TickTiming& timing) {
   const TransitionReason transition = safety_.step(in, dt);
   const TickTime time{timing.now_ns, dt};
   if (transition != TransitionReason::kNone) {
-    enter_state(safety_.state());
+    enter_state(safety_.state(), before, transition, dt);
     log_transition(timing, before, transition);
+  } else if (fault_driving_) {
+    relax_uncommandable(in.io_fault);
   }
-  if (!safety_.outputs_enabled()) {
-    // Telemetry shows where the hardware is while nothing is commanded.
-    std::copy_n(measured_.begin(), model_.actuators.size(), command_.begin());
+  fault_holding_.store(fault_driving_, std::memory_order_relaxed);
+  // Telemetry shows where the hardware is while nothing is commanded.
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    if (!driving() || relaxed(i)) command_[i] = measured_[i];
   }
 
   // 9-10. Encode and write through the drivers (encoding lives in each backend).

@@ -79,6 +79,11 @@ class Controller {
   std::uint64_t faults_seen() const { return faults_seen_.load(std::memory_order_relaxed); }
   // True if a shutdown disabled the outputs before rest was reached.
   bool stop_timed_out() const { return stop_timed_out_.load(std::memory_order_relaxed); }
+  // True while FAULT keeps some actuator commanded (hold or rest).
+  bool fault_holding() const { return fault_holding_.load(std::memory_order_relaxed); }
+  // Only once the loop has stopped ticking: disables every bus and drops
+  // power-enable, since a FAULT hold cannot outlive the loop commanding it.
+  void release_outputs();
 
   const ControllerModel& model() const { return model_; }
   const ControllerCounters& counters() const { return counters_; }
@@ -113,7 +118,15 @@ class Controller {
   double worst_reach(std::size_t constraint, double dt) const;
   bool feedback_out_of_range();
   bool at_rest(double dt);
-  void enter_state(SafetyState state);
+  void enter_state(SafetyState state, SafetyState from, TransitionReason reason, double dt);
+  // FAULT with per-actuator reactions (controller_fault_reaction.cpp,
+  // docs/SAFETY.md "Fault reaction"): true while some actuator holds or rests.
+  bool start_fault_reactions(SafetyState from, TransitionReason reason, double dt);
+  void relax_uncommandable(bool io_fault);  // a faulted bus or the safety I/O: relax
+  bool relax_split_mechanism();             // true if it relaxed struts
+  bool apply_fault_enables();               // false once every actuator relaxed
+  bool driving() const { return safety_.outputs_enabled() || fault_driving_; }
+  bool relaxed(std::size_t i) const { return fault_driving_ && fault_driven_[i] == 0; }
   void write_outputs(const TickTime& time);
   void publish_telemetry(const TickTiming& timing, TransitionReason transition,
                          std::uint32_t rejected, std::uint8_t envelope_flags,
@@ -166,9 +179,17 @@ class Controller {
   std::atomic<SafetyState> state_mirror_{SafetyState::kIdle};
   std::atomic<std::uint64_t> faults_seen_{0};
   std::atomic<bool> stop_timed_out_{false};
+  std::atomic<bool> fault_holding_{false};
   double settled_time_ = 0.0;
   std::array<double, kMaxActuators> settling_{};  // low-passed measured positions in STOPPING
   const char* bus_fault_reason_ = "";
+  std::array<bool, kMaxBuses> bus_faulted_{};  // this tick's BusStatus::fault
+  // FAULT: which actuators hold or rest (1), where to, and the buses they keep on.
+  bool fault_driving_ = false;
+  std::array<std::uint8_t, kMaxActuators> fault_driven_{};
+  std::array<double, kMaxActuators> fault_target_{};
+  face::MandiblePose fault_pose_;
+  std::array<bool, kMaxBuses> bus_driven_{};
 };
 
 }  // namespace facectl

@@ -108,4 +108,9 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
   return flags;
 }
 
+double stopping_distance(const ActuatorLimits& l, double v, double dt) {
+  const double ramp = l.max_jerk > 0.0 ? l.max_acceleration / (2.0 * l.max_jerk) : 0.0;
+  return v * v / (2.0 * l.max_acceleration) + v * (dt + ramp);
+}
+
 }  // namespace facectl

@@ -31,4 +31,8 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
 // Highest speed v' that can still stop within `distance` after moving v'·dt.
 double braking_speed(double distance, double max_acceleration, double dt);
 
+// How far the limiter may still travel at speed v before it stands still: its
+// own approach plan (docs/SAFETY.md), v²/2A + v·(dt + A/2J).
+double stopping_distance(const ActuatorLimits& limits, double v, double dt);
+
 }  // namespace facectl

@@ -1,5 +1,6 @@
 #include "drivers/cia402_bus.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -163,6 +164,12 @@ void Cia402Bus::read(const TickTime& time, std::span<double> positions) {
 }
 
 void Cia402Bus::step_drive(Drive& d, double target, std::int64_t now_ns) {
+  if (!d.wanted) {
+    d.controlword = cia402::kCwDisableVoltage;
+    cia402::encode_rpdo1(d.node, d.controlword, to_counts(d.position, d.counts_per_si), frame_);
+    send(frame_);
+    return;
+  }
   if (d.phase == Phase::kIdle) {
     d.phase = Phase::kSdo;
     d.sdo_next = 0;
@@ -235,12 +242,30 @@ void Cia402Bus::set_enabled(bool enabled) {
   if (enabled == enabled_) return;
   enabled_ = enabled;
   cycle_ = 0;
-  for (auto& d : drives_) {
-    d->phase = Phase::kIdle;
-    // Faults of the enabling attempt and of the drive's state machine belong
-    // to that attempt; a lost heartbeat stays until the drive is heard again.
-    const char* f = d->fault.load(std::memory_order_relaxed);
-    if (f != d->lost.c_str()) d->fault.store(nullptr, std::memory_order_release);
+  for (auto& d : drives_) restart_drive(*d, enabled);
+}
+
+void Cia402Bus::restart_drive(Drive& d, bool wanted) {
+  d.phase = Phase::kIdle;
+  d.wanted = wanted;
+  // Faults of the enabling attempt and of the drive's state machine belong
+  // to that attempt; a lost heartbeat stays until the drive is heard again.
+  const char* f = d.fault.load(std::memory_order_relaxed);
+  if (f != d.lost.c_str()) d.fault.store(nullptr, std::memory_order_release);
+}
+
+void Cia402Bus::set_actuators_enabled(std::span<std::uint8_t> enabled) {
+  const bool any = std::any_of(enabled.begin(), enabled.end(), [](auto on) { return on != 0; });
+  if (!any || !enabled_) {
+    set_enabled(any);
+    if (!any) return;
+  }
+  for (std::size_t i = 0; i < drives_.size(); ++i) {
+    Drive& d = *drives_[i];
+    const bool on = i < enabled.size() && enabled[i] != 0;
+    // Switched on again: the full walk, holding its position until enabled.
+    if (on && !d.wanted) restart_drive(d, true);
+    d.wanted = on;
   }
 }
 

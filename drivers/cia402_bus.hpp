@@ -34,6 +34,9 @@ class Cia402Bus final : public ActuatorBus {
   void read(const TickTime& time, std::span<double> positions) override;
   void write(const TickTime& time, std::span<const double> positions) override;
   void set_enabled(bool enabled) override;
+  // A drive switched off while others run gets controlword 0 (disable
+  // voltage: torque off) and its own position as target, every cycle.
+  void set_actuators_enabled(std::span<std::uint8_t> enabled) override;
   BusStatus status() const override;
 
   // Frames on the wire per bus cycle: SYNC, one RPDO and one TPDO per drive,
@@ -59,6 +62,7 @@ class Cia402Bus final : public ActuatorBus {
     std::int64_t sdo_sent_ns = 0;
     std::int64_t pdo_since_ns = 0;
     bool reached_enabled = false;
+    bool wanted = false;  // enabled by the controller (per actuator)
     bool heard = false;
     std::int64_t last_heartbeat_ns = 0;
     std::uint16_t emcy = 0;
@@ -70,6 +74,7 @@ class Cia402Bus final : public ActuatorBus {
   void handle(const CanFrame& f, std::int64_t now_ns);
   void send(const CanFrame& f) { health_.on_send(transport_.send(f)); }
   void step_drive(Drive& d, double target, std::int64_t now_ns);
+  void restart_drive(Drive& d, bool wanted);
 
   std::string name_;
   CanTransport& transport_;

@@ -1,5 +1,6 @@
 #include "drivers/custom_can_bus.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -128,11 +129,12 @@ void CustomCanBus::write(const TickTime& time, std::span<const double> positions
     for (int ch = 0; ch < b.channels; ++ch) {
       const std::size_t a = b.actuator[static_cast<std::size_t>(ch)];
       if (a != SIZE_MAX && a < positions.size()) {
-        b.targets[static_cast<std::size_t>(ch)] =
-            custom_can::to_counts(units_[a], options_.width, positions[a]);
+        b.targets[static_cast<std::size_t>(ch)] = custom_can::to_counts(
+            units_[a], options_.width, b.wanted ? positions[a] : positions_[a]);
       }
     }
-    custom_can::Command c{b.node, ++b.sequence, custom_can::kFlagEnable};
+    custom_can::Command c{b.node, ++b.sequence,
+                          b.wanted ? custom_can::kFlagEnable : std::uint8_t{0}};
     if (b.reset_pending) c.flags |= custom_can::kFlagFaultReset;
     custom_can::encode_command(
         c, options_.width,
@@ -153,9 +155,31 @@ void CustomCanBus::set_enabled(bool enabled) {
   enabled_ = enabled;
   cycle_ = 0;
   for (auto& b : boards_) {
+    b->wanted = enabled;
     b->reset_pending = enabled;  // the first command after enabling clears a latched fault
     const char* f = b->fault.load(std::memory_order_relaxed);
     if (f != b->lost.c_str()) b->fault.store(nullptr, std::memory_order_release);
+  }
+}
+
+void CustomCanBus::set_actuators_enabled(std::span<std::uint8_t> enabled) {
+  const bool any = std::any_of(enabled.begin(), enabled.end(), [](auto on) { return on != 0; });
+  if (!any || !enabled_) {
+    set_enabled(any);
+    if (!any) return;
+  }
+  for (auto& b : boards_) {
+    bool on = true;
+    for (int ch = 0; ch < b->channels; ++ch) {
+      const std::size_t a = b->actuator[static_cast<std::size_t>(ch)];
+      if (a != SIZE_MAX) on = on && a < enabled.size() && enabled[a] != 0;
+    }
+    if (on && !b->wanted) b->reset_pending = true;  // as on a bus enable
+    b->wanted = on;
+    for (int ch = 0; ch < b->channels && !on; ++ch) {
+      const std::size_t a = b->actuator[static_cast<std::size_t>(ch)];
+      if (a < enabled.size()) enabled[a] = 0;  // switched off with its board
+    }
   }
 }
 

@@ -32,6 +32,10 @@ class CustomCanBus final : public ActuatorBus {
   void read(const TickTime& time, std::span<double> positions) override;
   void write(const TickTime& time, std::span<const double> positions) override;
   void set_enabled(bool enabled) override;
+  // The enable flag is per board: a board is on only while every actuator on
+  // it is; a board switched off gets frames without the enable flag (torque
+  // off, its heartbeat kept) carrying its measured positions.
+  void set_actuators_enabled(std::span<std::uint8_t> enabled) override;
   BusStatus status() const override;
 
   // One command and one feedback frame per board per bus cycle.
@@ -47,6 +51,7 @@ class CustomCanBus final : public ActuatorBus {
     std::array<std::int32_t, 31> targets{};
     std::uint8_t sequence = 0;
     bool reset_pending = false;
+    bool wanted = false;               // enabled by the controller (every channel on)
     bool awaiting_reset_echo = false;  // status is stale until the board echoes the reset
     std::uint8_t reset_sequence = 0;
     bool heard = false;

@@ -2,6 +2,7 @@
 
 #include <modbus/modbus.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <ctime>
@@ -163,7 +164,31 @@ void ModbusBus::set_enabled(bool enabled) {
   if (enabled && !enabled_.load(std::memory_order_relaxed)) {
     epoch_.fetch_add(1, std::memory_order_relaxed);
   }
+  for (auto& b : boards_) b->wanted.store(enabled, std::memory_order_relaxed);
   enabled_.store(enabled, std::memory_order_release);
+}
+
+void ModbusBus::set_actuators_enabled(std::span<std::uint8_t> enabled) {
+  const bool any = std::any_of(enabled.begin(), enabled.end(), [](auto on) { return on != 0; });
+  if (!any || !enabled_.load(std::memory_order_relaxed)) {
+    set_enabled(any);
+    if (!any) return;
+  }
+  bool rising = false;
+  for (auto& b : boards_) {
+    bool on = true;
+    for (const std::size_t a : b->actuator) {
+      if (a != SIZE_MAX) on = on && a < enabled.size() && enabled[a] != 0;
+    }
+    rising = rising || (on && !b->wanted.load(std::memory_order_relaxed));
+    b->wanted.store(on, std::memory_order_release);
+    for (const std::size_t a : b->actuator) {
+      if (!on && a < enabled.size()) enabled[a] = 0;  // switched off with its board
+    }
+  }
+  // Bumpless, as on a bus enable: no command written before reaches a board
+  // switched on again.
+  if (rising) epoch_.fetch_add(1, std::memory_order_relaxed);
 }
 
 BusStatus ModbusBus::status() const {
@@ -374,7 +399,7 @@ void ModbusBus::judge_board(Board& board, std::int64_t now_ns, std::uint16_t sta
         reason = board.silent.c_str();
         break;
     }
-  } else if (answered && (status & modbus_map::kStatusWatchdog) != 0 && was_enabled_ &&
+  } else if (answered && (status & modbus_map::kStatusWatchdog) != 0 && board.was_on &&
              !board.reset_pending) {
     reason = board.watchdog.c_str();
   } else if (answered && (status & modbus_map::kStatusFault) != 0 && !board.reset_pending) {
@@ -386,7 +411,7 @@ void ModbusBus::judge_board(Board& board, std::int64_t now_ns, std::uint16_t sta
   }
   board.reason.store(reason, std::memory_order_release);
   const bool target_late =
-      was_enabled_ &&
+      board.was_on &&
       static_cast<double>(now_ns - board.last_target_ok_ns) * 1e-9 > timing_.board_timeout_s;
   board.stale.store(reason != nullptr || target_late, std::memory_order_release);
 }
@@ -398,16 +423,17 @@ void ModbusBus::io_loop() {
     std::int64_t now = monotonic_ns();
     const bool enabled = enabled_.load(std::memory_order_acquire);
     io_epoch_ = epoch_.load(std::memory_order_relaxed);
-    if (enabled && !was_enabled_) {
-      for (auto& b : boards_) {
+    for (auto& b : boards_) {
+      const bool on = enabled && b->wanted.load(std::memory_order_acquire);
+      if (on && !b->was_on) {
         b->reset_pending = true;  // clear a latched watchdog on the enable edge
         b->last_target_ok_ns = now;
       }
+      b->was_on = on;
     }
-    was_enabled_ = enabled;
     commands_.consume(current_);
     if (connect(now)) {
-      for (auto& b : boards_) serve_board(*b, enabled, monotonic_ns());
+      for (auto& b : boards_) serve_board(*b, b->was_on, monotonic_ns());
     } else {
       for (auto& b : boards_) {
         if (b->last_failure == Failure::kNone) b->last_failure = Failure::kLink;

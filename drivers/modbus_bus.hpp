@@ -68,6 +68,10 @@ class ModbusBus final : public ActuatorBus {
   void read(const TickTime& time, std::span<double> positions) override;
   void write(const TickTime& time, std::span<const double> positions) override;
   void set_enabled(bool enabled) override;
+  // CONTROL is per board (unit): a board is on only while every actuator on
+  // it is; a board switched off gets CONTROL = 0 and no targets, as on a
+  // disabled bus, while the others run.
+  void set_actuators_enabled(std::span<std::uint8_t> enabled) override;
   BusStatus status() const override;
 
   // True when the actuator's board has not confirmed a target write within
@@ -99,6 +103,7 @@ class ModbusBus final : public ActuatorBus {
     std::int64_t last_disable_ns = 0;
     bool reset_pending = false;
     bool disable_confirmed = false;
+    bool was_on = false;  // enabled on the previous cycle
     Failure last_failure = Failure::kNone;
     // Static reasons, built once (BusStatus::reason must outlive the call).
     std::string silent, exception, bad_reply, link, fault, watchdog;
@@ -106,6 +111,7 @@ class ModbusBus final : public ActuatorBus {
     std::atomic<const char*> reason{nullptr};
     std::atomic<bool> stale{true};
     std::atomic<bool> answered{false};
+    std::atomic<bool> wanted{false};  // enabled by the controller (every channel on)
   };
 
   void io_loop();
@@ -138,7 +144,6 @@ class ModbusBus final : public ActuatorBus {
   std::int64_t last_connect_attempt_ns_ = -1'000'000'000'000;
   Command current_;
   Feedback measured_;
-  bool was_enabled_ = false;
   std::uint32_t io_epoch_ = 0;
 
   struct AtomicStats {

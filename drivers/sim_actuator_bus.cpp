@@ -22,6 +22,7 @@ SimActuatorBus::SimActuatorBus(std::string name, const std::vector<sim::ServoPla
       transfer_ns_[i] = static_cast<std::int64_t>(timing.arrival_s[i] * 1e9 + 0.5);
     }
   }
+  plant_enabled_.assign(plants.size(), 0);
 }
 
 void SimActuatorBus::read(const TickTime& time, std::span<double> positions) {
@@ -47,14 +48,28 @@ void SimActuatorBus::write(const TickTime& time, std::span<const double> positio
     return;
   }
   for (std::size_t i = 0; i < plants_.size() && i < positions.size(); ++i) {
-    plants_[i].command(time.now_ns + transfer_ns_[i], positions[i]);
+    if (plant_enabled_[i] != 0) plants_[i].command(time.now_ns + transfer_ns_[i], positions[i]);
   }
   ++frames_;
 }
 
 void SimActuatorBus::set_enabled(bool enabled) {
   enabled_.store(enabled, std::memory_order_relaxed);
-  for (auto& p : plants_) p.set_enabled(enabled);
+  for (std::size_t i = 0; i < plants_.size(); ++i) {
+    plant_enabled_[i] = enabled ? 1 : 0;
+    plants_[i].set_enabled(enabled);
+  }
+}
+
+void SimActuatorBus::set_actuators_enabled(std::span<std::uint8_t> enabled) {
+  bool any = false;
+  for (std::size_t i = 0; i < plants_.size(); ++i) {
+    const bool on = i < enabled.size() && enabled[i] != 0;
+    plant_enabled_[i] = on ? 1 : 0;
+    plants_[i].set_enabled(on);
+    any = any || on;
+  }
+  enabled_.store(any, std::memory_order_relaxed);
 }
 
 BusStatus SimActuatorBus::status() const {

@@ -24,6 +24,7 @@ class SimActuatorBus final : public ActuatorBus {
   void read(const TickTime& time, std::span<double> positions) override;
   void write(const TickTime& time, std::span<const double> positions) override;
   void set_enabled(bool enabled) override;
+  void set_actuators_enabled(std::span<std::uint8_t> enabled) override;
   BusStatus status() const override;
 
   // Fault injection (thread-safe). `reason` must be a static string.
@@ -43,7 +44,8 @@ class SimActuatorBus final : public ActuatorBus {
   std::vector<sim::ServoPlant> plants_;
   std::vector<std::int64_t> transfer_ns_;  // per plant: bus time to reach it
   BusTiming timing_;
-  std::atomic<bool> enabled_{false};
+  std::atomic<bool> enabled_{false};  // any plant enabled
+  std::vector<std::uint8_t> plant_enabled_;
   std::atomic<const char*> fault_reason_{nullptr};
   std::uint64_t frames_ = 0;
   std::uint64_t writes_while_disabled_ = 0;

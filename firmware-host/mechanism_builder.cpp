@@ -52,6 +52,10 @@ std::size_t file_index(const RigConfig& rig, const std::string& name) {
   return k;
 }
 
+const char* reaction_name(FaultReaction r) {
+  return r == FaultReaction::kRelax ? "relax" : r == FaultReaction::kHold ? "hold" : "rest";
+}
+
 }  // namespace
 
 face::MandibleAxes load_mandible_axes(const HeadConfig& head) {
@@ -86,6 +90,14 @@ void build_mechanism(const HeadConfig& head, const RigConfig& rig,
       throw ConfigError(a.map.where + ": rig.actuators '" + s.actuator +
                         "'.map: expected no `map` for a strut of the mandible mechanism (" +
                         s.where + "), found one");
+    }
+    // The struts move together by IK, so in FAULT they react together.
+    const ActuatorConfig& first = rig.actuators[file_index(rig, cfg.struts.front().actuator)];
+    if (a.model.fault_reaction != first.model.fault_reaction) {
+      throw ConfigError(a.fault_reaction_where + ": rig.actuators '" + s.actuator +
+                        "'.fault_reaction: expected the same reaction as the mechanism's first " +
+                        "strut '" + first.model.name + "' (" + first.fault_reaction_where +
+                        "), found " + reaction_name(a.model.fault_reaction));
     }
     MandibleStrut strut;
     strut.actuator = file_order[k];

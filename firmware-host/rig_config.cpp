@@ -89,7 +89,9 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
     cfg.map.where = cfg.where;
   }
 
+  cfg.fault_reaction_where = cfg.where;
   if (auto r = node.get("fault_reaction")) {
+    cfg.fault_reaction_where = r->where();
     const std::string reaction = r->string();
     if (reaction == "relax") {
       m.fault_reaction = FaultReaction::kRelax;

@@ -22,8 +22,9 @@ struct ActuatorConfig {
   bool has_map = false;
   sim::ServoPlantParams plant;  // the simulated twin
   std::string where;
-  std::string plant_where;     // position of its `plant` block, or of the actuator
-  std::string encoding_where;  // position of its `encoding` block, or of the actuator
+  std::string plant_where;           // position of its `plant` block, or of the actuator
+  std::string encoding_where;        // position of its `encoding` block, or of the actuator
+  std::string fault_reaction_where;  // position of its `fault_reaction`, or of the actuator
 };
 
 // A coupled limit as written: Σ coeff · signal (YAML units) <= max, over

@@ -223,8 +223,10 @@ int run_command(const RunOptions& options) {
       }
     }
     if ((state == SafetyState::kFault || state == SafetyState::kEstop) && !fault_at) fault_at = t;
-    if (fault_at && t - *fault_at >= kFaultLingerSeconds) break;
-    if (shutdown && state == SafetyState::kIdle) break;
+    // While FAULT holds or rests actuators the loop keeps commanding them,
+    // until the run ends (duration, signal).
+    if (fault_at && t - *fault_at >= kFaultLingerSeconds && !controller.fault_holding()) break;
+    if (shutdown && (state == SafetyState::kIdle || state == SafetyState::kFault)) break;
     if (tty && monotonic_ns() - last_status > 100'000'000) {
       last_status = monotonic_ns();
       std::printf("\r\033[K%s", format_status(stats, state, t, fault_text).c_str());
@@ -233,6 +235,7 @@ int run_command(const RunOptions& options) {
   }
   stop.store(true);
   rt_thread.join();
+  controller.release_outputs();  // nothing holds once the loop has stopped
   if (player) player->stop();
   if (puppeteer) puppeteer->stop();
   if (writer) writer->finish();

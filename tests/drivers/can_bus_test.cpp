@@ -3,6 +3,8 @@
 // host first (read, write), then the devices. Bounds are docs/PROTOCOLS.md's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -176,6 +178,26 @@ TEST_F(Cia402, ReEnablingResetsDriveFaultsAndWalksBackToOperationEnabled) {
   EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
 }
 
+TEST_F(Cia402, ADriveSwitchedOffAloneGetsDisableVoltageWhileTheOthersRun) {
+  enable();
+  rig_->until([] { return false; }, 200, 10 * kDeg);
+  std::array<std::uint8_t, 3> on{1, 0, 1};
+  bus_->set_actuators_enabled(on);
+  rig_->until([] { return false; }, 300, -10 * kDeg);
+  EXPECT_EQ(drives_[1]->state(), cia402::DriveState::kSwitchOnDisabled);
+  EXPECT_NEAR(drives_[1]->position(), 10 * kDeg, 0.01 * kDeg) << "torque off: not commanded";
+  for (const std::size_t i : {0u, 2u}) {
+    EXPECT_EQ(drives_[i]->state(), cia402::DriveState::kOperationEnabled);
+    EXPECT_NEAR(drives_[i]->position(), -10 * kDeg, 0.01 * kDeg);
+  }
+  EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
+  // Switched on again: the drive walks back, holding where it is until enabled.
+  on = {1, 1, 1};
+  bus_->set_actuators_enabled(on);
+  ASSERT_GT(rig_->until([&] { return all_enabled(); }, 200, -10 * kDeg), 0);
+  EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
+}
+
 TEST_F(Cia402, AFullTxQueueRefusesFramesWithoutBlockingAndThenFaults) {
   MemoryCanLink tiny(4);  // nobody drains it
   Cia402Bus bus("can1", tiny.host(), rotary(3), std::vector<double>(3, 0.0), options_);
@@ -287,6 +309,33 @@ TEST_F(CustomCan, ABoardFaultAndCorruptFramesAreToldApart) {
   boards_[1]->inject_fault();
   ASSERT_GT(rig_->until([&] { return bus_->status().fault; }, 5), 0);
   EXPECT_STREQ(bus_->status().reason, "can0 board 2: reports a fault");
+}
+
+TEST_F(CustomCan, ABoardWithAnActuatorSwitchedOffIsDisabledWhileTheOthersRun) {
+  bus_->set_enabled(true);
+  rig_->until([] { return false; }, 100, 3 * kDeg);
+  // Address 5 (board 2, channel 1) relaxes: the enable flag is per board.
+  std::array<std::uint8_t, 12> on{};
+  on.fill(1);
+  on[4] = 0;
+  bus_->set_actuators_enabled(on);
+  // Its board-mates are switched off with it, and the flags say so.
+  EXPECT_EQ(on[3], 0);
+  EXPECT_EQ(on[5], 0);
+  EXPECT_EQ(std::count(on.begin(), on.end(), std::uint8_t{1}), 9);
+  const std::uint64_t board2_commands = boards_[1]->commands();
+  rig_->until([] { return false; }, 200, 8 * kDeg);
+  EXPECT_FALSE(boards_[1]->enabled());
+  EXPECT_GT(boards_[1]->commands(), board2_commands) << "its frames (heartbeat) go on";
+  EXPECT_FALSE(boards_[1]->watchdog_tripped());
+  for (std::size_t ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(boards_[1]->position(ch), 3 * kDeg, 0.05 * kDeg) << ch;
+  }
+  for (const std::size_t b : {0u, 2u, 3u}) {
+    EXPECT_TRUE(boards_[b]->enabled());
+    EXPECT_NEAR(boards_[b]->position(0), 8 * kDeg, 0.01 * kDeg);
+  }
+  EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
 }
 
 TEST_F(CustomCan, DisabledSendsNothingAndTheBoardsWatchdogDropsThem) {

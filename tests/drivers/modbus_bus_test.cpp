@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -277,6 +278,30 @@ TEST_F(ModbusTcp, NoTargetIsSentOnceDisabledAsInEstop) {
   EXPECT_EQ(board2_.target_writes(), w2);
   EXPECT_EQ(board1_.target_writes_while_disabled() + board2_.target_writes_while_disabled(), 0u);
   EXPECT_FALSE(bus_->status().fault);
+}
+
+TEST_F(ModbusTcp, ABoardSwitchedOffAloneGetsNoTargetsWhileTheOtherRuns) {
+  bus_->set_enabled(true);
+  start_tick();
+  ASSERT_GT(wait_for([&] { return board2_.target_writes() > 50; }, 3000ms), 0);
+  // FAULT with a relax actuator on unit 2 (address 9), hold ones elsewhere:
+  // its board-mates (addresses 10..14) are switched off with it.
+  std::array<std::uint8_t, 14> on{};
+  on.fill(1);
+  on[8] = 0;
+  bus_->set_actuators_enabled(on);
+  EXPECT_EQ(std::count(on.begin(), on.begin() + 8, std::uint8_t{1}), 8);
+  EXPECT_EQ(std::count(on.begin() + 8, on.end(), std::uint8_t{0}), 6);
+  ASSERT_GT(wait_for([&] { return !board2_.enabled(); }, 100ms), 0)
+      << "board 2 not disabled within 100 ms";
+  const std::uint64_t w1 = board1_.target_writes(), w2 = board2_.target_writes();
+  std::this_thread::sleep_for(200ms);
+  EXPECT_EQ(board2_.target_writes(), w2);
+  EXPECT_GT(board1_.target_writes(), w1 + 50) << "board 1 is still commanded";
+  EXPECT_TRUE(board1_.enabled());
+  EXPECT_FALSE(board1_.watchdog_tripped());
+  EXPECT_EQ(board2_.target_writes_while_disabled(), 0u);
+  EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
 }
 
 TEST_F(ModbusTcp, ACommandWrittenBeforeADisableIsNeverSentAfterTheNextEnable) {

@@ -106,18 +106,30 @@ TEST_F(ControllerFaults, EstopEdgeStopsTransmissionOnTheTickItIsRead) {
   EXPECT_EQ(head_.controller().state(), SafetyState::kIdle);
 }
 
-TEST_F(ControllerFaults, BusFaultDisablesEveryBusOnTheNextTickWithItsReason) {
+TEST_F(ControllerFaults, BusFaultDisablesItsBusOnTheNextTickWithItsReason) {
+  // The default rig's jaw struts hold (docs/SAFETY.md, "Fault reaction"):
+  // can0 stays on for them, everything else relaxes.
   head_.hardware().find("modbus0")->inject_fault("board 3 not answering");
   head_.step(head_.period());
   EXPECT_EQ(head_.controller().state(), SafetyState::kFault);
-  EXPECT_FALSE(head_.hardware().io.power_enabled());
-  for (auto& bus : head_.hardware().buses) EXPECT_FALSE(bus->enabled());
+  EXPECT_TRUE(head_.hardware().io.power_enabled());
+  EXPECT_FALSE(head_.hardware().find("modbus0")->enabled());
+  EXPECT_TRUE(head_.hardware().find("can0")->enabled());
+  const ControllerModel& m = head_.model();
+  const BusModel& can = m.buses[0];
+  ASSERT_EQ(can.name, "can0");
+  for (std::size_t a = can.first; a < can.first + can.count; ++a) {
+    EXPECT_EQ(head_.hardware().find("can0")->plant(a - can.first).enabled(),
+              m.actuators[a].fault_reaction != FaultReaction::kRelax)
+        << m.actuators[a].name;
+  }
   const TransitionEvent ev = last_event();
   EXPECT_EQ(ev.reason, TransitionReason::kBusFault);
   EXPECT_STREQ(ev.detail, "board 3 not answering");
-  const std::uint64_t before = frames_sent();
+  const std::uint64_t before = head_.hardware().find("modbus0")->status().frames_sent;
   run_sending(0.2);
-  EXPECT_EQ(frames_sent(), before);
+  EXPECT_EQ(head_.hardware().find("modbus0")->status().frames_sent, before);
+  EXPECT_EQ(head_.hardware().find("modbus0")->writes_while_disabled(), 0u);
 }
 
 TEST_F(ControllerFaults, OverrunStormFaultsAfterTheConfiguredCount) {

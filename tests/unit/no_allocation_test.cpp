@@ -106,6 +106,21 @@ TEST(NoAllocation, TicksInEveryStateAllocateNothing) {
   EXPECT_EQ(head.controller().state(), SafetyState::kFault);
   head.hardware().find("can0")->clear_fault();
   head.controller().request_reset();
+  run(0.01);
+  EXPECT_EQ(head.controller().state(), SafetyState::kIdle);
+  // FAULT that holds the jaw (its struts hold): can0 stays driven after a
+  // modbus0 fault, then relaxes when can0 faults too.
+  head.controller().request_enable();
+  run(1.5);
+  head.hardware().find("modbus0")->inject_fault("board 3 not answering");
+  run(0.3);
+  EXPECT_TRUE(head.hardware().find("can0")->enabled());
+  head.hardware().find("can0")->inject_fault("bus-off");
+  run(0.05);
+  EXPECT_FALSE(head.hardware().find("can0")->enabled());
+  head.hardware().find("can0")->clear_fault();
+  head.hardware().find("modbus0")->clear_fault();
+  head.controller().request_reset();
   head.controller().request_enable();
   run(1.5);
   for (int k = 1; k <= head.model().safety.overrun_fault_count; ++k) {
