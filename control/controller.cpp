@@ -1,6 +1,7 @@
 #include "control/controller.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 
@@ -276,8 +277,9 @@ bool Controller::limit_actuators(double dt, LimitFlags* flags) {
       breach = true;
       ++counters_.limit_breaches;
     }
-    for (int bit = 0; bit < kLimitFlagCount; ++bit) {
-      if ((flags[i] & (1u << bit)) != 0) ++counters_.limit_hits[i][static_cast<std::size_t>(bit)];
+    // Visit only the set bits: most ticks set none.
+    for (unsigned bits = flags[i] & ((1u << kLimitFlagCount) - 1u); bits != 0; bits &= bits - 1) {
+      ++counters_.limit_hits[i][static_cast<std::size_t>(std::countr_zero(bits))];
     }
   }
   return breach;

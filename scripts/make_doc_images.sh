@@ -21,3 +21,13 @@ cp "$tmp/verify/lip_corner_up_l.svg" docs/images/verify/
 # An e-stop at 3 s: outputs drop on the tick that reads it (exit code 3 by design).
 "$facectl" run --duration 5 --inject estop@3 --record "$tmp/estop.csv" --quiet || [ $? -eq 3 ]
 "$facectl" plot "$tmp/estop.csv" --actuator jaw_digastric --out docs/images/estop
+
+# facectl simulate with --render: one frame of the side-by-side pair (left the
+# full face model, right the skin driven by the simulated actuators through the
+# inverse mapping) and the digastric strut's plot of command, simulated
+# position and limits.
+"$facectl" simulate --rig config/rigs/default.yaml --show config/shows/demo.yaml \
+  --out "$tmp/simulate" --duration 6 --render --quiet
+mkdir -p docs/images/simulate
+cp "$tmp/simulate/frames/frame_00100.png" docs/images/simulate/render_pair.png
+cp "$tmp/simulate/plots/jaw_digastric.svg" docs/images/simulate/
