@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <vector>
 
 #include "control/capacity.hpp"
 
@@ -15,9 +16,8 @@ class LinearMapping {
   LinearMapping(std::size_t actuators, std::size_t signals);
 
   void set_offset(std::size_t actuator, double offset_si) { offsets_[actuator] = offset_si; }
-  void set_gain(std::size_t actuator, std::size_t signal, double gain_si) {
-    gains_(actuator, signal) = gain_si;
-  }
+  // Builds the model (may allocate); not for the tick.
+  void set_gain(std::size_t actuator, std::size_t signal, double gain_si);
   double gain(std::size_t actuator, std::size_t signal) const { return gains_(actuator, signal); }
   double offset(std::size_t actuator) const { return offsets_[actuator]; }
   std::size_t actuators() const { return gains_.rows(); }
@@ -28,8 +28,18 @@ class LinearMapping {
              std::array<double, kMaxActuators>& positions) const;
 
  private:
+  // The non-zero gains as well, in (actuator, signal) order: an actuator reads
+  // a few of the face's signals, so apply() sums these instead of multiplying
+  // the mostly-zero matrix (26 × 45 for the default rig, 41 non-zero).
+  struct Term {
+    std::size_t actuator;
+    std::size_t signal;
+    double gain;
+  };
+
   Eigen::MatrixXd gains_;    // actuators x signals
   Eigen::VectorXd offsets_;  // actuators
+  std::vector<Term> terms_;
 };
 
 }  // namespace facectl
