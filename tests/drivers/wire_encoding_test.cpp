@@ -165,6 +165,7 @@ TEST(CustomCanEncoding, Int32RoundTripsThroughFourByteFields) {
   EXPECT_EQ(f.data[8], 0xFF);
   EXPECT_EQ(f.data[9], 0xFF);
   EXPECT_NEAR(t.board.position(0), 12.5 * kDeg, 0.01 * kDeg);
+  EXPECT_NEAR(t.board.position(1), -2.5e-3, 0.01e-3);  // the peer decoded the offset too
   EXPECT_NEAR(t.meas[0], 12.5 * kDeg, 0.01 * kDeg);
   EXPECT_NEAR(t.meas[1], -2.5e-3, 0.01e-3);
 }
