@@ -40,6 +40,15 @@ Cia402Bus::Cia402Bus(std::string name, CanTransport& transport,
                                     std::to_string(a.address) + " (" + a.name + ")");
       }
     }
+    // Drive counts come from the bus (counts_per_rev, counts_per_mm): an
+    // actuator encoding here would be ignored, so it is refused.
+    const ActuatorEncoding plain;
+    if (a.encoding.raw != plain.raw || a.encoding.scale != plain.scale ||
+        a.encoding.offset != plain.offset) {
+      throw std::invalid_argument("bus " + name_ + ": actuator " + a.name +
+                                  ": a CiA 402 drive takes its counts from the bus "
+                                  "(counts_per_rev, counts_per_mm), not from `encoding`");
+    }
     auto d = std::make_unique<Drive>();
     d->node = a.address;
     d->counts_per_si = a.kind == ActuatorKind::kRotary ? options_.rotary_counts_per_rad

@@ -34,8 +34,11 @@ CustomCanBus::CustomCanBus(std::string name, CanTransport& transport,
     }
     const auto ch = static_cast<std::size_t>((a.address - 1) % per_frame);
     addresses_.push_back(a.address);
-    units_.push_back(a.kind == ActuatorKind::kRotary ? modbus_map::Unit::kRotary
-                                                     : modbus_map::Unit::kLinear);
+    try {
+      encodings_.push_back(custom_can::field_encoding(a.kind, a.encoding, options_.width));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("bus " + name_ + ": actuator " + a.name + ": " + e.what());
+    }
     Board* board = nullptr;
     for (auto& b : boards_) {
       if (b->node == node) board = b.get();
@@ -56,7 +59,7 @@ CustomCanBus::CustomCanBus(std::string name, CanTransport& transport,
     }
     board->actuator[ch] = i;
     board->channels = std::max(board->channels, static_cast<int>(ch) + 1);
-    board->targets[ch] = custom_can::to_counts(units_[i], options_.width, initial_positions[i]);
+    board->targets[ch] = custom_can::to_field(encodings_[i], initial_positions[i]);
   }
 }
 
@@ -87,8 +90,8 @@ void CustomCanBus::read(const TickTime& time, std::span<double> positions) {
     for (int ch = 0; ch < board->channels; ++ch) {
       const std::size_t a = board->actuator[static_cast<std::size_t>(ch)];
       if (a != SIZE_MAX) {
-        positions_[a] = custom_can::from_counts(units_[a], options_.width,
-                                                fb->positions[static_cast<std::size_t>(ch)]);
+        positions_[a] = custom_can::from_field(encodings_[a], options_.width,
+                                               fb->positions[static_cast<std::size_t>(ch)]);
       }
     }
     if (board->awaiting_reset_echo &&
@@ -129,8 +132,8 @@ void CustomCanBus::write(const TickTime& time, std::span<const double> positions
     for (int ch = 0; ch < b.channels; ++ch) {
       const std::size_t a = b.actuator[static_cast<std::size_t>(ch)];
       if (a != SIZE_MAX && a < positions.size()) {
-        b.targets[static_cast<std::size_t>(ch)] = custom_can::to_counts(
-            units_[a], options_.width, b.wanted ? positions[a] : positions_[a]);
+        b.targets[static_cast<std::size_t>(ch)] =
+            custom_can::to_field(encodings_[a], b.wanted ? positions[a] : positions_[a]);
       }
     }
     custom_can::Command c{b.node, ++b.sequence,

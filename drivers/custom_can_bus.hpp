@@ -64,7 +64,7 @@ class CustomCanBus final : public ActuatorBus {
   CanTransport& transport_;
   CanBusOptions options_;
   std::vector<std::unique_ptr<Board>> boards_;
-  std::vector<modbus_map::Unit> units_;
+  std::vector<WireEncoding> encodings_;  // per actuator
   std::vector<double> positions_;
   std::vector<int> addresses_;  // for the budget
   CanBusHealth health_;

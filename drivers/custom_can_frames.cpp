@@ -1,28 +1,45 @@
 #include "drivers/custom_can_frames.hpp"
 
 #include <algorithm>
-#include <cmath>
+#include <stdexcept>
 
 namespace facectl::custom_can {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-double scale(modbus_map::Unit unit, Width width) {
-  const double step = width == Width::kInt16 ? 0.01 : 0.0001;  // degree or mm per count
-  return unit == modbus_map::Unit::kRotary ? step * kPi / 180.0 : step * 1e-3;
+ActuatorKind kind_of(modbus_map::Unit unit) {
+  return unit == modbus_map::Unit::kRotary ? ActuatorKind::kRotary : ActuatorKind::kLinear;
 }
 }  // namespace
 
+WireEncoding field_encoding(ActuatorKind kind, const ActuatorEncoding& encoding, Width width) {
+  if (width == Width::kInt16 && encoding.raw == ActuatorEncoding::Raw::kInt32) {
+    throw std::invalid_argument(
+        "custom CAN: raw int32 does not fit a 2-byte (values: int16) field");
+  }
+  return WireEncoding(kind, encoding);
+}
+
+std::int32_t to_field(const WireEncoding& encoding, double si) {
+  return static_cast<std::int32_t>(
+      encoding.encode(si));  // uint16 fits; 2-byte fields keep its bits
+}
+
+double from_field(const WireEncoding& encoding, Width width, std::int32_t field) {
+  return width == Width::kInt16 ? encoding.decode_u16(static_cast<std::uint16_t>(field))
+                                : encoding.decode(field);
+}
+
+ActuatorEncoding default_encoding(Width width) {
+  if (width == Width::kInt16) return {};
+  return {ActuatorEncoding::Raw::kInt32, 10000.0, 0.0};
+}
+
 std::int32_t to_counts(modbus_map::Unit unit, Width width, double si) {
-  const double limit = width == Width::kInt16 ? 32767.0 : 2147483647.0;
-  double c = std::nearbyint(si / scale(unit, width));
-  if (!(c >= -limit)) c = -limit;
-  if (c > limit) c = limit;
-  return static_cast<std::int32_t>(c);
+  return to_field(WireEncoding(kind_of(unit), default_encoding(width)), si);
 }
 
 double from_counts(modbus_map::Unit unit, Width width, std::int32_t counts) {
-  return static_cast<double>(counts) * scale(unit, width);
+  return from_field(WireEncoding(kind_of(unit), default_encoding(width)), width, counts);
 }
 
 int channels_per_frame(bool fd, Width width) {

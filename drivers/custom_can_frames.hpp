@@ -6,6 +6,7 @@
 
 #include "drivers/can_frame.hpp"
 #include "drivers/modbus_register_map.hpp"
+#include "drivers/wire_encoding.hpp"
 
 // facectl's frame layout for custom actuator boards (docs/PROTOCOLS.md,
 // "CAN: custom boards"), in the style of ODrive's CANSimple and moteus:
@@ -24,8 +25,19 @@ inline constexpr std::uint8_t kStatusWatchdog = 0x04;
 
 enum class Width : std::uint8_t { kInt16 = 2, kInt32 = 4 };
 
-// Scaling: int16 counts of 0.01 degree / 0.01 mm; int32 counts of 0.0001
-// degree / 0.0001 mm. Out-of-range values saturate.
+// Each channel's field carries its actuator's encoding (WireEncoding). A
+// 2-byte field takes raw int16 or uint16, a 4-byte field any raw type.
+// Throws std::invalid_argument for raw int32 in a 2-byte field (the rig
+// loader refuses it first, naming file:line:col).
+WireEncoding field_encoding(ActuatorKind kind, const ActuatorEncoding& encoding, Width width);
+// A field's value (as encode_command takes it) and back to SI; a 2-byte
+// field is read per the raw type (int16 sign-extends, uint16 not).
+std::int32_t to_field(const WireEncoding& encoding, double si);
+double from_field(const WireEncoding& encoding, Width width, std::int32_t field);
+
+// The encoding of a field whose actuator names none: int16 counts of 0.01
+// degree / 0.01 mm; int32 counts of 0.0001 degree / 0.0001 mm.
+ActuatorEncoding default_encoding(Width width);
 std::int32_t to_counts(modbus_map::Unit unit, Width width, double si);
 double from_counts(modbus_map::Unit unit, Width width, std::int32_t counts);
 

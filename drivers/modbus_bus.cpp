@@ -97,8 +97,13 @@ ModbusBus::ModbusBus(std::string name, ModbusEndpoint endpoint,
   for (std::size_t i = 0; i < count_; ++i) {
     const ActuatorModel& a = actuators[i];
     const modbus_map::Placement p = modbus_map::place(a.address);  // throws naming the address
-    units_.push_back(a.kind == ActuatorKind::kRotary ? modbus_map::Unit::kRotary
-                                                     : modbus_map::Unit::kLinear);
+    const auto unit =
+        a.kind == ActuatorKind::kRotary ? modbus_map::Unit::kRotary : modbus_map::Unit::kLinear;
+    try {
+      encodings_.push_back(modbus_map::channel_encoding(unit, a.encoding));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("bus " + name_ + ": actuator " + a.name + ": " + e.what());
+    }
     std::size_t b = 0;
     while (b < boards_.size() && boards_[b]->unit != p.unit) ++b;
     if (b == boards_.size()) {
@@ -341,7 +346,7 @@ void ModbusBus::serve_board(Board& board, bool enabled, std::int64_t now_ns) {
         const std::size_t a = board.actuator[static_cast<std::size_t>(ch)];
         // An unused channel gets 0 (its board ignores it).
         regs[2 + static_cast<std::size_t>(ch)] =
-            a == SIZE_MAX ? 0 : modbus_map::to_register(units_[a], current_.positions[a]);
+            a == SIZE_MAX ? 0 : encodings_[a].encode_u16(current_.positions[a]);
       }
       if (transact(board, [&] {
             return modbus_write_registers(ctx_, registers_.control, 2 + board.channels,
@@ -372,8 +377,7 @@ void ModbusBus::serve_board(Board& board, bool enabled, std::int64_t now_ns) {
     for (int ch = 0; ch < board.channels; ++ch) {
       const std::size_t a = board.actuator[static_cast<std::size_t>(ch)];
       if (a == SIZE_MAX) continue;
-      measured_.positions[a] = modbus_map::from_register(
-          units_[a],
+      measured_.positions[a] = encodings_[a].decode_u16(
           in[static_cast<std::size_t>(modbus_map::kIrPosition0) + static_cast<std::size_t>(ch)]);
     }
   }

@@ -127,7 +127,7 @@ class ModbusBus final : public ActuatorBus {
   ModbusTiming timing_;
   modbus_map::Addresses registers_;
   std::size_t count_ = 0;
-  std::vector<modbus_map::Unit> units_;  // per actuator
+  std::vector<WireEncoding> encodings_;  // per actuator
   std::vector<std::size_t> board_of_;    // per actuator
   std::vector<std::unique_ptr<Board>> boards_;
 

@@ -1,28 +1,25 @@
 #include "drivers/modbus_register_map.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 namespace facectl::modbus_map {
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-// SI units per count.
-double scale(Unit unit) {
-  return unit == Unit::kRotary ? 0.01 * kPi / 180.0 : 0.01e-3;
+WireEncoding channel_encoding(Unit unit, const ActuatorEncoding& encoding) {
+  if (encoding.raw == ActuatorEncoding::Raw::kInt32) {
+    throw std::invalid_argument(
+        "Modbus actuator board: raw int32 does not fit its one register per channel");
+  }
+  return WireEncoding(unit == Unit::kRotary ? ActuatorKind::kRotary : ActuatorKind::kLinear,
+                      encoding);
 }
-}  // namespace
 
 std::uint16_t to_register(Unit unit, double si) {
-  double counts = std::nearbyint(si / scale(unit));
-  if (!(counts >= -32767.0)) counts = -32767.0;  // also catches NaN: saturate low, never wrap
-  if (counts > 32767.0) counts = 32767.0;
-  return static_cast<std::uint16_t>(static_cast<std::int16_t>(counts));
+  return channel_encoding(unit, {}).encode_u16(si);
 }
 
 double from_register(Unit unit, std::uint16_t reg) {
-  return static_cast<double>(static_cast<std::int16_t>(reg)) * scale(unit);
+  return channel_encoding(unit, {}).decode_u16(reg);
 }
 
 Placement place(int address) {

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "drivers/wire_encoding.hpp"
+
 // The register map of facectl's Modbus actuator board (docs/PROTOCOLS.md,
 // "Modbus actuator board"). Pure encode/decode: shared by the ModbusBus driver
 // and the simulated board, so both sides speak exactly the documented layout.
@@ -17,7 +19,7 @@ inline constexpr int kChannelsPerBoard = 8;
 // Holding registers (function 0x10 write, 0x03 read).
 inline constexpr int kHrControl = 0;      // bit 0 enable outputs, bit 1 fault reset
 inline constexpr int kHrHeartbeat = 1;    // host command counter; must change within the watchdog
-inline constexpr int kHrTarget0 = 2;      // int16 target of channel 0..7
+inline constexpr int kHrTarget0 = 2;      // raw target of channel 0..7
 inline constexpr int kHrWatchdogMs = 10;  // board watchdog, 1..65535 ms, written on connect
 inline constexpr int kHoldingCount = 11;
 
@@ -26,7 +28,7 @@ inline constexpr int kIrStatus = 0;         // bit 0 enabled, bit 1 fault, bit 2
 inline constexpr int kIrFaultCode = 1;      // FaultCode
 inline constexpr int kIrHeartbeatEcho = 2;  // last heartbeat the board accepted
 inline constexpr int kIrChannels = 3;       // channels fitted on this board
-inline constexpr int kIrPosition0 = 4;      // int16 measured position of channel 0..7
+inline constexpr int kIrPosition0 = 4;      // raw measured position of channel 0..7
 inline constexpr int kInputCount = 12;
 
 inline constexpr std::uint16_t kControlEnable = 0x0001;
@@ -54,9 +56,13 @@ struct Addresses {
 
 enum class Unit { kRotary, kLinear };
 
-// Scaling of target and position registers: 0.01 degree (rotary) or 0.01 mm
-// (linear) per count, as a two's-complement int16. Out-of-range values
-// saturate at ±32767 counts (±327.67 degrees or mm).
+// Target and position registers carry each actuator's encoding (one
+// register per channel, so raw int16 or uint16): WireEncoding::encode_u16 and
+// decode_u16. Throws std::invalid_argument for raw int32, which needs two
+// registers the map does not have (the rig loader refuses it first).
+WireEncoding channel_encoding(Unit unit, const ActuatorEncoding& encoding);
+// The default encoding: 0.01 degree (rotary) or 0.01 mm (linear) per count,
+// two's-complement int16, saturating at ±32767 counts (±327.67 deg or mm).
 std::uint16_t to_register(Unit unit, double si);
 double from_register(Unit unit, std::uint16_t reg);
 

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "firmware-host/plant_config.hpp"
+#include "firmware-host/rig_encoding_check.hpp"
 
 namespace facectl {
 namespace {
@@ -107,6 +108,7 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   if (auto e = node.get("encoding")) {
     e->expect_keys({"raw", "scale", "offset"});
     cfg.encoding_where = e->where();
+    cfg.has_encoding = true;
     const std::string raw = (*e)["raw"].string();
     if (raw == "int16") {
       m.encoding.raw = ActuatorEncoding::Raw::kInt16;
@@ -202,6 +204,9 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
     if (!addresses.insert({act.model.bus, act.model.address}).second) {
       a["address"].fail("an address not used by another actuator on bus " + act.model.bus);
     }
+    const auto bus = std::find_if(cfg.buses.begin(), cfg.buses.end(),
+                                  [&](const BusConfig& b) { return b.name == act.model.bus; });
+    check_actuator_encoding(act, *bus);
     cfg.actuators.push_back(std::move(act));
   }
   if (auto env = rig.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);

@@ -24,6 +24,7 @@ struct ActuatorConfig {
   std::string where;
   std::string plant_where;           // position of its `plant` block, or of the actuator
   std::string encoding_where;        // position of its `encoding` block, or of the actuator
+  bool has_encoding = false;         // an `encoding` block was written
   std::string fault_reaction_where;  // position of its `fault_reaction`, or of the actuator
 };
 

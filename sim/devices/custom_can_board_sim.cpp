@@ -17,13 +17,18 @@ CustomCanBoardSim::CustomCanBoardSim(int node, std::vector<BoardChannel> channel
   if (spec_.empty() || static_cast<int>(spec_.size()) > channels_per_frame(fd, width)) {
     throw std::invalid_argument("simulated CAN board: too many channels for one frame");
   }
-  for (const auto& c : spec_) plants_.emplace_back(c.plant, c.initial);
+  for (const auto& c : spec_) {
+    const ActuatorKind kind =
+        c.unit == modbus_map::Unit::kRotary ? ActuatorKind::kRotary : ActuatorKind::kLinear;
+    encodings_.push_back(field_encoding(kind, c.encoding, width));  // refuses int32 in int16
+    plants_.emplace_back(c.plant, c.initial);
+  }
 }
 
 void CustomCanBoardSim::send_feedback(std::int64_t now_ns) {
   std::int32_t counts[31];
   for (std::size_t i = 0; i < plants_.size(); ++i) {
-    counts[i] = to_counts(spec_[i].unit, width_, plants_[i].measured());
+    counts[i] = to_field(encodings_[i], plants_[i].measured());
   }
   CanFrame f;
   encode_command({node_, sequence_, 0}, width_,
@@ -55,7 +60,7 @@ void CustomCanBoardSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
     const std::uint8_t* p = &f.data[2 + i * w];
     const std::int32_t c = width_ == Width::kInt16 ? static_cast<std::int16_t>(get_u16(p))
                                                    : static_cast<std::int32_t>(get_u32(p));
-    if (enabled_) plants_[i].command(now_ns, from_counts(spec_[i].unit, width_, c));
+    if (enabled_) plants_[i].command(now_ns, from_field(encodings_[i], width_, c));
   }
   send_feedback(now_ns);
 }

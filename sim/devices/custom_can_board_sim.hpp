@@ -37,6 +37,7 @@ class CustomCanBoardSim final : public CanDevice {
   const int heartbeat_ms_;
   const int watchdog_ms_;
   std::vector<BoardChannel> spec_;
+  std::vector<WireEncoding> encodings_;  // per channel, from its rig actuator
   mutable std::mutex mutex_;
   std::vector<ServoPlant> plants_;
   bool enabled_ = false;

@@ -12,6 +12,7 @@ ModbusActuatorBoard::ModbusActuatorBoard(int unit, std::vector<BoardChannel> cha
     throw std::invalid_argument("simulated Modbus board: 1..8 channels");
   }
   for (const BoardChannel& c : spec_) {
+    encodings_.push_back(channel_encoding(c.unit, c.encoding));  // refuses int32
     plants_.emplace_back(c.plant, c.initial);
     targets_.push_back(c.initial);
   }
@@ -53,7 +54,7 @@ void ModbusActuatorBoard::apply_holding(std::int64_t now_ns, std::span<const std
   target_writes_.fetch_add(1);
   last_target_write_ns_.store(now_ns);
   for (std::size_t ch = 0; ch < plants_.size(); ++ch) {
-    targets_[ch] = from_register(spec_[ch].unit, hr[static_cast<std::size_t>(kHrTarget0) + ch]);
+    targets_[ch] = encodings_[ch].decode_u16(hr[static_cast<std::size_t>(kHrTarget0) + ch]);
     plants_[ch].command(now_ns, targets_[ch]);
   }
 }
@@ -70,7 +71,7 @@ void ModbusActuatorBoard::fill_inputs(std::int64_t now_ns, std::span<std::uint16
   ir[kIrChannels] = static_cast<std::uint16_t>(plants_.size());
   for (std::size_t ch = 0; ch < plants_.size(); ++ch) {
     ir[static_cast<std::size_t>(kIrPosition0) + ch] =
-        to_register(spec_[ch].unit, plants_[ch].measured());
+        encodings_[ch].encode_u16(plants_[ch].measured());
   }
 }
 

@@ -14,7 +14,8 @@ namespace facectl::sim {
 struct BoardChannel {
   ServoPlantParams plant;
   modbus_map::Unit unit = modbus_map::Unit::kRotary;
-  double initial = 0.0;  // SI
+  double initial = 0.0;       // SI
+  ActuatorEncoding encoding;  // the rig actuator's, as the host's bus uses it
 };
 
 // The simulated Modbus actuator board behind docs/PROTOCOLS.md's register
@@ -54,6 +55,7 @@ class ModbusActuatorBoard {
   const int unit_;
   mutable std::mutex mutex_;
   std::vector<BoardChannel> spec_;
+  std::vector<WireEncoding> encodings_;
   std::vector<ServoPlant> plants_;
   std::vector<double> targets_;
   bool enabled_ = false;

@@ -1,6 +1,7 @@
-// Rig bus keys, the runtime file's hardware, safety_io and gamepad blocks, and
-// the bus budget at config load: what they accept, and errors that name
-// file:line:col, the key, what was expected and what was found.
+// Rig bus keys, actuator encodings against their bus, the runtime file's
+// hardware, safety_io and gamepad blocks, and the bus budget at config load:
+// what they accept, and errors that name file:line:col, the key, what was
+// expected and what was found.
 #include <gtest/gtest.h>
 
 #include "drivers/can_bus_budget.hpp"
@@ -260,6 +261,78 @@ TEST(HardwareConfig, AGamepadSignalTheHeadDoesNotHaveIsNamed) {
                   "(muscle name, jaw_pitch_deg, eyelid_closure_l, ...), found unknown "
                   "signal 'jaw_roll_deg'");
   }
+}
+
+// An actuator's `encoding` against its bus (firmware-host/rig_encoding_check.hpp).
+
+// One rotary actuator, hardware range -6..20 deg, on one bus; `encoding` is
+// its flow mapping or empty.
+std::string encoded_rig(const std::string& bus, const std::string& encoding) {
+  return "rig:\n  name: t\n  buses:\n    - { name: b0, " + bus +
+         " }\n  actuators:\n    - { name: a1, kind: rotary, bus: b0, address: 1, "
+         "position_deg: { min: -6, max: 20 }, max_velocity_deg_s: 100, "
+         "max_acceleration_deg_s2: 1000, rest_deg: 0, map: { terms: { jaw_pitch_deg: 1 } }" +
+         (encoding.empty() ? "" : ", encoding: " + encoding) + " }\n";
+}
+
+// Where its encoding's flow mapping starts: RIG:6:<column>.
+std::string at(const std::string& text) {
+  const std::size_t line6 = text.find("    - { name: a1");
+  return "RIG:6:" + std::to_string(text.find("encoding: ", line6) + 10 - line6 + 1);
+}
+
+const std::string kModbus = "type: modbus_tcp, host: 127.0.0.1";
+
+TEST(RigEncoding, ARawTypeThatCannotCarryTheRangeIsRefusedWithItsPlace) {
+  const std::string text = encoded_rig(kModbus, "{ raw: uint16, scale: 100 }");
+  EXPECT_EQ(budget_error(text),
+            at(text) +
+                ": actuator a1 encoding: expected the hardware range to fit raw "
+                "uint16 [0, 65535], found position -6 deg encoding to -600 counts");
+  const std::string wide = encoded_rig(kModbus, "{ raw: int16, scale: 2000 }");  // 20 deg -> 40000
+  EXPECT_EQ(budget_error(wide),
+            at(wide) +
+                ": actuator a1 encoding: expected the hardware range to fit raw "
+                "int16 [-32767, 32767], found position 20 deg encoding to 40000 "
+                "counts");
+  EXPECT_EQ(budget_error(encoded_rig(kModbus, "{ raw: uint16, scale: 50, offset: 32768 }")), "ok");
+}
+
+TEST(RigEncoding, Int32IsRefusedOnModbusAndInTwoByteCanFields) {
+  const std::string modbus = encoded_rig(kModbus, "{ raw: int32, scale: 10000 }");
+  EXPECT_EQ(budget_error(modbus),
+            at(modbus) +
+                ": actuator a1 encoding: expected raw int16 or uint16 on Modbus bus b0 (one "
+                "register per channel), found raw int32");
+  const std::string can = encoded_rig(kCan + ", protocol: custom, values: int16", "{ raw: int32 }");
+  EXPECT_EQ(budget_error(can), at(can) +
+                                   ": actuator a1 encoding: expected raw int16 or uint16 on bus b0 "
+                                   "(values: int16, 2-byte fields), found raw int32");
+  EXPECT_EQ(budget_error(encoded_rig(kCan + ", protocol: custom, values: int32", "{ raw: int32 }")),
+            "ok");
+}
+
+TEST(RigEncoding, CiA402DrivesRefuseAnEncodingBlock) {
+  const std::string text = encoded_rig(kCan + ", protocol: cia402", "{ raw: int16, scale: 100 }");
+  EXPECT_EQ(budget_error(text),
+            at(text) +
+                ": actuator a1 encoding: expected no encoding on CiA 402 bus b0 "
+                "(drive counts come from its counts_per_rev / counts_per_mm), "
+                "found an encoding block");
+  EXPECT_EQ(budget_error(encoded_rig(kCan + ", protocol: cia402, rate_divider: 4", "")), "ok");
+}
+
+TEST(RigEncoding, AnActuatorWithoutEncodingTakesItsBusDefault) {
+  TempFile i32(encoded_rig(kCan + ", protocol: custom, values: int32", ""));
+  const ActuatorEncoding e = load_rig_config(i32.path(), head().layout).actuators[0].model.encoding;
+  EXPECT_EQ(e.raw, ActuatorEncoding::Raw::kInt32);  // 0.0001 deg per count, as before encodings
+  EXPECT_EQ(e.scale, 10000.0);
+  TempFile mb(encoded_rig(kModbus, "{ raw: uint16, scale: 50, offset: 32768 }"));
+  const ActuatorEncoding m = load_rig_config(mb.path(), head().layout).actuators[0].model.encoding;
+  EXPECT_EQ(m.raw, ActuatorEncoding::Raw::kUint16);
+  EXPECT_EQ(m.offset, 32768.0);
+  TempFile i16(encoded_rig(kCan, ""));
+  EXPECT_EQ(load_rig_config(i16.path(), head().layout).actuators[0].model.encoding.scale, 100.0);
 }
 
 }  // namespace

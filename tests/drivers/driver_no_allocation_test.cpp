@@ -72,9 +72,14 @@ TEST(DriverNoAllocation, CustomCanBusAllocatesNothingInTheTick) {
   MemoryCanLink link(1024);
   std::vector<sim::BoardChannel> ch(3);
   for (auto& c : ch) c.plant = fast_plant();
+  // A non-default encoding on one channel: its arithmetic runs in the tick too.
+  const ActuatorEncoding offset{ActuatorEncoding::Raw::kUint16, 50.0, 32768.0};
+  ch[1].encoding = offset;
+  std::vector<ActuatorModel> acts = testing::rotary_axes(3);
+  acts[1].encoding = offset;
   sim::CustomCanBoardSim board(1, ch, custom_can::Width::kInt16);
   sim::CanDeviceNetwork net(link.devices(), {&board});
-  CustomCanBus bus("can0", link.host(), testing::rotary_axes(3), std::vector<double>(3, 0.0));
+  CustomCanBus bus("can0", link.host(), acts, std::vector<double>(3, 0.0));
   std::vector<double> cmd(3, 5 * kDeg), meas(3);
   std::int64_t now = 1'000'000'000;
   long total = 0;
@@ -96,9 +101,12 @@ TEST(DriverNoAllocation, CustomCanBusAllocatesNothingInTheTick) {
 
 TEST(DriverNoAllocation, ModbusBusAllocatesNothingInTheTick) {
   std::vector<sim::BoardChannel> ch(4);
+  const ActuatorEncoding offset{ActuatorEncoding::Raw::kUint16, 50.0, 32768.0};
+  ch[2].encoding = offset;
   sim::ModbusActuatorBoard board(1, ch);
   auto server = sim::ModbusBoardServer::tcp({&board});
   std::vector<ActuatorModel> acts = testing::rotary_axes(4);
+  acts[2].encoding = offset;
   ModbusEndpoint ep;
   ep.port = server->port();
   ModbusBus bus("modbus0", ep, acts, std::vector<double>(4, 0.0));

@@ -1,0 +1,70 @@
+#include "firmware-host/rig_encoding_check.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+#include "drivers/custom_can_frames.hpp"
+#include "drivers/wire_encoding.hpp"
+
+namespace facectl {
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+[[noreturn]] void refuse(const ActuatorConfig& a, const std::string& expected,
+                         const std::string& found) {
+  throw ConfigError(a.encoding_where + ": actuator " + a.model.name + " encoding: expected " +
+                    expected + ", found " + found);
+}
+
+}  // namespace
+
+void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
+  ActuatorEncoding& e = actuator.model.encoding;
+  const char* raw = raw_name(e.raw);
+  if (bus.is_can() && bus.can_protocol == "cia402") {
+    if (actuator.has_encoding) {
+      refuse(actuator,
+             "no encoding on CiA 402 bus " + bus.name +
+                 " (drive counts come from its counts_per_rev / counts_per_mm)",
+             "an encoding block");
+    }
+    return;  // the drive's own counts, not the encoding, carry the range
+  }
+  if (bus.is_modbus() && e.raw == ActuatorEncoding::Raw::kInt32) {
+    refuse(actuator,
+           "raw int16 or uint16 on Modbus bus " + bus.name + " (one register per channel)",
+           "raw int32");
+  }
+  if (bus.is_can()) {
+    if (bus.can.width == custom_can::Width::kInt16 && e.raw == ActuatorEncoding::Raw::kInt32) {
+      refuse(actuator, "raw int16 or uint16 on bus " + bus.name + " (values: int16, 2-byte fields)",
+             "raw int32");
+    }
+    if (!actuator.has_encoding) e = custom_can::default_encoding(bus.can.width);
+  }
+  const double per_unit =
+      actuator.model.kind == ActuatorKind::kRotary ? std::numbers::pi / 180.0 : 1e-3;
+  const char* unit = actuator.model.kind == ActuatorKind::kRotary ? "deg" : "mm";
+  const double lo = raw_min(e.raw);
+  const double hi = raw_max(e.raw);
+  for (const double si : {actuator.model.limits.position_min, actuator.model.limits.position_max}) {
+    const double value = si / per_unit;
+    const double counts = std::nearbyint(value * e.scale + e.offset);
+    if (counts < lo || counts > hi) {
+      refuse(
+          actuator,
+          std::string("the hardware range to fit raw ") + raw + " [" + number(lo) + ", " +
+              number(hi) + "]",
+          "position " + number(value) + " " + unit + " encoding to " + number(counts) + " counts");
+    }
+  }
+}
+
+}  // namespace facectl

@@ -1,0 +1,18 @@
+#pragma once
+
+#include "firmware-host/bus_config.hpp"
+#include "firmware-host/rig_config.hpp"
+
+namespace facectl {
+
+// Checks an actuator's `encoding` against the bus that carries it, and
+// resolves the bus's default when it names none (docs/CONFIG.md, "Encoding"):
+// - the hardware position range must encode inside the raw type;
+// - Modbus boards have one register per channel: no raw int32;
+// - custom CAN `values: int16` fields are 2 bytes: no raw int32; an actuator
+//   without `encoding` on a `values: int32` bus gets int32, 10000 per unit;
+// - CiA 402 drives take counts from the bus: no `encoding` at all.
+// Throws ConfigError naming the encoding's file:line:col.
+void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus);
+
+}  // namespace facectl
