@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "drivers/wire_encoding.hpp"
 #include "firmware-host/verify/channel_bound.hpp"
 #include "firmware-host/verify/mechanism_channels.hpp"
 
@@ -115,22 +116,20 @@ EffectorRange transform_range(const ChannelTransform& t, EffectorRange e, const 
   return hull(*l.to_actuator(a), *l.to_actuator(b), e);
 }
 
+// A CiA 402 drive counts in its bus's units (counts_per_rev, counts_per_mm),
+// not in the actuator's `encoding`, which the loader refuses there.
+bool on_cia402_bus(const RigConfig& rig, const ActuatorModel& a) {
+  return std::any_of(rig.buses.begin(), rig.buses.end(), [&](const BusConfig& b) {
+    return b.name == a.bus && b.is_can() && b.can_protocol == "cia402";
+  });
+}
+
 void check_encoding(const ActuatorModel& a, const std::string& who,
                     std::vector<Finding>& findings) {
   const double scale = to_yaml(a.kind);
   const ActuatorEncoding& e = a.encoding;
-  double lo = 0.0, hi = 0.0;
-  switch (e.raw) {
-    case ActuatorEncoding::Raw::kInt16:
-      lo = -32768, hi = 32767;
-      break;
-    case ActuatorEncoding::Raw::kUint16:
-      lo = 0, hi = 65535;
-      break;
-    case ActuatorEncoding::Raw::kInt32:
-      lo = -2147483648.0, hi = 2147483647.0;
-      break;
-  }
+  // The drivers' saturation limits: a value that reaches one is clipped, not sent.
+  const double lo = raw_min(e.raw), hi = raw_max(e.raw);
   for (double v : {a.limits.position_min, a.limits.position_max}) {
     const double raw = v * scale * e.scale + e.offset;
     if (raw < lo || raw > hi) {
@@ -269,7 +268,7 @@ StaticProof prove(const LoadedConfig& cfg) {
     r.hardware_max = a.limits.position_max * scale;
     r.soft_min = a.limits.soft_min * scale;
     r.soft_max = a.limits.soft_max * scale;
-    check_encoding(a, who, out.findings);
+    if (!on_cia402_bus(cfg.rig, a)) check_encoding(a, who, out.findings);
     if (a.max_current_a > 0.0) {
       out.findings.push_back({Severity::kInfo, "current", who,
                               "max_current_a is declared but not checked: no bus backend "

@@ -3,11 +3,14 @@
 // its static proof is sound (sampling never finds a command outside it).
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <random>
+#include <sstream>
 
 #include "firmware-host/loaded_config.hpp"
 #include "firmware-host/verify/static_proof.hpp"
 #include "firmware-host/verify/verify_command.hpp"
+#include "tests/support/temp_file.hpp"
 
 namespace facectl {
 namespace {
@@ -116,6 +119,35 @@ TEST(Verify, AnOvercommittedBusFailsWithItsNumbers) {
   ConfigOverrides strict;
   strict.rig_path = kSource + "/tests/verify/rigs/bus_overcommitted.yaml";
   EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
+}
+
+// A CiA 402 drive counts in its bus's units, not in the actuator's (default,
+// int16) `encoding`: a neck that turns ±340° is no encoding failure there,
+// but is one on a custom CAN bus, whose int16 field carries ±327.67°.
+TEST(Verify, ChecksEncodingsOnlyWhereTheDriverUsesThem) {
+  std::ifstream in(kSource + "/config/rigs/default.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string rig = text.str();
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = rig.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    rig.replace(at, from.size(), to);
+  };
+  replace("address: 4\n      position_deg: { min: -65, max: 65 }",
+          "address: 4\n      position_deg: { min: -340, max: 340 }");
+  const testing::TempFile custom(rig, ".yaml");
+  ConfigOverrides o;
+  o.rig_path = custom.path();
+  o.keep_problems = true;
+  EXPECT_THROW(load_config(default_config_path(), o), ConfigError);  // the loader refuses it
+
+  replace("protocol: custom\n      values: int16", "protocol: cia402");
+  const testing::TempFile cia402(rig, ".yaml");
+  const auto cfg = load_rig(cia402.path());
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "encoding");
+  EXPECT_EQ(f, nullptr) << f->subject << ": " << f->message;
 }
 
 // Soundness: millions of admissible faces (random points of the box, made
