@@ -285,12 +285,17 @@ bool Controller::limit_actuators(double dt, LimitFlags* flags) {
   return breach;
 }
 
+bool Controller::measured_in_range(std::size_t i) const {
+  const ActuatorLimits& l = model_.actuators[i].limits;
+  return l.position_min <= measured_[i] && measured_[i] <= l.position_max;
+}
+
 bool Controller::feedback_out_of_range() {
-  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
-    const ActuatorLimits& l = model_.actuators[i].limits;
-    if (!(l.position_min <= measured_[i] && measured_[i] <= l.position_max)) return true;
-  }
-  return mechanism_out_of_envelope();
+  bool out = false;
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) out = out || !measured_in_range(i);
+  // Every tick, also when an actuator is already out: FAULT's reactions read it.
+  jaw_out_of_envelope_ = mechanism_out_of_envelope();
+  return out || jaw_out_of_envelope_;
 }
 
 bool Controller::at_rest(double dt) {

@@ -116,15 +116,17 @@ class Controller {
   std::optional<face::MandiblePose> measured_mandible_pose();
   bool mechanism_out_of_envelope();
   double worst_reach(std::size_t constraint, double dt) const;
+  bool measured_in_range(std::size_t i) const;  // inside its hardware range
   bool feedback_out_of_range();
   bool at_rest(double dt);
   void enter_state(SafetyState state, SafetyState from, TransitionReason reason, double dt);
   // FAULT with per-actuator reactions (controller_fault_reaction.cpp,
   // docs/SAFETY.md "Fault reaction"): true while some actuator holds or rests.
   bool start_fault_reactions(SafetyState from, TransitionReason reason, double dt);
-  void relax_uncommandable(bool io_fault);  // a faulted bus or the safety I/O: relax
-  bool relax_split_mechanism();             // true if it relaxed struts
-  bool apply_fault_enables();               // false once every actuator relaxed
+  // A faulted bus, the safety I/O, or feedback out of range: relax.
+  void relax_uncommandable(bool io_fault);
+  bool relax_split_mechanism();  // true if it relaxed struts
+  bool apply_fault_enables();    // false once every actuator relaxed
   bool driving() const { return safety_.outputs_enabled() || fault_driving_; }
   bool relaxed(std::size_t i) const { return fault_driving_ && fault_driven_[i] == 0; }
   void write_outputs(const TickTime& time);
@@ -184,6 +186,7 @@ class Controller {
   std::array<double, kMaxActuators> settling_{};  // low-passed measured positions in STOPPING
   const char* bus_fault_reason_ = "";
   std::array<bool, kMaxBuses> bus_faulted_{};  // this tick's BusStatus::fault
+  bool jaw_out_of_envelope_ = false;           // this tick's mechanism_out_of_envelope()
   // FAULT: which actuators hold or rest (1), where to, and the buses they keep on.
   bool fault_driving_ = false;
   std::array<std::uint8_t, kMaxActuators> fault_driven_{};

@@ -65,6 +65,23 @@ void Controller::relax_uncommandable(bool io_fault) {
       fault_driven_[i] = 0;
     }
   }
+  // An actuator measured outside its hardware range (jammed, forced, a broken
+  // encoder) is not held: holding would drive it at full effort toward a point
+  // far from where it is. Likewise the jaw's struts when their measured pose is
+  // outside the envelope or no pose at all. At entry and on every later tick.
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    if (fault_driven_[i] != 0 && !measured_in_range(i)) {
+      fault_driven_[i] = 0;
+      changed = true;
+    }
+  }
+  if (model_.mapping.mechanism && jaw_out_of_envelope_) {
+    const MandibleMechanism& mech = *model_.mapping.mechanism;
+    for (std::size_t s = 0; s < mech.struts(); ++s) {
+      changed = changed || fault_driven_[mech.strut[s].actuator] != 0;
+      fault_driven_[mech.strut[s].actuator] = 0;
+    }
+  }
   changed = relax_split_mechanism() || changed;
   if (!changed) return;
   fault_driving_ = apply_fault_enables();

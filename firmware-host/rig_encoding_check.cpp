@@ -57,11 +57,13 @@ void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
   for (const double si : {actuator.model.limits.position_min, actuator.model.limits.position_max}) {
     const double value = si / per_unit;
     const double counts = std::nearbyint(value * e.scale + e.offset);
-    if (counts < lo || counts > hi) {
+    // Strictly inside: a reading at the raw type's limit may be a saturated
+    // one, which would hide an actuator beyond its hardware range.
+    if (counts <= lo || counts >= hi) {
       refuse(
           actuator,
-          std::string("the hardware range to fit raw ") + raw + " [" + number(lo) + ", " +
-              number(hi) + "]",
+          std::string("the hardware range to fit strictly inside raw ") + raw + " (" + number(lo) +
+              ", " + number(hi) + ")",
           "position " + number(value) + " " + unit + " encoding to " + number(counts) + " counts");
     }
   }

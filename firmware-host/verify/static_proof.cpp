@@ -132,7 +132,7 @@ void check_encoding(const ActuatorModel& a, const std::string& who,
   const double lo = raw_min(e.raw), hi = raw_max(e.raw);
   for (double v : {a.limits.position_min, a.limits.position_max}) {
     const double raw = v * scale * e.scale + e.offset;
-    if (raw < lo || raw > hi) {
+    if (raw <= lo || raw >= hi) {  // strictly inside, as the loader requires
       findings.push_back({Severity::kFail, "encoding", who,
                           "the hardware range does not fit the raw type: position " +
                               fmt("%.4g", v * scale) + " encodes to " + fmt("%.0f", raw) +

@@ -287,15 +287,22 @@ TEST(RigEncoding, ARawTypeThatCannotCarryTheRangeIsRefusedWithItsPlace) {
   const std::string text = encoded_rig(kModbus, "{ raw: uint16, scale: 100 }");
   EXPECT_EQ(budget_error(text),
             at(text) +
-                ": actuator a1 encoding: expected the hardware range to fit raw "
-                "uint16 [0, 65535], found position -6 deg encoding to -600 counts");
+                ": actuator a1 encoding: expected the hardware range to fit strictly inside raw "
+                "uint16 (0, 65535), found position -6 deg encoding to -600 counts");
   const std::string wide = encoded_rig(kModbus, "{ raw: int16, scale: 2000 }");  // 20 deg -> 40000
   EXPECT_EQ(budget_error(wide),
             at(wide) +
-                ": actuator a1 encoding: expected the hardware range to fit raw "
-                "int16 [-32767, 32767], found position 20 deg encoding to 40000 "
+                ": actuator a1 encoding: expected the hardware range to fit strictly inside raw "
+                "int16 (-32767, 32767), found position 20 deg encoding to 40000 "
                 "counts");
   EXPECT_EQ(budget_error(encoded_rig(kModbus, "{ raw: uint16, scale: 50, offset: 32768 }")), "ok");
+  // The hardware minimum on the raw limit itself: a saturated reading there
+  // could hide the actuator beyond its range, so it is refused too.
+  const std::string edge = encoded_rig(kModbus, "{ raw: uint16, scale: 100, offset: 600 }");
+  EXPECT_EQ(budget_error(edge),
+            at(edge) +
+                ": actuator a1 encoding: expected the hardware range to fit strictly inside raw "
+                "uint16 (0, 65535), found position -6 deg encoding to 0 counts");
 }
 
 TEST(RigEncoding, Int32IsRefusedOnModbusAndInTwoByteCanFields) {

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <vector>
 
 #include "control/mandible_mechanism.hpp"
 #include "firmware-host/loaded_config.hpp"
@@ -198,6 +199,51 @@ TEST_F(FaultReaction, BusFaultOnTheRelaxBusHoldsAndRestsTheOtherBus) {
   EXPECT_EQ(head_->controller().state(), SafetyState::kIdle);
   EXPECT_FALSE(head_->hardware().io.power_enabled());
   for (auto& bus : head_->hardware().buses) EXPECT_FALSE(bus->enabled());
+}
+
+// Forces `name`'s simulated servo toward `target` each tick, after the
+// controller's own write (a hand or an obstacle pushing it, or a runaway).
+void push(OfflineHead& head, const std::string& bus_name, std::size_t index, double target,
+          double seconds, const std::array<double, kMaxFaceSignals>& pose) {
+  SimActuatorBus& bus = *head.hardware().find(bus_name);
+  const BusModel* model = nullptr;
+  for (const BusModel& b : head.model().buses) {
+    if (b.name == bus_name) model = &b;
+  }
+  ASSERT_NE(model, nullptr);
+  const long n = std::lround(seconds / head.period());
+  for (long i = 0; i < n; ++i) {
+    head.send(pose);
+    head.step(head.period());
+    std::vector<double> cmd(head.controller().commands().begin() + model->first,
+                            head.controller().commands().begin() + model->first + model->count);
+    cmd[index - model->first] = target;
+    bus.write({std::llround(head.time() * 1e9), head.period()}, cmd);
+  }
+}
+
+TEST_F(FaultReaction, AnActuatorMeasuredOutsideItsRangeRelaxesInsteadOfHolding) {
+  start(mixed_rig_text());
+  const std::size_t neck = actuator("neck_pan");
+  const double beyond = head_->model().actuators[neck].limits.position_max + 10 * kDeg;
+  push(*head_, "can0", neck, beyond, 1.0, pose_);
+  ASSERT_EQ(head_->controller().state(), SafetyState::kFault);
+  EXPECT_FALSE(plant(neck).enabled()) << "a hold actuator found outside its range is not held";
+  EXPECT_TRUE(plant(actuator("jaw_digastric")).enabled()) << "the jaw still holds";
+  EXPECT_TRUE(head_->hardware().io.power_enabled());
+}
+
+TEST_F(FaultReaction, AHeldActuatorPushedOutOfItsRangeLaterRelaxesThen) {
+  start(mixed_rig_text());
+  head_->hardware().find("modbus0")->inject_fault("board 3 not answering");
+  run_sending(0.1);
+  ASSERT_EQ(head_->controller().state(), SafetyState::kFault);
+  const std::size_t neck = actuator("neck_pan");
+  ASSERT_TRUE(plant(neck).enabled());
+  const double beyond = head_->model().actuators[neck].limits.position_max + 10 * kDeg;
+  push(*head_, "can0", neck, beyond, 1.0, pose_);
+  EXPECT_FALSE(plant(neck).enabled());
+  EXPECT_TRUE(plant(actuator("jaw_digastric")).enabled());
 }
 
 TEST_F(FaultReaction, AFaultOnTheHoldBusItselfRelaxesIt) {
