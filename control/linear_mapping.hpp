@@ -30,7 +30,7 @@ class LinearMapping {
  private:
   // The non-zero gains as well, in (actuator, signal) order: an actuator reads
   // a few of the face's signals, so apply() sums these instead of multiplying
-  // the mostly-zero matrix (26 × 45 for the default rig, 41 non-zero).
+  // the mostly-zero matrix (26 × 41 for the default rig, 47 non-zero).
   struct Term {
     std::size_t actuator;
     std::size_t signal;

@@ -28,7 +28,7 @@ std::string number(double v) {
 void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
   ActuatorEncoding& e = actuator.model.encoding;
   const char* raw = raw_name(e.raw);
-  if (bus.is_can() && bus.can_protocol == "cia402") {
+  if (bus.is_cia402()) {
     if (actuator.has_encoding) {
       refuse(actuator,
              "no encoding on CiA 402 bus " + bus.name +

@@ -119,9 +119,8 @@ EffectorRange transform_range(const ChannelTransform& t, EffectorRange e, const 
 // A CiA 402 drive counts in its bus's units (counts_per_rev, counts_per_mm),
 // not in the actuator's `encoding`, which the loader refuses there.
 bool on_cia402_bus(const RigConfig& rig, const ActuatorModel& a) {
-  return std::any_of(rig.buses.begin(), rig.buses.end(), [&](const BusConfig& b) {
-    return b.name == a.bus && b.is_can() && b.can_protocol == "cia402";
-  });
+  return std::any_of(rig.buses.begin(), rig.buses.end(),
+                     [&](const BusConfig& b) { return b.name == a.bus && b.is_cia402(); });
 }
 
 void check_encoding(const ActuatorModel& a, const std::string& who,

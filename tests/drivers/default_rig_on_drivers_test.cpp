@@ -43,7 +43,7 @@ std::vector<sim::BoardChannel> channels(const std::vector<ActuatorModel>& acts, 
     c[i].plant = testing::fast_plant();
     c[i].unit = acts[first + i].kind == ActuatorKind::kRotary ? modbus_map::Unit::kRotary
                                                               : modbus_map::Unit::kLinear;
-    c[i].initial = acts[first + i].rest;  // a powered-down head sits at rest
+    c[i].initial = acts[first + i].rest;       // a powered-down head sits at rest
     c[i].encoding = acts[first + i].encoding;  // the board reads what the rig says
   }
   return c;
