@@ -163,6 +163,7 @@ class Controller {
   std::array<double, kMaxFaceSignals> face_{};
   MappingWorkspace mapping_ws_;
   std::uint64_t mapping_clamps_ = 0;
+  std::uint64_t strut_mask_ = 0;  // the mandible mechanism's struts, by actuator index
   std::array<LimiterState, kMaxActuators> pre_step_{};  // limiter states before this step
   std::array<double, kMaxActuators> mapped_{};
   std::array<double, kMaxActuators> target_{};
