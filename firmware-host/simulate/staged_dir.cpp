@@ -18,9 +18,23 @@ StagedDir::~StagedDir() {
 }
 
 void StagedDir::commit() {
-  fs::remove_all(target_);
-  fs::rename(staging_, target_);
+  // The earlier output is moved aside, not deleted, until the new one is in
+  // place: if that fails, it is put back, and no data is lost either way.
+  const fs::path previous =
+      target_.parent_path() / ("." + target_.filename().string() + ".previous");
+  fs::remove_all(previous);
+  const bool had = fs::exists(fs::symlink_status(target_));
+  if (had) fs::rename(target_, previous);
+  try {
+    fs::rename(staging_, target_);
+  } catch (...) {
+    std::error_code ignored;
+    if (had) fs::rename(previous, target_, ignored);
+    throw;
+  }
   committed_ = true;
+  std::error_code ignored;
+  fs::remove_all(previous, ignored);
 }
 
 }  // namespace facectl

@@ -15,7 +15,9 @@ class StagedDir {
   StagedDir& operator=(const StagedDir&) = delete;
 
   const std::filesystem::path& path() const { return staging_; }
-  // Replaces the target by the staged folder (an existing target is removed first).
+  // Replaces the target by the staged folder. An existing target is moved to
+  // ".<name>.previous" first and removed only once the new one is in place;
+  // if that rename fails, the old target is restored and the error thrown.
   void commit();
 
  private:
