@@ -1,0 +1,79 @@
+// write_g6 writes the same bytes as std::to_chars(general, 6) (printf's %.6g),
+// which telemetry.csv documents: on random magnitudes across and beyond its
+// fast range, and on the values where a fast path would go wrong (rounding
+// ties and their neighbours, powers of ten and their neighbours).
+#include "firmware-host/simulate/write_g6.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+namespace facectl {
+namespace {
+
+class SameAsToChars {
+ public:
+  void check(double v) {
+    char a[64], b[64];
+    const std::string fast(a, write_g6(a, a + sizeof a, v));
+    const std::string reference(
+        b, std::to_chars(b, b + sizeof b, v, std::chars_format::general, 6).ptr);
+    ++checked_;
+    if (fast != reference && ++differ_ <= 5)
+      ADD_FAILURE() << v << ": " << fast << " vs " << reference;
+  }
+  long checked() const { return checked_; }
+
+ private:
+  long checked_ = 0, differ_ = 0;
+};
+
+TEST(WriteG6, RandomMagnitudesMatchToChars) {
+  SameAsToChars s;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> exponent(-7.0, 8.0);
+  for (int i = 0; i < 1000000; ++i) {
+    const double v = std::pow(10.0, exponent(rng));
+    s.check((rng() & 1) != 0 ? v : -v);
+  }
+  EXPECT_EQ(s.checked(), 1000000);
+}
+
+TEST(WriteG6, TiesPowersOfTenAndTheirNeighboursMatchToChars) {
+  SameAsToChars s;
+  const auto around = [&](double v) {
+    s.check(v);
+    s.check(-v);
+    double below = v, above = v;
+    for (int i = 0; i < 3; ++i) {
+      below = std::nextafter(below, 0.0);
+      above = std::nextafter(above, 1e300);
+      s.check(below);
+      s.check(above);
+    }
+  };
+  for (int k = -3; k <= 11; ++k) {
+    const double scale = std::pow(10.0, -k);
+    for (long m = 99990; m <= 100010; ++m) {
+      around((static_cast<double>(m) + 0.5) * scale);  // ties at the digit-count boundary
+      around(static_cast<double>(m) * scale);
+    }
+    for (long m = 999990; m <= 999999; ++m) around((static_cast<double>(m) + 0.5) * scale);
+  }
+  std::mt19937_64 rng(2);
+  std::uniform_int_distribution<long> six_digits(100000, 999999);
+  for (int i = 0; i < 200000; ++i) {
+    const int k = static_cast<int>(rng() % 12);
+    around((static_cast<double>(six_digits(rng)) + 0.5) / std::pow(10.0, k));
+  }
+  for (int k = -6; k <= 8; ++k) around(std::pow(10.0, k));
+  for (const double v : {0.0, -0.0, 1e-9, 999999.5, 9.999995, 0.000099999949, 1e300,
+                         std::numeric_limits<double>::infinity(), std::nan("")}) {
+    s.check(v);
+  }
+  EXPECT_GT(s.checked(), 1000000);
+}
+
+}  // namespace
+}  // namespace facectl
