@@ -21,7 +21,13 @@ double braking_speed(double distance, double max_acceleration, double dt) {
 
 std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target,
                         double dt) {
-  std::uint8_t flags = 0;
+  return static_cast<std::uint8_t>(
+      limit_step_within(limits, state, target, dt, limits.soft_min, limits.soft_max));
+}
+
+LimitFlags limit_step_within(const ActuatorLimits& limits, LimiterState& state, double target,
+                             double dt, double lo, double hi) {
+  LimitFlags flags = 0;
   if (!(dt > 0.0) || !std::isfinite(dt)) return kLimitInvalid;  // no time passed: no motion
   if (!std::isfinite(target)) {
     // A non-finite target cannot reach here through the sanitiser, but a
@@ -34,8 +40,10 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
   const double x = state.position;
   const double v = state.velocity;
 
-  const double r = std::clamp(target, limits.soft_min, limits.soft_max);
-  if (r != target) flags |= kLimitPosition;
+  const double soft = std::clamp(target, limits.soft_min, limits.soft_max);
+  if (soft != target) flags |= kLimitPosition;
+  const double r = std::clamp(soft, lo, hi);
+  if (r != soft) flags |= kLimitCoupled;
 
   // Goal velocity: the fastest approach to the target that can still stop on it.
   const double error = r - x;
@@ -50,12 +58,11 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
   }
 
   // Never head into a soft limit faster than one can stop before it.
-  const double v_hi = braking_speed(limits.soft_max - x, a_max, dt + ramp);
-  const double v_lo = -braking_speed(x - limits.soft_min, a_max, dt + ramp);
-  if (v_goal > v_hi || v_goal < v_lo) {
-    v_goal = std::clamp(v_goal, v_lo, v_hi);
-    flags |= kLimitApproach;
-  }
+  const double v_hi = braking_speed(hi - x, a_max, dt + ramp);
+  const double v_lo = -braking_speed(x - lo, a_max, dt + ramp);
+  if (v_goal > v_hi) flags |= hi < limits.soft_max ? kLimitCoupled : kLimitApproach;
+  if (v_goal < v_lo) flags |= lo > limits.soft_min ? kLimitCoupled : kLimitApproach;
+  v_goal = std::clamp(v_goal, v_lo, v_hi);
 
   // Acceleration bound.
   double v_new = std::clamp(v_goal, v - a_max * dt, v + a_max * dt);
@@ -91,11 +98,11 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
   }
 
   double x_new = x + v_new * dt;
-  if (x_new > limits.soft_max || x_new < limits.soft_min) {
+  if (x_new > hi || x_new < lo) {
     // Reachable only through rounding when x was inside; pin to the range.
-    const bool was_inside = x <= limits.soft_max && x >= limits.soft_min;
+    const bool was_inside = x <= hi && x >= lo;
     if (was_inside) {
-      const double pinned = std::clamp(x_new, limits.soft_min, limits.soft_max);
+      const double pinned = std::clamp(x_new, lo, hi);
       if (std::fabs(pinned - x_new) > 1e-12) flags |= kLimitBreach;
       x_new = pinned;
       v_new = (x_new - x) / dt;
@@ -111,6 +118,12 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
 double stopping_distance(const ActuatorLimits& l, double v, double dt) {
   const double ramp = l.max_jerk > 0.0 ? l.max_acceleration / (2.0 * l.max_jerk) : 0.0;
   return v * v / (2.0 * l.max_acceleration) + v * (dt + ramp);
+}
+
+double committed_extreme(const ActuatorLimits& l, const LimiterState& s, double direction) {
+  const double v = direction > 0.0 ? s.velocity : -s.velocity;  // speed toward `direction`
+  if (!(v > 0.0)) return s.position;
+  return s.position + std::copysign(stopping_distance(l, v, 0.0), direction);
 }
 
 }  // namespace facectl
