@@ -104,18 +104,18 @@ void Controller::choose_targets() {
   }
 }
 
-void Controller::bound_actuator_constraints() {
+std::uint64_t Controller::bound_actuator_constraints() {
   // Each actuator's limiter moves on its own, so the joint motion could cut a
   // corner of an actuator coupled limit although both ends are admissible.
   // Instead each limit becomes this tick's position bounds for its actuators'
   // limiters, which never cross them (docs/SAFETY.md, actuator coupled limits).
   // A relaxed actuator is where it is measured: the others keep clear of it.
-  const std::size_t n = model_.actuators.size();
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     if (relaxed(i)) limiter_[i] = {measured_[i], 0.0, 0.0};
   }
-  coupled_position_bounds(model_.actuator_constraints, model_.actuators.data(), limiter_.data(),
-                          target_.data(), n, bound_lo_.data(), bound_hi_.data());
+  return coupled_position_bounds(model_.actuator_constraints, model_.actuators.data(),
+                                 limiter_.data(), target_.data(), bound_lo_.data(),
+                                 bound_hi_.data());
 }
 
 void Controller::limit_mechanism(double dt, LimitFlags* flags) {
@@ -215,12 +215,12 @@ bool Controller::mechanism_out_of_envelope() {
 
 bool Controller::limit_actuators(double dt, LimitFlags* flags) {
   bool breach = false;
-  const bool coupled = model_.actuator_constraints.size() != 0;
-  if (coupled) bound_actuator_constraints();
+  const std::uint64_t coupled =
+      model_.actuator_constraints.size() != 0 ? bound_actuator_constraints() : 0;
   bool bounded = false;
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     const ActuatorLimits& l = model_.actuators[i].limits;
-    flags[i] = coupled
+    flags[i] = ((coupled >> i) & 1u) != 0
                    ? limit_step_within(l, limiter_[i], target_[i], dt, bound_lo_[i], bound_hi_[i])
                    : limit_step(l, limiter_[i], target_[i], dt);
     bounded = bounded || (flags[i] & kLimitCoupled) != 0;

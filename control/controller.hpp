@@ -108,8 +108,9 @@ class Controller {
   void read_inputs(const TickTiming& timing);
   void choose_targets();
   bool limit_actuators(double dt, LimitFlags* flags);  // true if the backstop acted
-  // Actuator coupled limits as this tick's position bounds (bound_lo_, bound_hi_).
-  void bound_actuator_constraints();
+  // Actuator coupled limits as this tick's position bounds (bound_lo_,
+  // bound_hi_); returns the bit set of the actuators they bound.
+  std::uint64_t bound_actuator_constraints();
   // The mandible mechanism's struts: the pose is limited in its own DOFs and
   // the struts follow it (docs/MANDIBLE_MECHANISM.md, "Moving the struts together").
   void limit_mechanism(double dt, LimitFlags* flags);

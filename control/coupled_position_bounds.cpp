@@ -2,16 +2,24 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <limits>
 
 namespace facectl {
 
-void coupled_position_bounds(const CoupledConstraints& limits, const ActuatorModel* actuators,
-                             const LimiterState* state, const double* target, std::size_t count,
-                             double* lo, double* hi) {
+std::uint64_t coupled_position_bounds(const CoupledConstraints& limits,
+                                      const ActuatorModel* actuators, const LimiterState* state,
+                                      const double* target, double* lo, double* hi) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  std::fill_n(lo, count, -kInf);
-  std::fill_n(hi, count, kInf);
+  std::uint64_t bounded = 0;
+  for (std::size_t c = 0; c < limits.size(); ++c) {
+    const CoupledConstraints::Constraint& k = limits.constraint(c);
+    for (std::size_t t = 0; t < k.terms; ++t) {
+      lo[k.index[t]] = -kInf;
+      hi[k.index[t]] = kInf;
+      bounded |= std::uint64_t{1} << k.index[t];
+    }
+  }
   for (std::size_t c = 0; c < limits.size(); ++c) {
     const CoupledConstraints::Constraint& k = limits.constraint(c);
     std::array<double, CoupledConstraints::kMaxTerms> m{}, demand{};
@@ -38,7 +46,8 @@ void coupled_position_bounds(const CoupledConstraints& limits, const ActuatorMod
       }
     }
   }
-  for (std::size_t i = 0; i < count; ++i) {
+  for (std::uint64_t bits = bounded; bits != 0; bits &= bits - 1) {
+    const auto i = static_cast<std::size_t>(std::countr_zero(bits));
     const ActuatorLimits& l = actuators[i].limits;
     const double coupled_lo = lo[i], coupled_hi = hi[i];
     lo[i] = std::max(lo[i], l.soft_min);
@@ -49,6 +58,7 @@ void coupled_position_bounds(const CoupledConstraints& limits, const ActuatorMod
       if (coupled_hi < l.soft_min) lo[i] = hi[i];
     }
   }
+  return bounded;
 }
 
 }  // namespace facectl

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <cstddef>
+#include <cstdint>
 
 #include "control/controller_model.hpp"
 #include "control/trajectory_limiter.hpp"
@@ -24,10 +24,11 @@ namespace facectl {
 // its soft range (a coupled bound wins where they cross: only an actuator
 // enabled outside its soft range can meet that).
 //
-// Fills lo[i], hi[i] for every one of `count` actuators; bounded time, no
+// Fills lo[i], hi[i] for every actuator in some limit (at most
+// kMaxActuators = 64) and returns them as a bit set; bounded time, no
 // allocation.
-void coupled_position_bounds(const CoupledConstraints& limits, const ActuatorModel* actuators,
-                             const LimiterState* state, const double* target, std::size_t count,
-                             double* lo, double* hi);
+std::uint64_t coupled_position_bounds(const CoupledConstraints& limits,
+                                      const ActuatorModel* actuators, const LimiterState* state,
+                                      const double* target, double* lo, double* hi);
 
 }  // namespace facectl

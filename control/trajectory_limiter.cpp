@@ -19,14 +19,13 @@ double braking_speed(double distance, double max_acceleration, double dt) {
   return a * (std::sqrt(dt * dt + 2.0 * distance / a) - dt);
 }
 
-std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target,
-                        double dt) {
-  return static_cast<std::uint8_t>(
-      limit_step_within(limits, state, target, dt, limits.soft_min, limits.soft_max));
-}
+namespace {
 
-LimitFlags limit_step_within(const ActuatorLimits& limits, LimiterState& state, double target,
-                             double dt, double lo, double hi) {
+// One step inside [lo, hi]; kWithin: the bounds may be tighter than the soft
+// range (compiled out of the plain step, which runs for every actuator).
+template <bool kWithin>
+LimitFlags step(const ActuatorLimits& limits, LimiterState& state, double target, double dt,
+                double lo, double hi) {
   LimitFlags flags = 0;
   if (!(dt > 0.0) || !std::isfinite(dt)) return kLimitInvalid;  // no time passed: no motion
   if (!std::isfinite(target)) {
@@ -42,8 +41,11 @@ LimitFlags limit_step_within(const ActuatorLimits& limits, LimiterState& state, 
 
   const double soft = std::clamp(target, limits.soft_min, limits.soft_max);
   if (soft != target) flags |= kLimitPosition;
-  const double r = std::clamp(soft, lo, hi);
-  if (r != soft) flags |= kLimitCoupled;
+  double r = soft;
+  if constexpr (kWithin) {
+    r = std::clamp(soft, lo, hi);
+    if (r != soft) flags |= kLimitCoupled;
+  }
 
   // Goal velocity: the fastest approach to the target that can still stop on it.
   const double error = r - x;
@@ -60,9 +62,11 @@ LimitFlags limit_step_within(const ActuatorLimits& limits, LimiterState& state, 
   // Never head into a soft limit faster than one can stop before it.
   const double v_hi = braking_speed(hi - x, a_max, dt + ramp);
   const double v_lo = -braking_speed(x - lo, a_max, dt + ramp);
-  if (v_goal > v_hi) flags |= hi < limits.soft_max ? kLimitCoupled : kLimitApproach;
-  if (v_goal < v_lo) flags |= lo > limits.soft_min ? kLimitCoupled : kLimitApproach;
-  v_goal = std::clamp(v_goal, v_lo, v_hi);
+  if (v_goal > v_hi || v_goal < v_lo) {
+    const bool tighter = v_goal > v_hi ? hi < limits.soft_max : lo > limits.soft_min;
+    flags |= kWithin && tighter ? kLimitCoupled : kLimitApproach;
+    v_goal = std::clamp(v_goal, v_lo, v_hi);
+  }
 
   // Acceleration bound.
   double v_new = std::clamp(v_goal, v - a_max * dt, v + a_max * dt);
@@ -113,6 +117,19 @@ LimitFlags limit_step_within(const ActuatorLimits& limits, LimiterState& state, 
   state.velocity = v_new;
   state.position = x_new;
   return flags;
+}
+
+}  // namespace
+
+std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target,
+                        double dt) {
+  return static_cast<std::uint8_t>(
+      step<false>(limits, state, target, dt, limits.soft_min, limits.soft_max));
+}
+
+LimitFlags limit_step_within(const ActuatorLimits& limits, LimiterState& state, double target,
+                             double dt, double lo, double hi) {
+  return step<true>(limits, state, target, dt, lo, hi);
 }
 
 double stopping_distance(const ActuatorLimits& l, double v, double dt) {

@@ -33,21 +33,23 @@ struct Rig {
       limits.add(c);
     }
   }
-  void bounds() {
-    coupled_position_bounds(limits, actuators.data(), state.data(), target.data(), 4, lo.data(),
-                            hi.data());
+  std::uint64_t bounds() {
+    lo.fill(-9.0);  // untouched unless the actuator is in a limit
+    hi.fill(9.0);
+    return coupled_position_bounds(limits, actuators.data(), state.data(), target.data(), lo.data(),
+                                   hi.data());
   }
 };
 
 TEST(CoupledPositionBounds, SharesTheSlackByDemandAndUsesAllOfIt) {
   Rig r({{{{0, 1.0}, {1, 2.0}}, 0.6}});  // x0 + 2 x1 <= 0.6, both at 0
   r.target = {0.9, 0.3, 0.0, 0.0};       // demands 0.9 and 0.6: slack 0.6 shared 3:2
-  r.bounds();
+  EXPECT_EQ(r.bounds(), 0b11u);
   EXPECT_NEAR(r.hi[0], 0.36, 1e-15);
   EXPECT_NEAR(r.hi[1], 0.12, 1e-15);
   EXPECT_NEAR(r.hi[0] + 2.0 * r.hi[1], 0.6, 1e-15);
   EXPECT_EQ(r.lo[0], -1.0);  // no lower coupled bound: the soft range
-  EXPECT_EQ(r.hi[2], 1.0);   // not in the limit
+  EXPECT_EQ(r.hi[2], 9.0);   // not in the limit: untouched
 }
 
 TEST(CoupledPositionBounds, GivesWhatIsLeftOverBeyondTheTargetsEqually) {

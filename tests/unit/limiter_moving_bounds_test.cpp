@@ -14,15 +14,8 @@ namespace facectl {
 namespace {
 
 ActuatorLimits lip_like(double jerk) {
-  ActuatorLimits l;
-  l.position_min = -0.8;
-  l.position_max = 0.8;
-  l.soft_min = -0.7;
-  l.soft_max = 0.7;
-  l.max_velocity = 5.2;
-  l.max_acceleration = 70.0;
-  l.max_jerk = jerk;
-  return l;
+  // Hardware ±0.8 rad, soft ±0.7 rad, 5.2 rad/s, 70 rad/s².
+  return {-0.8, 0.8, -0.7, 0.7, 5.2, 70.0, jerk};
 }
 
 TEST(LimiterMovingBounds, NeverLeavesBoundsThatKeepClearOfTheCommittedExtremes) {
