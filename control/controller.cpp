@@ -28,6 +28,11 @@ Controller::Controller(const ControllerModel& model, std::span<ActuatorBus* cons
   sanitizer_.reset(model.neutral);
   face_ = model.neutral;
   last_measured_pose_ = model.mandible_rest;
+  if (model.mapping.mechanism) {
+    for (std::size_t s = 0; s < model.mapping.mechanism->struts(); ++s) {
+      strut_mask_ |= std::uint64_t{1} << model.mapping.mechanism->strut[s].actuator;
+    }
+  }
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     command_[i] = model.actuators[i].rest;
     measured_[i] = model.actuators[i].rest;
@@ -192,8 +197,12 @@ std::optional<face::MandiblePose> Controller::measured_mandible_pose() {
   const MandibleMechanism& mech = *model_.mapping.mechanism;
   MandibleStrokes measured{};
   for (std::size_t s = 0; s < mech.struts(); ++s) measured[s] = measured_[mech.strut[s].actuator];
-  auto pose = forward(mech, measured, last_measured_pose_);
-  if (!pose) pose = forward(mech, measured, model_.mandible_rest);
+  // Solved to 10 nm of stroke: a hundred times finer than a strut's encoder
+  // resolves, and one Newton step from the warm start instead of two.
+  constexpr int kIterations = 30;
+  constexpr double kStrokeTolerance = 1e-8;
+  auto pose = forward(mech, measured, last_measured_pose_, kIterations, kStrokeTolerance);
+  if (!pose) pose = forward(mech, measured, model_.mandible_rest, kIterations, kStrokeTolerance);
   if (pose) last_measured_pose_ = *pose;
   return pose;
 }
@@ -215,10 +224,15 @@ bool Controller::mechanism_out_of_envelope() {
 
 bool Controller::limit_actuators(double dt, LimitFlags* flags) {
   bool breach = false;
+  // The struts of a mandible mechanism take the strokes of the limited pose
+  // (limit_mechanism): their own steps would be overwritten, so skip them.
+  const bool by_pose =
+      model_.mapping.mechanism && !relaxed(model_.mapping.mechanism->strut[0].actuator);
   const std::uint64_t coupled =
       model_.actuator_constraints.size() != 0 ? bound_actuator_constraints() : 0;
   bool bounded = false;
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    if (by_pose && ((strut_mask_ >> i) & 1u) != 0) continue;
     const ActuatorLimits& l = model_.actuators[i].limits;
     flags[i] = ((coupled >> i) & 1u) != 0
                    ? limit_step_within(l, limiter_[i], target_[i], dt, bound_lo_[i], bound_hi_[i])
@@ -228,9 +242,7 @@ bool Controller::limit_actuators(double dt, LimitFlags* flags) {
     command_[i] = limiter_[i].position;
   }
   if (bounded) ++counters_.actuator_coupled_steps;
-  if (model_.mapping.mechanism && !relaxed(model_.mapping.mechanism->strut[0].actuator)) {
-    limit_mechanism(dt, flags);
-  }
+  if (by_pose) limit_mechanism(dt, flags);
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     const ActuatorLimits& l = model_.actuators[i].limits;
     if (relaxed(i)) {

@@ -166,6 +166,7 @@ class Controller {
   std::uint64_t mapping_clamps_ = 0;
   std::array<double, kMaxActuators> bound_lo_{};  // this tick's coupled position bounds
   std::array<double, kMaxActuators> bound_hi_{};
+  std::uint64_t strut_mask_ = 0;  // the mandible mechanism's struts, by actuator index
   std::array<double, kMaxActuators> mapped_{};
   std::array<double, kMaxActuators> target_{};
   std::array<double, kMaxActuators> command_{};

@@ -26,7 +26,6 @@ constexpr int kNewtonIterations = 6;
 constexpr double kStepTolerance = 1e-9;
 // Slack, in m (stroke) or rad, within which a QP candidate counts as feasible.
 constexpr double kFeasibleSlack = 1e-12;
-constexpr double kForwardTolerance = 1e-11;  // m
 
 bool finite(const Vector3d& v) {
   return v.allFinite();
@@ -158,15 +157,27 @@ void clip_strokes(const MandibleMechanism& m, MandibleStrokes& s) {
 }
 
 // Newton on strokes(x) = target from x (updated in place; held DOFs stay held).
-// True once every residual is at most kForwardTolerance.
+// True once every residual is at most `tolerance`. After a step only the
+// strokes are evaluated first: the Jacobian is needed only if another step is.
 bool newton(const MandibleMechanism& m, const MandibleStrokes& target, MandibleVector& x,
-            int max_iterations) {
+            int max_iterations, double tolerance = kForwardTolerance) {
+  const auto converged = [&](const MandibleStrokes& s) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < m.count; ++i) worst = std::max(worst, std::fabs(s[i] - target[i]));
+    return worst <= tolerance;  // false for a NaN
+  };
   for (int it = 0; it <= max_iterations; ++it) {
+    if (it > 0) {
+      MandibleStrokes s{};
+      strokes(m, to_pose(x), s);
+      if (converged(s)) return true;
+      if (it == max_iterations) break;
+    }
     const Augmented a = augmented(m, x);
     Vector3d residual = Vector3d::Zero();
     for (std::size_t i = 0; i < m.count; ++i) residual[i] = a.value[i] - target[i];
     if (!residual.allFinite()) return false;
-    if (residual.cwiseAbs().maxCoeff() <= kForwardTolerance) return true;
+    if (residual.cwiseAbs().maxCoeff() <= tolerance) return true;
     if (it == max_iterations) break;
     Matrix3d Jinv;
     if (!invert(a.J, Jinv)) return false;
@@ -323,9 +334,10 @@ MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& 
 }
 
 std::optional<face::MandiblePose> forward(const MandibleMechanism& m, const MandibleStrokes& target,
-                                          const face::MandiblePose& guess, int max_iterations) {
+                                          const face::MandiblePose& guess, int max_iterations,
+                                          double tolerance) {
   MandibleVector x = m.held_in(to_vector(guess));
-  if (!x.allFinite() || !newton(m, target, x, max_iterations)) return std::nullopt;
+  if (!x.allFinite() || !newton(m, target, x, max_iterations, tolerance)) return std::nullopt;
   return to_pose(x);
 }
 

@@ -115,13 +115,17 @@ struct MandibleSolveResult {
 MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& target,
                           MandibleStrokes& out_strokes);
 
-// Forward kinematics (offline and for checks): Newton from `guess`, at most
-// `max_iterations` steps. nullopt if it does not converge to 1e-12 m or the
+// The strokes forward() converges to by default, in m.
+inline constexpr double kForwardTolerance = 1e-11;
+
+// Forward kinematics: Newton from `guess`, at most `max_iterations` steps.
+// nullopt if it does not converge to `tolerance` (m of stroke) or the
 // Jacobian is singular on the way.
 std::optional<face::MandiblePose> forward(const MandibleMechanism& m,
                                           const MandibleStrokes& strokes,
                                           const face::MandiblePose& guess = {},
-                                          int max_iterations = 30);
+                                          int max_iterations = 30,
+                                          double tolerance = kForwardTolerance);
 
 // Conditioning of the weighted Jacobian (stroke mm per metric unit) over a grid of
 // `samples` points per driven axis of `envelope` (held DOFs at their value). This

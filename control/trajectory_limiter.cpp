@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace facectl {
 namespace {
@@ -59,9 +60,19 @@ LimitFlags step(const ActuatorLimits& limits, LimiterState& state, double target
     flags |= kLimitVelocity;
   }
 
-  // Never head into a soft limit faster than one can stop before it.
-  const double v_hi = braking_speed(hi - x, a_max, dt + ramp);
-  const double v_lo = -braking_speed(x - lo, a_max, dt + ramp);
+  // Never head into a soft limit (or position bound) faster than one can
+  // stop before it. No velocity below (goal, accelerated or jerk-limited) can
+  // be faster than `cap`, so a bound farther than the stopping distance from
+  // `cap` cannot bind this step: its square root is skipped (the common case;
+  // the result is the same). The margin covers the rounding of braking_speed.
+  const double cap = std::max(v_max, std::fabs(v) + a_max * dt);
+  const double reach = (cap * cap + 2.0 * a_max * cap * (dt + ramp)) * (1.0 + 1e-6);
+  const auto bound = [&](double d) {
+    return 2.0 * a_max * d >= reach ? std::numeric_limits<double>::infinity()
+                                    : braking_speed(d, a_max, dt + ramp);
+  };
+  const double v_hi = bound(hi - x);
+  const double v_lo = -bound(x - lo);
   if (v_goal > v_hi || v_goal < v_lo) {
     const bool tighter = v_goal > v_hi ? hi < limits.soft_max : lo > limits.soft_min;
     flags |= kWithin && tighter ? kLimitCoupled : kLimitApproach;

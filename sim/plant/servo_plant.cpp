@@ -19,7 +19,11 @@ ServoPlant::ServoPlant(const ServoPlantParams& params, double initial_position)
       motor_(initial_position),
       output_(initial_position),
       noise_(params.seed),
-      thermal_(params.thermal, params.name) {}
+      thermal_(params.thermal, params.name) {
+  const double w = kTwoPi * params.natural_frequency_hz;
+  kp_ = w * w;
+  kd_ = 2.0 * params.damping_ratio * w;
+}
 
 void ServoPlant::set_enabled(bool enabled) {
   if (enabled != enabled_) {
@@ -76,11 +80,13 @@ void ServoPlant::step_first_order(double dt) {
 }
 
 void ServoPlant::step_pd(double dt) {
-  const double w = kTwoPi * params_.natural_frequency_hz;
-  const double kp = w * w;
-  const double kd = 2.0 * params_.damping_ratio * w;
-  const int n = std::max(1, static_cast<int>(std::ceil(dt / kPdMaxStep_s)));
-  const double h = dt / n;
+  if (dt != gain_dt_) {  // ticks repeat their dt: work the sub-steps out once
+    gain_dt_ = dt;
+    pd_steps_ = std::max(1, static_cast<int>(std::ceil(dt / kPdMaxStep_s)));
+    pd_h_ = dt / pd_steps_;
+  }
+  const double kp = kp_, kd = kd_, h = pd_h_;
+  const int n = pd_steps_;
   for (int i = 0; i < n; ++i) {
     const double error = active_command_ - motor_;
     if (std::fabs(error) <= params_.deadband) {

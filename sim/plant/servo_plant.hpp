@@ -79,8 +79,12 @@ class ServoPlant {
   double motor_;
   double output_;
   double velocity_ = 0.0;
-  double gain_dt_ = -1.0;  // the dt gain_ was computed for
+  double gain_dt_ = -1.0;  // the dt gain_ (first order) or pd_steps_ was computed for
   double gain_ = 0.0;
+  int pd_steps_ = 1;   // PD sub-steps per advance of gain_dt_
+  double pd_h_ = 0.0;  // their length
+  double kp_ = 0.0;    // ω²
+  double kd_ = 0.0;    // 2ζω
   std::int64_t last_ns_ = -1;
   bool enabled_ = false;
   MeasurementNoise noise_;

@@ -6,7 +6,11 @@
 
 namespace facectl::sim {
 
-ThermalModel::ThermalModel(const ThermalParams& params, const std::string& name) : p_(params) {
+ThermalModel::ThermalModel(const ThermalParams& params, const std::string& name)
+    : p_(params),
+      banded_(params.extreme_band > 0.0 && params.position_max > params.position_min),
+      effort_per_error_(params.full_effort > 0.0 ? 1.0 / params.full_effort : 0.0),
+      heat_scale_(1.0 / (params.rated_duty * params.rated_duty)) {
   std::snprintf(extreme_text_.data(), extreme_text_.size(),
                 "thermal: %s held at an end of travel longer than its %g s budget", name.c_str(),
                 p_.extreme_budget_s);
@@ -16,9 +20,8 @@ ThermalModel::ThermalModel(const ThermalParams& params, const std::string& name)
 
 void ThermalModel::step(std::int64_t now_ns, double dt, bool powered, double output, double error) {
   if (dt <= 0.0) return;
-  const bool banded = p_.extreme_band > 0.0 && p_.position_max > p_.position_min;
   const bool at_extreme =
-      powered && banded &&
+      powered && banded_ &&
       (output <= p_.position_min + p_.extreme_band || output >= p_.position_max - p_.extreme_band);
   if (at_extreme) {
     continuous_s_ += dt;
@@ -29,7 +32,7 @@ void ThermalModel::step(std::int64_t now_ns, double dt, bool powered, double out
   }
 
   double effort = 0.0;
-  if (powered && p_.full_effort > 0.0) effort = std::fabs(error) / p_.full_effort;
+  if (powered) effort = std::fabs(error) * effort_per_error_;
   if (at_extreme) effort = std::max(effort, p_.extreme_effort);
   effort = std::min(effort, 1.0);
   if (dt != alpha_dt_) {  // ticks repeat their dt: one exp per change, not per step
@@ -39,7 +42,7 @@ void ThermalModel::step(std::int64_t now_ns, double dt, bool powered, double out
   const double alpha = alpha_;
   duty_ += alpha * (effort - duty_);
   heat_ += alpha * (effort * effort - heat_);
-  const double thermal = heat_ / (p_.rated_duty * p_.rated_duty);
+  const double thermal = heat_ * heat_scale_;
   stats_.duty_peak = std::max(stats_.duty_peak, duty_);
   stats_.thermal_peak = std::max(stats_.thermal_peak, thermal);
 

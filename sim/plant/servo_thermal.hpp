@@ -53,6 +53,11 @@ class ThermalModel {
   double continuous_s_ = 0.0;
   double alpha_dt_ = -1.0;  // the dt alpha_ was computed for
   double alpha_ = 0.0;
+  // Fixed by the parameters, worked out once: a step runs for every servo
+  // every tick, and divisions are what it would spend its time on.
+  bool banded_ = false;
+  double effort_per_error_ = 0.0;  // 1 / full_effort, 0 = no effort model
+  double heat_scale_ = 0.0;        // 1 / rated_duty²
   const char* fault_ = nullptr;
   // Written once here, so that tripping in the tick formats nothing.
   std::array<char, 128> extreme_text_{};
