@@ -362,12 +362,12 @@ StaticProof prove(const LoadedConfig& cfg) {
     const auto worst = maximize(set, obj);
     if (!worst) continue;
     const double excess = worst->value + offset - k.bound;
-    out.findings.push_back(
-        {Severity::kInfo, "actuator coupled limit", k.name,
-         excess > 1e-9 ? "the mapping can ask for " + fmt("%.4g", excess) +
-                             " beyond it; the tick projects such targets and brakes toward them"
-                       : "the mapping never asks beyond it",
-         excess > 1e-9 ? describe_face(m, tidy(m, set, obj, worst->at)) : ""});
+    out.findings.push_back({Severity::kInfo, "actuator coupled limit", k.name,
+                            excess > 1e-9 ? "the mapping can ask for " + fmt("%.4g", excess) +
+                                                " beyond it; the tick projects such targets, and "
+                                                "position bounds keep every step inside it"
+                                          : "the mapping never asks beyond it",
+                            excess > 1e-9 ? describe_face(m, tidy(m, set, obj, worst->at)) : ""});
   }
   // Bus schedules against their frame budgets (the drivers' budget model).
   for (const BusBudgetResult& b : cfg.budgets) {
