@@ -24,13 +24,17 @@ void CommandShaper::reset(const std::array<double, kMaxFaceSignals>& pose) {
 
 const std::array<double, kMaxFaceSignals>& CommandShaper::apply(
     const std::array<double, kMaxFaceSignals>& input, bool input_stale, double dt) {
-  const double ease_step =
-      params_.neutral_ease_time_s <= 0.0 ? 1.0 : dt / params_.neutral_ease_time_s;
+  if (dt != gains_dt_) {
+    gains_dt_ = dt;
+    ease_step_ = params_.neutral_ease_time_s <= 0.0 ? 1.0 : dt / params_.neutral_ease_time_s;
+    rise_ = lag_gain(dt, params_.activation_time_constant_s);
+    fall_ = lag_gain(dt, params_.deactivation_time_constant_s);
+    smooth_ = lag_gain(dt, params_.smoothing_time_constant_s);
+  }
+  const double ease_step = ease_step_;
   neutral_weight_ = std::clamp(neutral_weight_ + (input_stale ? ease_step : -ease_step), 0.0, 1.0);
 
-  const double rise = lag_gain(dt, params_.activation_time_constant_s);
-  const double fall = lag_gain(dt, params_.deactivation_time_constant_s);
-  const double smooth = lag_gain(dt, params_.smoothing_time_constant_s);
+  const double rise = rise_, fall = fall_, smooth = smooth_;
   const double w = neutral_weight_;
   for (std::size_t i = 0; i < layout_.size(); ++i) {
     const double target = (1.0 - w) * input[i] + w * neutral_[i];

@@ -48,11 +48,6 @@ class SpscRing {
   void pop() { tail_.store(tail_.load(std::memory_order_relaxed) + 1, std::memory_order_release); }
 
   std::size_t capacity() const { return capacity_; }
-  // Elements pushed and not yet popped (exact on either side of the ring).
-  std::size_t size() const {
-    return static_cast<std::size_t>(head_.load(std::memory_order_acquire) -
-                                    tail_.load(std::memory_order_acquire));
-  }
   std::uint64_t dropped() const { return dropped_.load(std::memory_order_relaxed); }
   std::uint64_t pushed() const { return head_.load(std::memory_order_relaxed); }
 

@@ -102,9 +102,6 @@ int run_cli(int argc, char** argv) {
   simulate_cmd->add_option("--telemetry-rate", simulate.telemetry_rate_hz,
                            "Rows per simulated second in telemetry.csv (default 100)");
   simulate_cmd->add_flag("--quiet", simulate.quiet, "No progress bar");
-  simulate_cmd->add_flag("--one-thread", simulate.one_thread,
-                         "Write the outputs on the simulating thread instead of a second one "
-                         "(the same bytes; slower where there are two CPUs)");
   simulate_cmd->callback([&] { exit_code = facectl::simulate_command(simulate); });
 
   facectl::BusDoctorOptions doctor;

@@ -31,3 +31,7 @@ cp "$tmp/verify/lip_corner_up_l.svg" docs/images/verify/
 mkdir -p docs/images/simulate
 cp "$tmp/simulate/frames/frame_00100.png" docs/images/simulate/render_pair.png
 cp "$tmp/simulate/plots/jaw_digastric.svg" docs/images/simulate/
+
+# The expression library's contact sheet (README, docs/FACE_MODEL.md): each
+# expression simulated from rest to steady state on the full face model.
+"$facectl" face contact-sheet --out docs/images/expressions.png --columns 6

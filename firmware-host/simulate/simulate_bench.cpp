@@ -24,14 +24,14 @@ double median(std::vector<double> v) {
 // Wall seconds of one simulation of `duration` s; with `outputs`, everything
 // `facectl simulate` does without --render (telemetry, statistics, plots, summary).
 double time_run(const LoadedConfig& cfg, const SimulationInput& input, double duration,
-                bool outputs, bool overlap, const std::filesystem::path& dir) {
-  OfflineHead head(cfg, kSimulationTelemetryRing);
+                bool outputs, const std::filesystem::path& dir) {
+  OfflineHead head(cfg, 8);
   const ControllerModel& m = head.model();
   SimulationStats stats(m);
   DecimatedTelemetry telemetry(m, (dir / "telemetry.csv").string(), 10);
   ActuatorPlots plots(m, duration);
   SimulationSinks sinks;
-  if (outputs) sinks = {&stats, &telemetry, &plots, nullptr, {}, 25.0, overlap};
+  if (outputs) sinks = {&stats, &telemetry, &plots, nullptr, {}, 25.0};
   const auto start = std::chrono::steady_clock::now();
   const SimulationRun run = run_simulation(head, input, duration, sinks);
   telemetry.close();
@@ -71,25 +71,20 @@ int simulate_bench_command(const SimulateBenchOptions& o) {
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / "facectl-bench-simulate";
     std::filesystem::create_directories(dir);
-    std::vector<double> full, serial, bare, feed;
+    std::vector<double> full, bare, feed;
     for (int k = 0; k < std::max(1, o.runs); ++k) {
-      full.push_back(time_run(cfg, input, o.duration_s, true, true, dir));
-      serial.push_back(time_run(cfg, input, o.duration_s, true, false, dir));
-      bare.push_back(time_run(cfg, input, o.duration_s, false, false, dir));
+      full.push_back(time_run(cfg, input, o.duration_s, true, dir));
+      bare.push_back(time_run(cfg, input, o.duration_s, false, dir));
       feed.push_back(time_input(cfg, input, o.duration_s));
     }
     std::filesystem::remove_all(dir);
-    const double f = median(full), s1 = median(serial), b = median(bare), in = median(feed);
+    const double f = median(full), b = median(bare), in = median(feed);
     const double ticks = o.duration_s * cfg.built.model.rate_hz;
     std::printf("facectl bench simulate: rig %s, show %s, %g s simulated at %g Hz, %d run(s)\n",
                 cfg.rig.name.c_str(), cfg.show->name().c_str(), o.duration_s,
                 cfg.built.model.rate_hz, std::max(1, o.runs));
     std::printf("  simulate (no render): %8.3f s wall, %7.1fx real time, %6.2f us per tick\n", f,
                 o.duration_s / f, f / ticks * 1e6);
-    std::printf(
-        "  same, outputs on the ticking thread: %8.3f s wall, %7.1fx real time, %6.2f us per "
-        "tick\n",
-        s1, o.duration_s / s1, s1 / ticks * 1e6);
     std::printf("  loop without outputs: %8.3f s wall, %7.1fx real time, %6.2f us per tick\n", b,
                 o.duration_s / b, b / ticks * 1e6);
     std::printf(
@@ -99,10 +94,8 @@ int simulate_bench_command(const SimulateBenchOptions& o) {
         "  so the controller tick with its simulated buses and plants: %.2f us per tick "
         "(%.1f%% of simulate)\n",
         (b - in) / ticks * 1e6, 100.0 * (b - in) / f);
-    std::printf(
-        "  outputs (telemetry, statistics, plots, summary) beyond the bare loop: %.2f us per tick "
-        "(%.1f%%); on the ticking thread: %.2f us per tick\n",
-        (f - b) / ticks * 1e6, 100.0 * (f - b) / f, (s1 - b) / ticks * 1e6);
+    std::printf("  outputs (telemetry, statistics, plots, summary): %.2f us per tick (%.1f%%)\n",
+                (f - b) / ticks * 1e6, 100.0 * (f - b) / f);
     std::printf("  one hour of show: %.1f s (target 7.2 s, 500x)\n", 3600.0 * f / o.duration_s);
     return 0;
   } catch (const std::exception& e) {

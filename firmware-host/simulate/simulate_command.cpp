@@ -77,7 +77,7 @@ int simulate_command(const SimulateOptions& o) {
   const double duration = o.duration_s > 0.0 ? o.duration_s : input.duration();
   try {
     StagedDir dir(o.out);
-    OfflineHead head(in.cfg, kSimulationTelemetryRing);
+    OfflineHead head(in.cfg, 8);
     const ControllerModel& m = head.model();
     SimulationStats stats(m);
     const auto every =
@@ -85,7 +85,7 @@ int simulate_command(const SimulateOptions& o) {
     DecimatedTelemetry telemetry(m, (dir.path() / "telemetry.csv").string(), every);
     ActuatorPlots plots(m, duration);
     ProgressBar progress(duration, !o.quiet && ProgressBar::stderr_is_terminal());
-    SimulationSinks sinks{&stats, &telemetry, &plots, &progress, {}, 25.0, !o.one_thread};
+    SimulationSinks sinks{&stats, &telemetry, &plots, &progress, {}, 25.0};
     std::unique_ptr<RenderSequence> render;
     if (o.render) {
       render = std::make_unique<RenderSequence>(in.cfg, dir.path());

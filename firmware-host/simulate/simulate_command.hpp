@@ -13,8 +13,7 @@ struct SimulateOptions {
   bool render = false;      // face render frames
   double duration_s = 0.0;  // 0: the input's length
   double telemetry_rate_hz = 100.0;
-  bool quiet = false;       // no progress bar even on a terminal
-  bool one_thread = false;  // outputs on the simulating thread (same bytes, slower)
+  bool quiet = false;  // no progress bar even on a terminal
 };
 
 // `facectl simulate` (docs/SIMULATE.md). Exit 0 when the head ran the input

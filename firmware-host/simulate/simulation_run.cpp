@@ -4,7 +4,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "firmware-host/simulate/output_pipeline.hpp"
+#include "firmware-host/simulate/actuator_plots.hpp"
+#include "firmware-host/simulate/decimated_telemetry.hpp"
 #include "firmware-host/simulate/progress_bar.hpp"
 #include "firmware-host/simulate/simulation_stats.hpp"
 
@@ -65,12 +66,7 @@ SimulationRun run_simulation(OfflineHead& head, const SimulationInput& input, do
   const auto ticks = static_cast<std::uint64_t>(std::llround(duration_s / period));
   std::uint64_t next_pose = 0, next_frame = 0;  // in ticks, counted without drift
   std::uint64_t poses = 0, frames = 0;
-  SpscRing<TelemetryRecord>& records = *head.telemetry();
-  const bool any_sink = sinks.stats != nullptr || sinks.telemetry != nullptr ||
-                        sinks.plots != nullptr || sinks.progress != nullptr;
-  OutputPipeline outputs(records, sinks, m.actuators.size(),
-                         any_sink && sinks.overlap_outputs && OutputPipeline::worth_threading());
-  for (std::uint64_t k = 0; k <= ticks && !outputs.failed(); ++k) {
+  for (std::uint64_t k = 0; k <= ticks; ++k) {
     const double t = static_cast<double>(k) * period;
     if (k >= next_pose) {
       input.evaluate(length > 0.0 && t > length ? std::fmod(t, length) : t, pose);
@@ -78,21 +74,21 @@ SimulationRun run_simulation(OfflineHead& head, const SimulationInput& input, do
       next_pose = static_cast<std::uint64_t>(
           std::ceil(static_cast<double>(++poses) * show_period / period - 1e-9));
     }
-    outputs.wait_for_room();
-    const std::uint64_t published = records.pushed();
     head.step(period);
-    if (records.pushed() != published + 1) {
-      throw std::logic_error("simulate: the controller published no telemetry");
-    }
+    const TelemetryRecord* r = head.telemetry()->front();
+    if (r == nullptr) throw std::logic_error("simulate: the controller published no telemetry");
     reader.read(positions);
-    outputs.push(t, pos);
+    if (sinks.stats != nullptr) sinks.stats->add(t, *r, pos);
+    if (sinks.telemetry != nullptr) sinks.telemetry->add(t, *r, pos);
+    if (sinks.plots != nullptr) sinks.plots->add(t, *r, pos);
     if (sinks.frame && k >= next_frame) {
       sinks.frame(face, pos);
       next_frame = static_cast<std::uint64_t>(
           std::ceil(static_cast<double>(++frames) * frame_period / period - 1e-9));
     }
+    if (sinks.progress != nullptr) sinks.progress->update(t);
+    drain(head);
   }
-  outputs.finish();
   run.ticks = ticks + 1;
   run.show_s = static_cast<double>(ticks) * period;
   if (sinks.stats != nullptr) sinks.stats->finish(run.show_s);

@@ -24,15 +24,7 @@ struct SimulationSinks {
   // simulated actuator positions (the render sequence).
   std::function<void(std::span<const double>, std::span<const double>)> frame;
   double frame_rate_hz = 25.0;
-  // Run stats, telemetry, plots and progress on a second thread, overlapping
-  // the ticks (same outputs; docs/SIMULATE.md), when the machine has one.
-  bool overlap_outputs = true;
 };
-
-// The telemetry ring an OfflineHead for run_simulation should have: room for
-// the sinks' thread to fall this many ticks behind before the ticks wait, and
-// small enough (about 256 KiB) to stay in cache.
-inline constexpr std::size_t kSimulationTelemetryRing = 128;
 
 struct SimulationRun {
   double enable_s = 0.0;               // simulated time from enable request to RUNNING

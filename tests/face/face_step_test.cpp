@@ -28,6 +28,36 @@ TEST(FaceStep, NeutralInputKeepsTheRestShape) {
     ASSERT_LT((d.skin_x.get(i) - m.skin.v.get(i)).norm(), 1e-7) << i;  // round-off only
 }
 
+// The anchors on the skull away from the jaw get their targets once, at reset: every
+// anchor is in exactly one list, and those supports stay put under jaw and muscles.
+TEST(FaceStep, FixedSkullAnchorsHaveSupportsThatNeverMove) {
+  const FaceModel& m = default_model();
+  std::vector<int> seen(m.anchor_support.size(), 0);
+  for (const auto* list : {&m.anchors_on_muscles, &m.anchors_on_jaw, &m.anchors_on_fixed_skull})
+    for (int i : *list) ++seen[i];
+  for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "anchor " << i;
+  ASSERT_FALSE(m.anchors_on_fixed_skull.empty());
+  ASSERT_FALSE(m.anchors_on_jaw.empty());
+  FaceData d = make_face_data(m);
+  std::vector<double> c(m.spec.commanded.size(), 0.5);
+  FaceInput in;
+  in.contractions = c;
+  in.jaw = {15 * kDeg, 4 * kDeg, 0.006};
+  for (int f = 0; f < 20; ++f) step_face(m, d, in);
+  for (int i : m.anchors_on_fixed_skull) {
+    const SurfacePoint& sp = m.anchor_support[i];
+    ASSERT_EQ(sp.layer, Layer::kSkull);
+    for (int v : {sp.i0, sp.i1, sp.i2})
+      ASSERT_EQ((d.skull.get(v) - m.skull.v.get(v)).norm(), 0.0) << "anchor " << i;
+  }
+  // A jaw anchor's support does move, so the split is not vacuous.
+  const SurfacePoint& jaw = m.anchor_support[m.anchors_on_jaw.front()];
+  EXPECT_GT((d.skull.get(jaw.i0) - m.skull.v.get(jaw.i0)).norm() +
+                (d.skull.get(jaw.i1) - m.skull.v.get(jaw.i1)).norm() +
+                (d.skull.get(jaw.i2) - m.skull.v.get(jaw.i2)).norm(),
+            1e-4);
+}
+
 TEST(TeethCollision, NoSkinVertexEndsAFrameInsideATeethHull) {
   HeadSpec spec = default_spec();
   spec.teeth_inset = -0.004;  // teeth pushed through the lips: contacts are certain

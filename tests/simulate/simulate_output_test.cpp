@@ -47,26 +47,6 @@ TEST(Simulate, TwoRunsGiveByteIdenticalOutputs) {
   }
 }
 
-TEST(Simulate, OutputsOnOneThreadAreTheSameBytes) {
-  // The outputs are written on a second thread unless --one-thread: the
-  // sinks must see the same ticks in the same order either way.
-  TempDir tmp;
-  auto serial = demo_args(tmp / "b");
-  serial.push_back("--one-thread");
-  const auto a = run_facectl(demo_args(tmp / "a"), tmp / "a.log");
-  const auto b = run_facectl(serial, tmp / "b.log");
-  ASSERT_EQ(a.exit_code, 0) << a.output;
-  ASSERT_EQ(b.exit_code, 0) << b.output;
-  const auto fa = folder_contents(tmp.path() / "a");
-  const auto fb = folder_contents(tmp.path() / "b");
-  ASSERT_GE(fa.size(), 5u);
-  ASSERT_EQ(fa.size(), fb.size());
-  for (const auto& [name, bytes] : fa) {
-    ASSERT_TRUE(fb.count(name)) << name;
-    EXPECT_TRUE(bytes == fb.at(name)) << name << " differs with --one-thread";
-  }
-}
-
 TEST(Simulate, TwoRenderedRunsGiveByteIdenticalFrames) {
   TempDir tmp;
   for (const char* out : {"a", "b"}) {

@@ -47,46 +47,61 @@ FACECTL_INLINE inline void stretch_step(P3& a, P3& b, double wa, double wb, doub
   b.x += fb * dx, b.y += fb * dy, b.z += fb * dz;
 }
 
-// Bending of the pair (a, b, c) and (a, b, d) about edge ab: C = φ − rest.
-FACECTL_INLINE inline void bending_step(P3& a, P3& b, P3& c, P3& d, double wa, double wb, double wc,
-                                        double wd, double k, double cr, double sr) {
-  const double ex = b.x - a.x, ey = b.y - a.y, ez = b.z - a.z;  // e = pb − pa
-  const double ux = c.x - a.x, uy = c.y - a.y, uz = c.z - a.z;  // u = pc − pa
-  const double vx = d.x - a.x, vy = d.y - a.y, vz = d.z - a.z;  // v = pd − pa
-  const Dihedral h = dihedral_terms(ex, ey, ez, ux, uy, uz, vx, vy, vz);
-  const double sdel = h.sin * cr - h.cos * sr;  // sin(φ − rest)
-  const double cdel = h.cos * cr + h.sin * sr;  // cos(φ − rest)
+// Bending of the pair (a, b, c) and (a, b, d) about edge ab: C = φ − rest. The arithmetic
+// runs in single precision (twice the lanes a vector, and faster square roots and
+// divisions) on the edge vectors scaled by 2^10, so that a skin or muscle edge of about
+// a millimetre is about 1 and nothing near the thresholds leaves float's normal range;
+// the positions and the sums p + Δp stay double. Exact powers of two keep the scaling
+// exact, and every lane does the same IEEE operations, so the bits are still the same
+// scalar, SSE2 or AVX2. Thresholds in scaled units: a wing with 2·area < about 1e−4 mm²
+// or an edge shorter than about 1 µm is degenerate and skipped.
+FACECTL_INLINE inline void bending_step(P3& a, P3& b, P3& c, P3& d, double wa_, double wb_,
+                                        double wc_, double wd_, double k_, double cr_, double sr_) {
+  constexpr double kUp = 1024.0, kDown = 1.0 / 1024.0;
+  using F = float;
+  const F ex = F((b.x - a.x) * kUp), ey = F((b.y - a.y) * kUp), ez = F((b.z - a.z) * kUp);
+  const F ux = F((c.x - a.x) * kUp), uy = F((c.y - a.y) * kUp), uz = F((c.z - a.z) * kUp);
+  const F vx = F((d.x - a.x) * kUp), vy = F((d.y - a.y) * kUp), vz = F((d.z - a.z) * kUp);
+  const F wa = F(wa_), wb = F(wb_), wc = F(wc_), wd = F(wd_), k = F(k_), cr = F(cr_), sr = F(sr_);
+  const DihedralT<F> h = dihedral_terms<F>(ex, ey, ez, ux, uy, uz, vx, vy, vz, 1e-8f, 1e-6f);
+  const F sdel = h.sin * cr - h.cos * sr;  // sin(φ − rest)
+  const F cdel = h.cos * cr + h.sin * sr;  // cos(φ − rest)
   // C = φ − rest, evaluated as 2·sin((φ − rest)/2) = sin Δ / cos(Δ/2): monotone on
   // (−π, π), equal to the angle error to third order, no trigonometry, and no
   // cancellation near 0 (past |Δ| = π/2 it is ±√(2(1 − cos Δ))).
   const bool near = cdel >= 0;
-  const double sq = std::sqrt(near ? 0.5 * (1 + cdel) : 2 * (1 - cdel));
-  const double num = near ? sdel : std::copysign(sq, sdel);
+  const F sq = std::sqrt(near ? F(0.5) * (1 + cdel) : 2 * (1 - cdel));
+  const F num = near ? sdel : std::copysign(sq, sdel);
   // Exact gradient (Bridson et al. 2003): ∇c φ = −|e| n1/|n1|², ∇d φ = |e| n2/|n2|²,
   // ∇a φ = −(1−s1)∇c φ − (1−s2)∇d φ, ∇b φ = −s1 ∇c φ − s2 ∇d φ, where s1, s2 are the
   // wings' foot points on the edge. 1/|n1|² = |n2|²·r².
-  const double r2 = h.r * h.r;
-  const double gc = -h.le * h.N2 * r2, gd = h.le * h.N1 * r2;  // ∇c φ = gc·n1, ∇d φ = gd·n2
-  const double s1 = (ux * ex + uy * ey + uz * ez) * h.invE;
-  const double s2 = (vx * ex + vy * ey + vz * ez) * h.invE;
-  const double a1 = -(1 - s1) * gc, a2 = -(1 - s2) * gd;  // ∇a φ = a1·n1 + a2·n2
-  const double b1 = -s1 * gc, b2 = -s2 * gd;              // ∇b φ = b1·n1 + b2·n2
-  const double denom = wa * (a1 * a1 * h.N1 + a2 * a2 * h.N2 + 2 * a1 * a2 * h.D) +
-                       wb * (b1 * b1 * h.N1 + b2 * b2 * h.N2 + 2 * b1 * b2 * h.D) +
-                       wc * gc * gc * h.N1 + wd * gd * gd * h.N2;
+  const F r2 = h.r * h.r;
+  const F gc = -h.le * h.N2 * r2, gd = h.le * h.N1 * r2;  // ∇c φ = gc·n1, ∇d φ = gd·n2
+  const F s1 = (ux * ex + uy * ey + uz * ez) * h.invE;
+  const F s2 = (vx * ex + vy * ey + vz * ez) * h.invE;
+  const F a1 = -(1 - s1) * gc, a2 = -(1 - s2) * gd;  // ∇a φ = a1·n1 + a2·n2
+  const F b1 = -s1 * gc, b2 = -s2 * gd;              // ∇b φ = b1·n1 + b2·n2
+  const F denom = wa * (a1 * a1 * h.N1 + a2 * a2 * h.N2 + 2 * a1 * a2 * h.D) +
+                  wb * (b1 * b1 * h.N1 + b2 * b2 * h.N2 + 2 * b1 * b2 * h.D) + wc * gc * gc * h.N1 +
+                  wd * gd * gd * h.N2;
   // Degenerate pairs are skipped: f = 0.
-  const bool ok = h.valid & (denom >= 1e-20);
-  const double q = -k * num / (ok ? (near ? sq : 1.0) * denom : 1.0);
-  const double f = ok ? q : 0.0;
-  const double fa1 = f * wa * a1, fa2 = f * wa * a2;
-  const double fb1 = f * wb * b1, fb2 = f * wb * b2;
-  const double fc = f * wc * gc, fd = f * wd * gd;
+  const bool ok = h.valid & (denom >= 1e-20f);
+  const F q = -k * num / (ok ? (near ? sq : F(1)) * denom : F(1));
+  const F f = ok ? q : F(0);
+  const F fa1 = f * wa * a1, fa2 = f * wa * a2;
+  const F fb1 = f * wb * b1, fb2 = f * wb * b2;
+  const F fc = f * wc * gc, fd = f * wd * gd;
   // (Written out: a loop over x, y, z here would stop the vectoriser.)
-  a.x += fa1 * h.n1x + fa2 * h.n2x, b.x += fb1 * h.n1x + fb2 * h.n2x;
-  a.y += fa1 * h.n1y + fa2 * h.n2y, b.y += fb1 * h.n1y + fb2 * h.n2y;
-  a.z += fa1 * h.n1z + fa2 * h.n2z, b.z += fb1 * h.n1z + fb2 * h.n2z;
-  c.x += fc * h.n1x, c.y += fc * h.n1y, c.z += fc * h.n1z;
-  d.x += fd * h.n2x, d.y += fd * h.n2y, d.z += fd * h.n2z;
+  a.x += double(fa1 * h.n1x + fa2 * h.n2x) * kDown,
+      b.x += double(fb1 * h.n1x + fb2 * h.n2x) * kDown;
+  a.y += double(fa1 * h.n1y + fa2 * h.n2y) * kDown,
+      b.y += double(fb1 * h.n1y + fb2 * h.n2y) * kDown;
+  a.z += double(fa1 * h.n1z + fa2 * h.n2z) * kDown,
+      b.z += double(fb1 * h.n1z + fb2 * h.n2z) * kDown;
+  c.x += double(fc * h.n1x) * kDown, c.y += double(fc * h.n1y) * kDown;
+  c.z += double(fc * h.n1z) * kDown;
+  d.x += double(fd * h.n2x) * kDown, d.y += double(fd * h.n2y) * kDown;
+  d.z += double(fd * h.n2z) * kDown;
 }
 
 // Area of (a, b, c), signed against the reference normal rn when rs ≠ 0 (project_signed).

@@ -169,15 +169,6 @@ double volume_of(const VolumeConstraint& v, const Points& p) {
   return sum;
 }
 
-double orientation_value(const OrientationConstraints& s, std::size_t i, const Points& p,
-                         double floor_scale) {
-  const int a = s.a[i], b = s.b[i], c = s.c[i];
-  const double e1x = p.x[b] - p.x[a], e1y = p.y[b] - p.y[a], e1z = p.z[b] - p.z[a];
-  const double e2x = p.x[c] - p.x[a], e2y = p.y[c] - p.y[a], e2z = p.z[c] - p.z[a];
-  return (e1y * e2z - e1z * e2y) * s.nx[i] + (e1z * e2x - e1x * e2z) * s.ny[i] +
-         (e1x * e2y - e1y * e2x) * s.nz[i] - floor_scale * s.min[i];
-}
-
 namespace {
 template <class T>
 void append_to(std::vector<T>& to, const std::vector<T>& from) {

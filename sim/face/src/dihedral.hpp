@@ -11,15 +11,22 @@ namespace facectl::face {
 // From e = pb − pa, u = pc − pa, v = pd − pa: the wing normals n1 = e×u and n2 = e×v, their
 // squared lengths and dot product, |e|², |e| and 1/|e|², r = 1/(|n1||n2|), and
 // cos φ = n̂1·n̂2, sin φ = (n̂1×n̂2)·ê = −(u·n2)|e|·r (because (e×u)×(e×v) = (e·(u×v))e).
-struct Dihedral {
-  double n1x, n1y, n1z, n2x, n2y, n2z, N1, N2, E, D, r, le, invE, cos, sin;
+// T is double, or float for the skin's batched bending (constraint_projection.cpp), which
+// passes lengths scaled to about millimetres and thresholds to match.
+template <class T>
+struct DihedralT {
+  T n1x, n1y, n1z, n2x, n2y, n2z, N1, N2, E, D, r, le, invE, cos, sin;
   bool valid;
 };
+using Dihedral = DihedralT<double>;
 
-__attribute__((always_inline)) inline Dihedral dihedral_terms(double ex, double ey, double ez,
-                                                              double ux, double uy, double uz,
-                                                              double vx, double vy, double vz) {
-  Dihedral h;
+// A wing with |n|² < min_n2 or an edge with |e|² < min_e2 is degenerate.
+template <class T>
+__attribute__((always_inline)) inline DihedralT<T> dihedral_terms(T ex, T ey, T ez, T ux, T uy,
+                                                                  T uz, T vx, T vy, T vz,
+                                                                  T min_n2 = T(1e-28),
+                                                                  T min_e2 = T(1e-20)) {
+  DihedralT<T> h;
   h.n1x = ey * uz - ez * uy, h.n1y = ez * ux - ex * uz, h.n1z = ex * uy - ey * ux;
   h.n2x = ey * vz - ez * vy, h.n2y = ez * vx - ex * vz, h.n2z = ex * vy - ey * vx;
   h.N1 = h.n1x * h.n1x + h.n1y * h.n1y + h.n1z * h.n1z;
@@ -28,11 +35,11 @@ __attribute__((always_inline)) inline Dihedral dihedral_terms(double ex, double 
   h.D = h.n1x * h.n2x + h.n1y * h.n2y + h.n1z * h.n2z;
   // Branch-free (the batched projection vectorises it): a degenerate pair (a zero-area
   // wing, a zero-length edge) computes with stand-in lengths and reports !valid.
-  h.valid = (h.N1 >= 1e-28) & (h.N2 >= 1e-28) & (h.E >= 1e-20);
-  const double N1 = h.valid ? h.N1 : 1.0, N2 = h.valid ? h.N2 : 1.0, E = h.valid ? h.E : 1.0;
-  const double R = std::sqrt(N1 * N2);
+  h.valid = (h.N1 >= min_n2) & (h.N2 >= min_n2) & (h.E >= min_e2);
+  const T N1 = h.valid ? h.N1 : T(1), N2 = h.valid ? h.N2 : T(1), E = h.valid ? h.E : T(1);
+  const T R = std::sqrt(N1 * N2);
   h.le = std::sqrt(E);
-  const double q = 1 / (R * E);  // one division for 1/R and 1/E
+  const T q = 1 / (R * E);  // one division for 1/R and 1/E
   h.r = q * E;
   h.invE = q * R;
   h.cos = h.D * h.r;

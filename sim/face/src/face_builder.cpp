@@ -10,6 +10,7 @@
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/obj_io.hpp"
 #include "facectl/face/subdivision.hpp"
+#include "skin_anchors.hpp"
 
 namespace facectl::face {
 namespace {
@@ -260,8 +261,12 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     m.anchor_local.set(i, F.transpose() * (p - sp.position(src)));
     m.anchor_support.push_back(sp);
     m.anchors.add(i, spec.skin.anchor);
-    if (sp.layer == Layer::kMuscle || on_jaw[sp.i0] || on_jaw[sp.i1] || on_jaw[sp.i2])
-      seeds.push_back(i);
+    const bool jaw = sp.layer == Layer::kSkull && (on_jaw[sp.i0] || on_jaw[sp.i1] || on_jaw[sp.i2]);
+    (sp.layer == Layer::kMuscle ? m.anchors_on_muscles
+     : jaw                      ? m.anchors_on_jaw
+                                : m.anchors_on_fixed_skull)
+        .push_back(i);
+    if (sp.layer == Layer::kMuscle || jaw) seeds.push_back(i);
   }
   // Influence map (L2604–L2611): 1 on vertices bound to muscles or the jaw, easing to 0
   // over `influence_falloff` of edge-geodesic distance.
@@ -352,9 +357,9 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
 FaceData make_face_data(const FaceModel& m) {
   FaceData d;
   const std::size_t ns = m.skin.v.size();
-  reset_face_data(m, d);
   d.anchor_targets.resize(ns);
   d.anchor_normals.resize(ns);
+  reset_face_data(m, d);
   d.grad.resize(std::max(ns, m.muscle_rest.size()));
   std::size_t max_line = 0, max_grid = 0;
   for (const Muscle& mu : m.muscles) {
@@ -383,6 +388,7 @@ void reset_face_data(const FaceModel& m, FaceData& d) {
   d.lower_teeth = m.lower_teeth;
   d.hits = 0;
   d.frame = 0;
+  set_fixed_anchor_targets(m, d);
 }
 
 }  // namespace facectl::face

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "facectl/face/face_model.hpp"
+#include "skin_anchors.hpp"
 
 namespace facectl::face {
 namespace {
@@ -32,68 +33,6 @@ void step_muscles(const FaceModel& m, FaceData& d) {
     for (int k = L.first; k < L.end; ++k)
       finish_muscle_step(m.muscles[k], d.contraction[k], d.skull, d.muscles, m.muscle_w, d.scratch,
                          d.grad);
-  }
-}
-
-// Each skin anchor's target: its support point plus the rest offset in the support's frame
-// (SurfacePoint::smooth_frame on a muscle, SurfacePoint::frame on the skull). The same
-// formulas written out on plain doubles, normalising by one reciprocal each (the divisions
-// dominated). A degenerate support takes SurfacePoint's own fallbacks.
-void update_anchor_targets(const FaceModel& m, FaceData& d) {
-  vertex_normals(d.muscles, m.muscle_tops, d.muscle_normals);
-  const Points& vn = d.muscle_normals;
-  const std::size_t n = m.anchor_support.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const SurfacePoint& sp = m.anchor_support[i];
-    const bool bone = sp.layer == Layer::kSkull;
-    const Points& src = bone ? d.skull : d.muscles;
-    const int i0 = sp.i0, i1 = sp.i1, i2 = sp.i2;
-    const double t0 = sp.t0, t1 = sp.t1, t2 = sp.t2;
-    double ex = src.x[i1] - src.x[i0], ey = src.y[i1] - src.y[i0], ez = src.z[i1] - src.z[i0];
-    double nx, ny, nz;
-    bool ok;
-    if (bone) {  // normal of the triangle, first edge
-      const double ux = src.x[i2] - src.x[i0], uy = src.y[i2] - src.y[i0],
-                   uz = src.z[i2] - src.z[i0];
-      nx = ey * uz - ez * uy, ny = ez * ux - ex * uz, nz = ex * uy - ey * ux;
-      const double en = std::sqrt(ex * ex + ey * ey + ez * ez);
-      const double nn = std::sqrt(nx * nx + ny * ny + nz * nz);
-      ok = en != 0 && nn != 0;
-      if (ok) {
-        const double ie = 1 / en, in = 1 / nn;
-        ex *= ie, ey *= ie, ez *= ie, nx *= in, ny *= in, nz *= in;
-      }
-    } else {  // interpolated vertex normal, first edge made tangent
-      nx = t0 * vn.x[i0] + t1 * vn.x[i1] + t2 * vn.x[i2];
-      ny = t0 * vn.y[i0] + t1 * vn.y[i1] + t2 * vn.y[i2];
-      nz = t0 * vn.z[i0] + t1 * vn.z[i1] + t2 * vn.z[i2];
-      const double nn = std::sqrt(nx * nx + ny * ny + nz * nz);
-      ok = nn != 0;
-      if (ok) {
-        const double in = 1 / nn;
-        nx *= in, ny *= in, nz *= in;
-        const double ne = nx * ex + ny * ey + nz * ez;
-        ex -= nx * ne, ey -= ny * ne, ez -= nz * ne;
-        const double en = std::sqrt(ex * ex + ey * ey + ez * ez);
-        ok = en != 0;
-        const double ie = 1 / (ok ? en : 1.0);
-        ex *= ie, ey *= ie, ez *= ie;
-      }
-    }
-    const Vec3 o = sp.position(src);
-    if (!ok) {  // rare: SurfacePoint's fallbacks
-      const Mat3 F = bone ? sp.frame(src) : sp.smooth_frame(src, vn);
-      d.anchor_targets.set(i, o + F * m.anchor_local.get(i));
-      d.anchor_normals.set(i, F.col(2));
-      continue;
-    }
-    // Columns (ê, n̂ × ê, n̂).
-    const double bx = ny * ez - nz * ey, by = nz * ex - nx * ez, bz = nx * ey - ny * ex;
-    const double lx = m.anchor_local.x[i], ly = m.anchor_local.y[i], lz = m.anchor_local.z[i];
-    d.anchor_targets.x[i] = o.x() + (ex * lx + bx * ly + nx * lz);
-    d.anchor_targets.y[i] = o.y() + (ey * lx + by * ly + ny * lz);
-    d.anchor_targets.z[i] = o.z() + (ez * lx + bz * ly + nz * lz);
-    d.anchor_normals.x[i] = nx, d.anchor_normals.y[i] = ny, d.anchor_normals.z[i] = nz;
   }
 }
 
@@ -216,7 +155,7 @@ void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in
 void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
   step_skull_and_muscles(m, d, in);
   // (12)–(13) skin anchors.
-  update_anchor_targets(m, d);
+  update_moving_anchor_targets(m, d);
   // Prediction with damping: v ← (1 − damping)·v, p = x + v·Δt (Δt cancels, see §2).
   const double keep = 1 - m.spec.skin.damping;
   Points& x = d.skin_x;

@@ -149,7 +149,7 @@ HeadSpec load_head_spec(const std::string& dir) {
   }
   YAML::Node solver = f["solver"];
   if (solver.IsDefined()) {
-    h.skin_iterations = static_cast<int>(num(face, solver, "skin_iterations", 2));
+    h.skin_iterations = static_cast<int>(num(face, solver, "skin_iterations", 1));
     if (h.skin_iterations < 1)
       fail(face, solver["skin_iterations"], "skin_iterations", "an integer ≥ 1");
     h.influence_falloff = num(face, solver, "influence_falloff_mm", 25) * 1e-3;

@@ -108,8 +108,15 @@ void project(const OrientationConstraints& s, Points& p, const std::vector<doubl
 // correction does not at once undo it); false (nothing moved) when it is satisfied.
 bool project_one(const OrientationConstraints& s, std::size_t i, Points& p,
                  const std::vector<double>& w, double floor_scale = 1.0, double target_scale = 1.0);
-double orientation_value(const OrientationConstraints& s, std::size_t i, const Points& p,
-                         double floor_scale = 1.0);
+// Inline: the end-of-frame untangling scans every skin triangle with it.
+inline double orientation_value(const OrientationConstraints& s, std::size_t i, const Points& p,
+                                double floor_scale = 1.0) {
+  const int a = s.a[i], b = s.b[i], c = s.c[i];
+  const double e1x = p.x[b] - p.x[a], e1y = p.y[b] - p.y[a], e1z = p.z[b] - p.z[a];
+  const double e2x = p.x[c] - p.x[a], e2y = p.y[c] - p.y[a], e2z = p.z[c] - p.z[a];
+  return (e1y * e2z - e1z * e2y) * s.nx[i] + (e1z * e2x - e1x * e2z) * s.ny[i] +
+         (e1x * e2y - e1y * e2x) * s.nz[i] - floor_scale * s.min[i];
+}
 // `grad` is caller-owned scratch with at least p.size() entries (no allocation here).
 void project(const VolumeConstraint& v, Points& p, const std::vector<double>& w, Points& grad);
 // targets[j] is the goal of s.particle[j].

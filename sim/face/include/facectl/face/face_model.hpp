@@ -39,6 +39,9 @@ struct FaceModel {
   std::vector<SurfacePoint> anchor_support;
   Points anchor_local;  // rest offset of vertex i in the support triangle's frame
   Attachments anchors;
+  // The anchors by support: on a muscle, on the jaw (a skull triangle with a mandible
+  // vertex), and on the rest of the skull, which never moves (targets set at reset).
+  std::vector<int> anchors_on_muscles, anchors_on_jaw, anchors_on_fixed_skull;
   std::vector<double> influence;  // per skin vertex, in [0, 1]
 
   // Eyelids: particles driven rigidly by infinite-mass drivers.

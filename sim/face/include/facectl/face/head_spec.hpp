@@ -57,7 +57,7 @@ struct HeadSpec {
   // Eyelids (§5.5.1).
   double eyelid_band = 0.005, eyeball_radius = 0.012, upper_lid_share = 0.8,
          oculi_lid_coupling = 0.3;
-  int skin_iterations = 2;
+  int skin_iterations = 1;
   double influence_falloff = 0.025;
   SkinStiffness skin;
   MuscleStiffness sheet, sphincter;
