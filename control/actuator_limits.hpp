@@ -25,7 +25,7 @@ enum LimitFlag : std::uint16_t {
   kLimitBreach = 1 << 5,        // the backstop clamped a command outside the hardware range
   kLimitInvalid = 1 << 6,       // NaN/inf target or a non-positive dt: held, not moved
   kLimitJerkYielded = 1 << 7,   // a hard bound overrode the jerk limit on this tick
-  kLimitCoupled = 1 << 8,       // an actuator coupled limit shortened the step
+  kLimitCoupled = 1 << 8,       // an actuator coupled limit's position bound shaped the step
   kLimitMapping = 1 << 9,       // the mapping held a calibration/linkage/mechanism end
 };
 inline constexpr int kLimitFlagCount = 10;

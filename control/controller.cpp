@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "control/coupled_position_bounds.hpp"
+
 namespace facectl {
 
 Controller::Controller(const ControllerModel& model, std::span<ActuatorBus* const> buses,
@@ -107,52 +109,18 @@ void Controller::choose_targets() {
   }
 }
 
-double Controller::worst_reach(std::size_t c, double dt) const {
-  // Σ a·x over the constrained actuators, each taken where it would stop if
-  // it braked now, when it moves the sum up.
-  const CoupledConstraints::Constraint& k = model_.actuator_constraints.constraint(c);
-  double sum = 0.0;
-  for (std::size_t t = 0; t < k.terms; ++t) {
-    const LimiterState& s = limiter_[k.index[t]];
-    const double toward = k.coeff[t] > 0.0 ? s.velocity : -s.velocity;
-    sum += k.coeff[t] * s.position;
-    if (toward > 0.0) {
-      sum += std::fabs(k.coeff[t]) *
-             stopping_distance(model_.actuators[k.index[t]].limits, toward, dt);
-    }
-  }
-  return sum;
-}
-
-void Controller::keep_actuator_constraints(double dt, LimitFlags* flags) {
-  // Each actuator's limiter moves on its own, so the joint motion can cut a
+std::uint64_t Controller::bound_actuator_constraints() {
+  // Each actuator's limiter moves on its own, so the joint motion could cut a
   // corner of an actuator coupled limit although both ends are admissible.
-  // Invariant: where every constrained actuator would stop if it braked now
-  // stays admissible. A step that would break it is replaced, for each
-  // actuator moving the sum up, by the limiter's own step toward where it
-  // would stop: braking within its acceleration and jerk limits, which does
-  // not move its stopping point on (docs/SAFETY.md, actuator coupled limits).
-  std::uint64_t hold = 0;
-  for (std::size_t c = 0; c < model_.actuator_constraints.size(); ++c) {
-    const CoupledConstraints::Constraint& k = model_.actuator_constraints.constraint(c);
-    if (worst_reach(c, dt) <= k.bound + 1e-12) continue;
-    for (std::size_t t = 0; t < k.terms; ++t) {
-      if (k.coeff[t] * limiter_[k.index[t]].velocity > 0.0) hold |= std::uint64_t{1} << k.index[t];
-    }
-  }
-  if (hold == 0) return;
-  ++counters_.actuator_coupled_steps;
+  // Instead each limit becomes this tick's position bounds for its actuators'
+  // limiters, which never cross them (docs/SAFETY.md, actuator coupled limits).
+  // A relaxed actuator is where it is measured: the others keep clear of it.
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
-    if (((hold >> i) & 1u) == 0) continue;
-    const ActuatorLimits& l = model_.actuators[i].limits;
-    const LimiterState before = pre_step_[i];
-    const double v = std::fabs(before.velocity);
-    const double stop =
-        before.position + std::copysign(stopping_distance(l, v, dt), before.velocity);
-    limiter_[i] = before;
-    flags[i] = limit_step(l, limiter_[i], v > 0.0 ? stop : before.position, dt) | kLimitCoupled;
-    command_[i] = limiter_[i].position;
+    if (relaxed(i)) limiter_[i] = {measured_[i], 0.0, 0.0};
   }
+  return coupled_position_bounds(model_.actuator_constraints, model_.actuators.data(),
+                                 limiter_.data(), target_.data(), bound_lo_.data(),
+                                 bound_hi_.data());
 }
 
 void Controller::limit_mechanism(double dt, LimitFlags* flags) {
@@ -256,19 +224,25 @@ bool Controller::mechanism_out_of_envelope() {
 
 bool Controller::limit_actuators(double dt, LimitFlags* flags) {
   bool breach = false;
-  std::copy_n(limiter_.begin(), model_.actuators.size(), pre_step_.begin());
   // The struts of a mandible mechanism take the strokes of the limited pose
   // (limit_mechanism): their own steps would be overwritten, so skip them.
   const bool by_pose =
       model_.mapping.mechanism && !relaxed(model_.mapping.mechanism->strut[0].actuator);
+  const std::uint64_t coupled =
+      model_.actuator_constraints.size() != 0 ? bound_actuator_constraints() : 0;
+  bool bounded = false;
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     if (by_pose && ((strut_mask_ >> i) & 1u) != 0) continue;
-    flags[i] = limit_step(model_.actuators[i].limits, limiter_[i], target_[i], dt);
+    const ActuatorLimits& l = model_.actuators[i].limits;
+    flags[i] = ((coupled >> i) & 1u) != 0
+                   ? limit_step_within(l, limiter_[i], target_[i], dt, bound_lo_[i], bound_hi_[i])
+                   : limit_step(l, limiter_[i], target_[i], dt);
+    bounded = bounded || (flags[i] & kLimitCoupled) != 0;
     if ((mapping_clamps_ >> i) & 1u) flags[i] |= kLimitMapping;
     command_[i] = limiter_[i].position;
   }
+  if (bounded) ++counters_.actuator_coupled_steps;
   if (by_pose) limit_mechanism(dt, flags);
-  if (model_.actuator_constraints.size() != 0) keep_actuator_constraints(dt, flags);
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     const ActuatorLimits& l = model_.actuators[i].limits;
     if (relaxed(i)) {

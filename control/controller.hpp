@@ -49,7 +49,7 @@ struct ControllerCounters {
   std::array<std::uint64_t, CoupledConstraints::kMaxConstraints> coupled_hits{};
   std::uint64_t actuator_coupled_projections = 0;  // ticks the mapped targets were projected
   std::array<std::uint64_t, CoupledConstraints::kMaxConstraints> actuator_coupled_hits{};
-  std::uint64_t actuator_coupled_steps = 0;  // ticks a limited step was shortened
+  std::uint64_t actuator_coupled_steps = 0;  // ticks a coupled position bound shaped a step
   std::uint64_t limit_breaches = 0;
   std::array<std::array<std::uint64_t, kLimitFlagCount>, kMaxActuators>
       limit_hits{};  // per LimitFlag bit
@@ -108,14 +108,15 @@ class Controller {
   void read_inputs(const TickTiming& timing);
   void choose_targets();
   bool limit_actuators(double dt, LimitFlags* flags);  // true if the backstop acted
-  void keep_actuator_constraints(double dt, LimitFlags* flags);
+  // Actuator coupled limits as this tick's position bounds (bound_lo_,
+  // bound_hi_); returns the bit set of the actuators they bound.
+  std::uint64_t bound_actuator_constraints();
   // The mandible mechanism's struts: the pose is limited in its own DOFs and
   // the struts follow it (docs/MANDIBLE_MECHANISM.md, "Moving the struts together").
   void limit_mechanism(double dt, LimitFlags* flags);
   void start_mechanism();  // ENABLING: the pose limiter starts at the measured pose
   std::optional<face::MandiblePose> measured_mandible_pose();
   bool mechanism_out_of_envelope();
-  double worst_reach(std::size_t constraint, double dt) const;
   bool measured_in_range(std::size_t i) const;  // inside its hardware range
   bool feedback_out_of_range();
   bool at_rest(double dt);
@@ -163,8 +164,9 @@ class Controller {
   std::array<double, kMaxFaceSignals> face_{};
   MappingWorkspace mapping_ws_;
   std::uint64_t mapping_clamps_ = 0;
+  std::array<double, kMaxActuators> bound_lo_{};  // this tick's coupled position bounds
+  std::array<double, kMaxActuators> bound_hi_{};
   std::uint64_t strut_mask_ = 0;  // the mandible mechanism's struts, by actuator index
-  std::array<LimiterState, kMaxActuators> pre_step_{};  // limiter states before this step
   std::array<double, kMaxActuators> mapped_{};
   std::array<double, kMaxActuators> target_{};
   std::array<double, kMaxActuators> command_{};

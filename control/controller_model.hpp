@@ -66,7 +66,9 @@ struct ControllerModel {
   RigMapping mapping;
   // Linear inequalities over actuator positions (e.g. jaw against lip
   // actuators that collide at their extremes): mapped targets are projected,
-  // and each limited step is shortened so the commands stay admissible.
+  // and each tick the limits become position bounds that the actuators'
+  // limiters never cross (coupled_position_bounds.hpp), so commands stay
+  // admissible. No strut of the mandible mechanism may appear in them.
   CoupledConstraints actuator_constraints;
   // With a mandible mechanism (mapping.mechanism): the pose is limited in its
   // own DOFs (pitch, yaw, protrusion; position = the envelope) and the struts

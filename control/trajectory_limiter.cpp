@@ -20,9 +20,14 @@ double braking_speed(double distance, double max_acceleration, double dt) {
   return a * (std::sqrt(dt * dt + 2.0 * distance / a) - dt);
 }
 
-std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target,
-                        double dt) {
-  std::uint8_t flags = 0;
+namespace {
+
+// One step inside [lo, hi]; kWithin: the bounds may be tighter than the soft
+// range (compiled out of the plain step, which runs for every actuator).
+template <bool kWithin>
+LimitFlags step(const ActuatorLimits& limits, LimiterState& state, double target, double dt,
+                double lo, double hi) {
+  LimitFlags flags = 0;
   if (!(dt > 0.0) || !std::isfinite(dt)) return kLimitInvalid;  // no time passed: no motion
   if (!std::isfinite(target)) {
     // A non-finite target cannot reach here through the sanitiser, but a
@@ -35,8 +40,13 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
   const double x = state.position;
   const double v = state.velocity;
 
-  const double r = std::clamp(target, limits.soft_min, limits.soft_max);
-  if (r != target) flags |= kLimitPosition;
+  const double soft = std::clamp(target, limits.soft_min, limits.soft_max);
+  if (soft != target) flags |= kLimitPosition;
+  double r = soft;
+  if constexpr (kWithin) {
+    r = std::clamp(soft, lo, hi);
+    if (r != soft) flags |= kLimitCoupled;
+  }
 
   // Goal velocity: the fastest approach to the target that can still stop on it.
   const double error = r - x;
@@ -50,22 +60,23 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
     flags |= kLimitVelocity;
   }
 
-  // Never head into a soft limit faster than one can stop before it. No
-  // velocity below (goal, accelerated or jerk-limited) can be faster than
-  // `cap`, so a soft limit farther than the stopping distance from `cap`
-  // cannot bind this step: its square root is skipped (the common case; the
-  // result is the same). The margin covers the rounding of braking_speed.
+  // Never head into a soft limit (or position bound) faster than one can
+  // stop before it. No velocity below (goal, accelerated or jerk-limited) can
+  // be faster than `cap`, so a bound farther than the stopping distance from
+  // `cap` cannot bind this step: its square root is skipped (the common case;
+  // the result is the same). The margin covers the rounding of braking_speed.
   const double cap = std::max(v_max, std::fabs(v) + a_max * dt);
   const double reach = (cap * cap + 2.0 * a_max * cap * (dt + ramp)) * (1.0 + 1e-6);
   const auto bound = [&](double d) {
     return 2.0 * a_max * d >= reach ? std::numeric_limits<double>::infinity()
                                     : braking_speed(d, a_max, dt + ramp);
   };
-  const double v_hi = bound(limits.soft_max - x);
-  const double v_lo = -bound(x - limits.soft_min);
+  const double v_hi = bound(hi - x);
+  const double v_lo = -bound(x - lo);
   if (v_goal > v_hi || v_goal < v_lo) {
+    const bool tighter = v_goal > v_hi ? hi < limits.soft_max : lo > limits.soft_min;
+    flags |= kWithin && tighter ? kLimitCoupled : kLimitApproach;
     v_goal = std::clamp(v_goal, v_lo, v_hi);
-    flags |= kLimitApproach;
   }
 
   // Acceleration bound.
@@ -102,11 +113,11 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
   }
 
   double x_new = x + v_new * dt;
-  if (x_new > limits.soft_max || x_new < limits.soft_min) {
+  if (x_new > hi || x_new < lo) {
     // Reachable only through rounding when x was inside; pin to the range.
-    const bool was_inside = x <= limits.soft_max && x >= limits.soft_min;
+    const bool was_inside = x <= hi && x >= lo;
     if (was_inside) {
-      const double pinned = std::clamp(x_new, limits.soft_min, limits.soft_max);
+      const double pinned = std::clamp(x_new, lo, hi);
       if (std::fabs(pinned - x_new) > 1e-12) flags |= kLimitBreach;
       x_new = pinned;
       v_new = (x_new - x) / dt;
@@ -119,9 +130,28 @@ std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, doubl
   return flags;
 }
 
+}  // namespace
+
+std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target,
+                        double dt) {
+  return static_cast<std::uint8_t>(
+      step<false>(limits, state, target, dt, limits.soft_min, limits.soft_max));
+}
+
+LimitFlags limit_step_within(const ActuatorLimits& limits, LimiterState& state, double target,
+                             double dt, double lo, double hi) {
+  return step<true>(limits, state, target, dt, lo, hi);
+}
+
 double stopping_distance(const ActuatorLimits& l, double v, double dt) {
   const double ramp = l.max_jerk > 0.0 ? l.max_acceleration / (2.0 * l.max_jerk) : 0.0;
   return v * v / (2.0 * l.max_acceleration) + v * (dt + ramp);
+}
+
+double committed_extreme(const ActuatorLimits& l, const LimiterState& s, double direction) {
+  const double v = direction > 0.0 ? s.velocity : -s.velocity;  // speed toward `direction`
+  if (!(v > 0.0)) return s.position;
+  return s.position + std::copysign(stopping_distance(l, v, 0.0), direction);
 }
 
 }  // namespace facectl

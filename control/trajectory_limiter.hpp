@@ -28,6 +28,21 @@ struct LimiterState {
 std::uint8_t limit_step(const ActuatorLimits& limits, LimiterState& state, double target,
                         double dt);
 
+// As limit_step, inside the position bounds [lo, hi] (within the soft range)
+// instead of the soft range: the same braking argument keeps the trajectory
+// inside them as long as neither bound is ever moved past the actuator's
+// committed_extreme() toward it. kLimitPosition and kLimitApproach report the
+// soft range; kLimitCoupled a tighter bound that shaped the step.
+LimitFlags limit_step_within(const ActuatorLimits& limits, LimiterState& state, double target,
+                             double dt, double lo, double hi);
+
+// The farthest point in `direction` (+1 or -1) that the limiter has
+// committed to: its position, plus, when it moves that way at speed v, the
+// braking distance v²/2A + v·A/(2J) that every step keeps to its bound (the
+// step's own v·dt is already travelled). The limiter can always stop there,
+// within its acceleration limit, whatever the next tick's dt.
+double committed_extreme(const ActuatorLimits& limits, const LimiterState& state, double direction);
+
 // Highest speed v' that can still stop within `distance` after moving v'·dt.
 double braking_speed(double distance, double max_acceleration, double dt);
 

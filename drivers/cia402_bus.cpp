@@ -10,13 +10,6 @@ namespace {
 
 constexpr int kMaxRxPerTick = 512;  // bounds the drain even on a flooded bus
 
-std::int32_t to_counts(double si, double counts_per_si) {
-  double c = std::nearbyint(si * counts_per_si);
-  if (!(c >= -2147483647.0)) c = -2147483647.0;
-  if (c > 2147483647.0) c = 2147483647.0;
-  return static_cast<std::int32_t>(c);
-}
-
 }  // namespace
 
 Cia402Bus::Cia402Bus(std::string name, CanTransport& transport,
@@ -40,27 +33,25 @@ Cia402Bus::Cia402Bus(std::string name, CanTransport& transport,
                                     std::to_string(a.address) + " (" + a.name + ")");
       }
     }
-    // Drive counts come from the bus (counts_per_rev, counts_per_mm): an
-    // actuator encoding here would be ignored, so it is refused.
-    const ActuatorEncoding plain;
-    if (a.encoding.raw != plain.raw || a.encoding.scale != plain.scale ||
-        a.encoding.offset != plain.offset) {
-      throw std::invalid_argument("bus " + name_ + ": actuator " + a.name +
-                                  ": a CiA 402 drive takes its counts from the bus "
-                                  "(counts_per_rev, counts_per_mm), not from `encoding`");
-    }
     auto d = std::make_unique<Drive>();
     d->node = a.address;
-    d->counts_per_si = a.kind == ActuatorKind::kRotary ? options_.rotary_counts_per_rad
-                                                       : options_.linear_counts_per_m;
+    try {
+      // The actuator's own encoding (raw int32), else the bus's counts.
+      d->counts = cia402::drive_counts(a, options_);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("bus " + name_ + ": " + e.what());
+    }
     d->position = initial_positions[i];
     const auto u32 = [](std::int32_t v) { return static_cast<std::uint32_t>(v); };
+    const std::int32_t lo = d->counts.encode(a.limits.position_min);
+    const std::int32_t hi = d->counts.encode(a.limits.position_max);
+    const cia402::DriveCounts speed{std::fabs(d->counts.per_si), 0.0};  // counts/s, no offset
     // The drive enforces its own limits too, and stops on its own when our
     // heartbeat stops (reference/field-survey.md, part D item 4).
     d->sdos = {
-        {0x607D, 1, u32(to_counts(a.limits.position_min, d->counts_per_si)), 4},
-        {0x607D, 2, u32(to_counts(a.limits.position_max, d->counts_per_si)), 4},
-        {0x607F, 0, u32(to_counts(a.limits.max_velocity, d->counts_per_si)), 4},
+        {0x607D, 1, u32(std::min(lo, hi)), 4},  // a negative scale swaps the ends
+        {0x607D, 2, u32(std::max(lo, hi)), 4},
+        {0x607F, 0, u32(speed.encode(a.limits.max_velocity)), 4},
         {0x6060, 0, 8, 1},  // modes of operation: cyclic synchronous position
         {0x1017, 0, static_cast<std::uint32_t>(options_.drive_heartbeat_ms), 2},
         {0x1016, 1,
@@ -103,7 +94,7 @@ void Cia402Bus::handle(const CanFrame& f, std::int64_t now_ns) {
       return;
     }
     d->statusword = t->statusword;
-    d->position = static_cast<double>(t->actual_position) / d->counts_per_si;
+    d->position = d->counts.decode(t->actual_position);
     return;
   }
   if (Drive* hb = node_of(cia402::kHeartbeatBase)) {
@@ -175,7 +166,7 @@ void Cia402Bus::read(const TickTime& time, std::span<double> positions) {
 void Cia402Bus::step_drive(Drive& d, double target, std::int64_t now_ns) {
   if (!d.wanted) {
     d.controlword = cia402::kCwDisableVoltage;
-    cia402::encode_rpdo1(d.node, d.controlword, to_counts(d.position, d.counts_per_si), frame_);
+    cia402::encode_rpdo1(d.node, d.controlword, d.counts.encode(d.position), frame_);
     send(frame_);
     return;
   }
@@ -222,7 +213,7 @@ void Cia402Bus::step_drive(Drive& d, double target, std::int64_t now_ns) {
   const std::uint16_t cw = cia402::next_controlword(state, true, d.controlword);
   // Until the drive is enabled, command where it is, so it cannot jump.
   const double where = state == cia402::DriveState::kOperationEnabled ? target : d.position;
-  cia402::encode_rpdo1(d.node, cw, to_counts(where, d.counts_per_si), frame_);
+  cia402::encode_rpdo1(d.node, cw, d.counts.encode(where), frame_);
   send(frame_);
   d.controlword = cw;
 }

@@ -11,6 +11,7 @@
 #include "drivers/can_bus_health.hpp"
 #include "drivers/can_bus_options.hpp"
 #include "drivers/can_transport.hpp"
+#include "drivers/cia402_counts.hpp"
 #include "drivers/cia402_frames.hpp"
 
 namespace facectl {
@@ -51,7 +52,7 @@ class Cia402Bus final : public ActuatorBus {
   enum class Phase { kIdle, kSdo, kStart, kPdo };
   struct Drive {
     int node = 0;
-    double counts_per_si = 1.0;
+    cia402::DriveCounts counts;          // position counts (docs/PROTOCOLS.md)
     std::vector<cia402::SdoWrite> sdos;  // built once
     double position = 0.0;               // SI, last TPDO
     std::uint16_t statusword = 0;

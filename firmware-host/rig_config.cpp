@@ -130,7 +130,8 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
 }
 
 CoupledLimitConfig parse_coupled_limit(const ConfigNode& node, const FaceLayout& layout,
-                                       const std::vector<ActuatorConfig>& actuators) {
+                                       const std::vector<ActuatorConfig>& actuators,
+                                       const std::optional<MandibleMechanismConfig>& mechanism) {
   node.expect_keys({"name", "face", "actuators", "max"});
   CoupledLimitConfig out;
   out.where = node.where();
@@ -148,6 +149,16 @@ CoupledLimitConfig parse_coupled_limit(const ConfigNode& node, const FaceLayout&
       auto it = std::find_if(actuators.begin(), actuators.end(),
                              [&](const ActuatorConfig& a) { return a.model.name == key; });
       if (it == actuators.end()) coeff.fail("the name of an actuator of this rig", "'" + key + "'");
+      // A strut follows the jaw's pose, not its own limiter, so its bound
+      // could not be kept exactly (docs/SAFETY.md, actuator coupled limits).
+      if (mechanism && std::any_of(mechanism->struts.begin(), mechanism->struts.end(),
+                                   [&](const StrutConfig& s) { return s.actuator == key; })) {
+        coeff.fail(
+            "an actuator that is not a strut of the mandible mechanism (struts follow the "
+            "jaw's pose: bound the jaw with a face coupled limit over jaw_pitch_deg, "
+            "jaw_yaw_deg and jaw_protrusion_mm instead)",
+            "strut '" + key + "'");
+      }
       index = static_cast<std::size_t>(it - actuators.begin());
       to_si = units_of(it->model.kind).to_si;
     } else {
@@ -218,7 +229,7 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
                    " coupled limits");
     }
     for (const ConfigNode& c : rows) {
-      cfg.coupled_limits.push_back(parse_coupled_limit(c, layout, cfg.actuators));
+      cfg.coupled_limits.push_back(parse_coupled_limit(c, layout, cfg.actuators, cfg.mechanism));
     }
   }
   return cfg;

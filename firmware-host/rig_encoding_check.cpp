@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "drivers/cia402_counts.hpp"
 #include "drivers/custom_can_frames.hpp"
 #include "drivers/wire_encoding.hpp"
 
@@ -28,21 +29,16 @@ std::string number(double v) {
 void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
   ActuatorEncoding& e = actuator.model.encoding;
   const char* raw = raw_name(e.raw);
-  if (bus.is_cia402()) {
-    if (actuator.has_encoding) {
-      refuse(actuator,
-             "no encoding on CiA 402 bus " + bus.name +
-                 " (drive counts come from its counts_per_rev / counts_per_mm)",
-             "an encoding block");
-    }
-    return;  // the drive's own counts, not the encoding, carry the range
+  if (bus.is_cia402() && actuator.has_encoding && e.raw != ActuatorEncoding::Raw::kInt32) {
+    refuse(actuator, "raw int32 on CiA 402 bus " + bus.name + " (drives count in 32 bits)",
+           std::string("raw ") + raw);
   }
   if (bus.is_modbus() && e.raw == ActuatorEncoding::Raw::kInt32) {
     refuse(actuator,
            "raw int16 or uint16 on Modbus bus " + bus.name + " (one register per channel)",
            "raw int32");
   }
-  if (bus.is_can()) {
+  if (bus.is_can() && !bus.is_cia402()) {
     if (bus.can.width == custom_can::Width::kInt16 && e.raw == ActuatorEncoding::Raw::kInt32) {
       refuse(actuator, "raw int16 or uint16 on bus " + bus.name + " (values: int16, 2-byte fields)",
              "raw int32");
@@ -52,19 +48,25 @@ void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
   const double per_unit =
       actuator.model.kind == ActuatorKind::kRotary ? std::numbers::pi / 180.0 : 1e-3;
   const char* unit = actuator.model.kind == ActuatorKind::kRotary ? "deg" : "mm";
-  const double lo = raw_min(e.raw);
-  const double hi = raw_max(e.raw);
+  // A CiA 402 drive counts with the actuator's int32 encoding or, without
+  // one, the bus's counts_per_rev / counts_per_mm.
+  const bool drive = bus.is_cia402();
+  const cia402::DriveCounts drive_counts =
+      drive ? cia402::drive_counts(actuator.model, bus.can) : cia402::DriveCounts{};
+  const ActuatorEncoding::Raw type = drive ? ActuatorEncoding::Raw::kInt32 : e.raw;
+  const double lo = raw_min(type);
+  const double hi = raw_max(type);
   for (const double si : {actuator.model.limits.position_min, actuator.model.limits.position_max}) {
-    const double value = si / per_unit;
-    const double counts = std::nearbyint(value * e.scale + e.offset);
+    const double counts = drive ? std::nearbyint(si * drive_counts.per_si + drive_counts.offset)
+                                : std::nearbyint(si / per_unit * e.scale + e.offset);
     // Strictly inside: a reading at the raw type's limit may be a saturated
     // one, which would hide an actuator beyond its hardware range.
     if (counts <= lo || counts >= hi) {
-      refuse(
-          actuator,
-          std::string("the hardware range to fit strictly inside raw ") + raw + " (" + number(lo) +
-              ", " + number(hi) + ")",
-          "position " + number(value) + " " + unit + " encoding to " + number(counts) + " counts");
+      refuse(actuator,
+             std::string("the hardware range to fit strictly inside raw ") + raw_name(type) + " (" +
+                 number(lo) + ", " + number(hi) + ")",
+             "position " + number(si / per_unit) + " " + unit + " encoding to " + number(counts) +
+                 " counts");
     }
   }
 }

@@ -11,7 +11,9 @@ namespace facectl {
 // - Modbus boards have one register per channel: no raw int32;
 // - custom CAN `values: int16` fields are 2 bytes: no raw int32; an actuator
 //   without `encoding` on a `values: int32` bus gets int32, 10000 per unit;
-// - CiA 402 drives take counts from the bus: no `encoding` at all.
+// - CiA 402 drives count in int32: an `encoding` there must say raw int32
+//   (its scale and offset then replace the bus's counts_per_rev /
+//   counts_per_mm for that drive); the range must fit strictly inside int32.
 // Throws ConfigError naming the encoding's file:line:col.
 void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus);
 

@@ -45,6 +45,13 @@ int print_run_summary(const RunSummaryInput& in) {
       static_cast<unsigned long long>(hits[4]));
   std::printf("  coupled face limits projected on %llu ticks\n",
               static_cast<unsigned long long>(c.coupled_projections));
+  if (m.actuator_constraints.size() != 0) {
+    std::printf(
+        "  actuator coupled limits: targets projected on %llu ticks, bounds shaped steps on "
+        "%llu ticks\n",
+        static_cast<unsigned long long>(c.actuator_coupled_projections),
+        static_cast<unsigned long long>(c.actuator_coupled_steps));
+  }
   std::printf("  envelope clamps %llu ticks, rejected input values %llu, stale-input ticks %llu\n",
               static_cast<unsigned long long>(c.envelope_clamps),
               static_cast<unsigned long long>(in.controller.sanitizer().rejected_total()),

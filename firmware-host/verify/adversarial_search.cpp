@@ -71,14 +71,6 @@ class Search {
     result_.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (std::size_t i = 0; i < m_.actuators.size(); ++i) {
-      if (coupled_overrides_[i] != 0) {
-        result_.findings.push_back(
-            {Severity::kWarn, "acceleration", m_.actuators[i].name,
-             "an actuator coupled limit stopped a step short beyond max_acceleration on " +
-                 std::to_string(coupled_overrides_[i]) +
-                 " ticks: collision avoidance wins (docs/SAFETY.md, actuator coupled limits)",
-             ""});
-      }
       if (jerk_yields_[i] == 0) continue;
       result_.findings.push_back(
           {Severity::kWarn, "jerk", m_.actuators[i].name,
@@ -184,15 +176,7 @@ class Search {
     if (hw < 0.0) violation("position", a.name, "command outside the hardware range");
     if (soft < -1e-9 * s) violation("position", a.name, "command outside the soft range");
     if (fv < -kTol) violation("velocity", a.name, "velocity beyond max_velocity");
-    if (fa < -kTol) {
-      // An actuator coupled limit may stop a step short to avoid a collision:
-      // collision avoidance wins over the acceleration limit (docs/SAFETY.md).
-      if ((head_.controller().limit_flags()[i] & kLimitCoupled) != 0) {
-        ++coupled_overrides_[i];
-      } else {
-        violation("acceleration", a.name, "acceleration beyond max_acceleration");
-      }
-    }
+    if (fa < -kTol) violation("acceleration", a.name, "acceleration beyond max_acceleration");
   }
 
   void check_constraints(const std::array<double, kMaxActuators>& cmd) {
@@ -254,7 +238,7 @@ class Search {
   bool live_ = false;
   face::MandiblePose mechanism_pose_;  // last forward-kinematics pose: the next guess
   std::array<double, kMaxActuators> prev_cmd_{}, prev_vel_{}, prev_acc_{};
-  std::array<std::uint64_t, kMaxActuators> jerk_yields_{}, coupled_overrides_{};
+  std::array<std::uint64_t, kMaxActuators> jerk_yields_{};
 };
 
 }  // namespace

@@ -125,7 +125,7 @@ ShowCheck check_show(const LoadedConfig& base, const std::string& show_path,
         const std::pair<LimitFlags, const char*> kinds[] = {
             {kLimitPosition, "position"},         {kLimitVelocity, "velocity"},
             {kLimitAcceleration, "acceleration"}, {kLimitJerk, "jerk"},
-            {kLimitApproach, "approach"},         {kLimitCoupled, "actuator coupled step"},
+            {kLimitApproach, "approach"},         {kLimitCoupled, "actuator coupled bound"},
             {kLimitMapping, "mapping"},           {kLimitBreach, "breach"}};
         for (const auto& [bit, name] : kinds) {
           if ((f & bit) != 0) seen.see(tick, t, name, a.name, gap, unit);

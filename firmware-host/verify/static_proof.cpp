@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 
+#include "drivers/cia402_counts.hpp"
 #include "drivers/wire_encoding.hpp"
 #include "firmware-host/verify/channel_bound.hpp"
 #include "firmware-host/verify/mechanism_channels.hpp"
@@ -116,26 +119,40 @@ EffectorRange transform_range(const ChannelTransform& t, EffectorRange e, const 
   return hull(*l.to_actuator(a), *l.to_actuator(b), e);
 }
 
-// A CiA 402 drive counts in its bus's units (counts_per_rev, counts_per_mm),
-// not in the actuator's `encoding`, which the loader refuses there.
-bool on_cia402_bus(const RigConfig& rig, const ActuatorModel& a) {
-  return std::any_of(rig.buses.begin(), rig.buses.end(),
-                     [&](const BusConfig& b) { return b.name == a.bus && b.is_cia402(); });
+// The bus that carries an actuator, if it is a CiA 402 one.
+const BusConfig* cia402_bus(const RigConfig& rig, const ActuatorModel& a) {
+  const auto it = std::find_if(rig.buses.begin(), rig.buses.end(),
+                               [&](const BusConfig& b) { return b.name == a.bus; });
+  return it != rig.buses.end() && it->is_cia402() ? &*it : nullptr;
 }
 
-void check_encoding(const ActuatorModel& a, const std::string& who,
+// The hardware range must encode strictly inside the raw type the driver
+// sends (its saturation limits: a value that reaches one is clipped). A CiA
+// 402 drive counts in int32 with the actuator's encoding or the bus's counts.
+void check_encoding(const ActuatorModel& a, const BusConfig* drive_bus, const std::string& who,
                     std::vector<Finding>& findings) {
   const double scale = to_yaml(a.kind);
   const ActuatorEncoding& e = a.encoding;
-  // The drivers' saturation limits: a value that reaches one is clipped, not sent.
-  const double lo = raw_min(e.raw), hi = raw_max(e.raw);
+  const ActuatorEncoding::Raw type = drive_bus ? ActuatorEncoding::Raw::kInt32 : e.raw;
+  std::optional<cia402::DriveCounts> counts;
+  if (drive_bus) {
+    try {
+      counts = cia402::drive_counts(a, drive_bus->can);
+    } catch (const std::invalid_argument& error) {
+      findings.push_back({Severity::kFail, "encoding", who, error.what(), ""});
+      return;
+    }
+  }
+  const double lo = raw_min(type), hi = raw_max(type);
   for (double v : {a.limits.position_min, a.limits.position_max}) {
-    const double raw = v * scale * e.scale + e.offset;
+    const double raw =
+        counts ? v * counts->per_si + counts->offset : v * scale * e.scale + e.offset;
     if (raw <= lo || raw >= hi) {  // strictly inside, as the loader requires
       findings.push_back({Severity::kFail, "encoding", who,
-                          "the hardware range does not fit the raw type: position " +
-                              fmt("%.4g", v * scale) + " encodes to " + fmt("%.0f", raw) +
-                              " counts, outside [" + fmt("%.0f", lo) + ", " + fmt("%.0f", hi) + "]",
+                          "the hardware range does not fit raw " + std::string(raw_name(type)) +
+                              ": position " + fmt("%.4g", v * scale) + " encodes to " +
+                              fmt("%.0f", raw) + " counts, outside [" + fmt("%.0f", lo) + ", " +
+                              fmt("%.0f", hi) + "]",
                           ""});
     }
   }
@@ -267,7 +284,7 @@ StaticProof prove(const LoadedConfig& cfg) {
     r.hardware_max = a.limits.position_max * scale;
     r.soft_min = a.limits.soft_min * scale;
     r.soft_max = a.limits.soft_max * scale;
-    if (!on_cia402_bus(cfg.rig, a)) check_encoding(a, who, out.findings);
+    check_encoding(a, cia402_bus(cfg.rig, a), who, out.findings);
     if (a.max_current_a > 0.0) {
       out.findings.push_back({Severity::kInfo, "current", who,
                               "max_current_a is declared but not checked: no bus backend "
@@ -345,12 +362,12 @@ StaticProof prove(const LoadedConfig& cfg) {
     const auto worst = maximize(set, obj);
     if (!worst) continue;
     const double excess = worst->value + offset - k.bound;
-    out.findings.push_back(
-        {Severity::kInfo, "actuator coupled limit", k.name,
-         excess > 1e-9 ? "the mapping can ask for " + fmt("%.4g", excess) +
-                             " beyond it; the tick projects such targets and brakes toward them"
-                       : "the mapping never asks beyond it",
-         excess > 1e-9 ? describe_face(m, tidy(m, set, obj, worst->at)) : ""});
+    out.findings.push_back({Severity::kInfo, "actuator coupled limit", k.name,
+                            excess > 1e-9 ? "the mapping can ask for " + fmt("%.4g", excess) +
+                                                " beyond it; the tick projects such targets, and "
+                                                "position bounds keep every step inside it"
+                                          : "the mapping never asks beyond it",
+                            excess > 1e-9 ? describe_face(m, tidy(m, set, obj, worst->at)) : ""});
   }
   // Bus schedules against their frame budgets (the drivers' budget model).
   for (const BusBudgetResult& b : cfg.budgets) {

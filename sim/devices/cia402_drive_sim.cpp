@@ -7,10 +7,10 @@ namespace facectl::sim {
 
 using namespace cia402;
 
-Cia402DriveSim::Cia402DriveSim(int node, ServoPlantParams plant, double counts_per_si,
+Cia402DriveSim::Cia402DriveSim(int node, ServoPlantParams plant, cia402::DriveCounts counts,
                                double initial_si, bool standard_mapping)
-    : node_(node), counts_per_si_(counts_per_si), plant_(plant, initial_si) {
-  pending_target_ = static_cast<std::int32_t>(std::lround(initial_si * counts_per_si));
+    : node_(node), counts_(counts), plant_(plant, initial_si) {
+  pending_target_ = counts_.encode(initial_si);
   const auto n = static_cast<std::uint32_t>(node);
   rpdo_.cob = kRpdo1Base + n;
   tpdo_.cob = kTpdo1Base + n;
@@ -235,7 +235,7 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
     plant_.advance(now_ns);
     if (ds_ == DriveState::kOperationEnabled && mode_.load() == 8) {
       const std::int32_t t = std::clamp(pending_target_, limit_min_.load(), limit_max_.load());
-      plant_.command(now_ns, static_cast<double>(t) / counts_per_si_);
+      plant_.command(now_ns, counts_.decode(t));
     }
     if ((tpdo_.cob & cia402::kPdoInvalid) != 0) return;
     CanFrame t;
@@ -246,8 +246,7 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
       const std::uint32_t e = tpdo_.map[static_cast<std::size_t>(i)];
       if (e >> 16 == 0x6041) put_u16(&t.data[at], statusword());
       if (e >> 16 == 0x6064) {
-        put_u32(&t.data[at],
-                static_cast<std::uint32_t>(std::lround(plant_.measured() * counts_per_si_)));
+        put_u32(&t.data[at], static_cast<std::uint32_t>(counts_.encode(plant_.measured())));
       }
       at += (e & 0xFF) / 8;
     }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <mutex>
 
+#include "drivers/cia402_counts.hpp"
 #include "drivers/cia402_frames.hpp"
 #include "sim/devices/can_device.hpp"
 #include "sim/plant/servo_plant.hpp"
@@ -20,8 +21,13 @@ class Cia402DriveSim final : public CanDevice {
   // `standard_mapping`: whether RPDO1/TPDO1 ship mapped as facectl uses them
   // (controlword + target position; statusword + position actual). If not,
   // they ship in the other order, and only an SDO remap makes them usable.
-  Cia402DriveSim(int node, ServoPlantParams plant, double counts_per_si, double initial_si,
+  Cia402DriveSim(int node, ServoPlantParams plant, cia402::DriveCounts counts, double initial_si,
                  bool standard_mapping = true);
+  // Counts per rad (or m) with no offset, as a bus's counts_per_rev.
+  Cia402DriveSim(int node, ServoPlantParams plant, double counts_per_si, double initial_si,
+                 bool standard_mapping = true)
+      : Cia402DriveSim(node, plant, cia402::DriveCounts{counts_per_si, 0.0}, initial_si,
+                       standard_mapping) {}
 
   void on_frame(const CanFrame& f, std::int64_t now_ns) override;
   void step(std::int64_t now_ns) override;
@@ -55,7 +61,7 @@ class Cia402DriveSim final : public CanDevice {
   bool write_pdo_object(Pdo& pdo, bool mapping, std::uint8_t sub, std::uint32_t v);
 
   const int node_;
-  const double counts_per_si_;
+  const cia402::DriveCounts counts_;
   mutable std::mutex mutex_;
   ServoPlant plant_;
   cia402::NmtState nmt_ = cia402::NmtState::kPreOperational;

@@ -319,14 +319,32 @@ TEST(RigEncoding, Int32IsRefusedOnModbusAndInTwoByteCanFields) {
             "ok");
 }
 
-TEST(RigEncoding, CiA402DrivesRefuseAnEncodingBlock) {
-  const std::string text = encoded_rig(kCan + ", protocol: cia402", "{ raw: int16, scale: 100 }");
-  EXPECT_EQ(budget_error(text),
-            at(text) +
-                ": actuator a1 encoding: expected no encoding on CiA 402 bus b0 "
-                "(drive counts come from its counts_per_rev / counts_per_mm), "
-                "found an encoding block");
-  EXPECT_EQ(budget_error(encoded_rig(kCan + ", protocol: cia402, rate_divider: 4", "")), "ok");
+TEST(RigEncoding, CiA402DrivesTakeAnInt32EncodingOnly) {
+  const std::string cia = kCan + ", protocol: cia402, rate_divider: 4";
+  const std::string i16 = encoded_rig(cia, "{ raw: int16, scale: 100 }");
+  EXPECT_EQ(budget_error(i16), at(i16) +
+                                   ": actuator a1 encoding: expected raw int32 on CiA 402 bus b0 "
+                                   "(drives count in 32 bits), found raw int16");
+  const std::string u16 = encoded_rig(cia, "{ raw: uint16, scale: 100 }");
+  EXPECT_EQ(budget_error(u16), at(u16) +
+                                   ": actuator a1 encoding: expected raw int32 on CiA 402 bus b0 "
+                                   "(drives count in 32 bits), found raw uint16");
+  EXPECT_EQ(budget_error(encoded_rig(cia, "{ raw: int32, scale: 2000, offset: -40000 }")), "ok");
+  EXPECT_EQ(budget_error(encoded_rig(cia, "")), "ok");  // the bus's counts_per_rev
+  // 20 deg at 2e8 counts per deg is beyond int32.
+  const std::string wide = encoded_rig(cia, "{ raw: int32, scale: 2e8 }");
+  EXPECT_EQ(budget_error(wide),
+            at(wide) +
+                ": actuator a1 encoding: expected the hardware range to fit strictly inside raw "
+                "int32 (-2.14748e+09, 2.14748e+09), found position 20 deg encoding to 4e+09 "
+                "counts");
+  // Without an encoding, the bus's counts must fit too: 20 deg at 1e11 counts per rev.
+  const std::string bus = encoded_rig(cia + ", counts_per_rev: 1e11", "");
+  EXPECT_NE(budget_error(bus).find("actuator a1 encoding: expected the hardware range to fit "
+                                   "strictly inside raw int32 (-2.14748e+09, 2.14748e+09), found "
+                                   "position 20 deg encoding to 5.55556e+09 counts"),
+            std::string::npos)
+      << budget_error(bus);
 }
 
 TEST(RigEncoding, AnActuatorWithoutEncodingTakesItsBusDefault) {

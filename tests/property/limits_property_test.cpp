@@ -63,7 +63,7 @@ TEST(LimitsProperty, LimiterKeepsEveryBoundUnderRandomTargetsAndJitteredTicks) {
 // sign flips, through enable, e-stop, reset and shutdown cycles. Every
 // actuator's command stays in its soft range and within its velocity and
 // acceleration bounds (jerk-limited ones included); the mandible never leaves
-// its envelope and the coupled face limits always hold.
+// its envelope and the coupled face and actuator limits always hold.
 TEST(LimitsProperty, ControllerKeepsActuatorsAndMandibleInsideTheirLimits) {
   testing::SimHead head;
   const ControllerModel& m = head.model();
@@ -129,6 +129,11 @@ TEST(LimitsProperty, ControllerKeepsActuatorsAndMandibleInsideTheirLimits) {
 
     const bool enabled = c.state() == SafetyState::kEnabling ||
                          c.state() == SafetyState::kRunning || c.state() == SafetyState::kStopping;
+    for (std::size_t k = 0; k < m.actuator_constraints.size() && enabled; ++k) {
+      ASSERT_LE(m.actuator_constraints.constraint(k).value(c.commands().data()),
+                m.actuator_constraints.constraint(k).bound + 1e-9)
+          << m.actuator_constraints.constraint(k).name << " tick " << i;
+    }
     for (std::size_t a = 0; a < n_act && enabled; ++a) {
       const ActuatorLimits& l = m.actuators[a].limits;
       const double x = c.commands()[a];

@@ -2,6 +2,10 @@
 // what was expected and what was found.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+
 #include "firmware-host/head_config.hpp"
 #include "firmware-host/loaded_config.hpp"
 #include "firmware-host/model_builder.hpp"
@@ -231,6 +235,29 @@ TEST(ConfigErrors, DuplicateMusclesInAHeadAreRefused) {
                                          ":3:23: head.muscles[2]: expected a unique muscle "
                                          "name, found duplicate 'a_l'");
   }
+}
+
+TEST(ConfigErrors, AnActuatorCoupledLimitOverAMandibleStrutIsRefused) {
+  // Struts follow the jaw's pose, not their own limiters: such a limit could
+  // not be kept exactly, so the rig is refused, pointing to a face limit.
+  std::ifstream in(std::string(FACECTL_SOURCE_DIR) + "/config/rigs/default.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string at = "  coupled_limits:\n";
+  ASSERT_NE(text.find(at), std::string::npos);
+  text.insert(text.find(at) + at.size(),
+              "    - name: jaw_against_lower_lip\n"
+              "      actuators: { lower_lip: 0.5, jaw_digastric: 1 }\n"
+              "      max: 40\n");
+  const auto term = static_cast<long>(text.find("jaw_digastric: 1 }"));
+  const std::string line = std::to_string(std::count(text.begin(), text.begin() + term, '\n') + 1);
+  const std::string msg = rig_error(text);
+  EXPECT_EQ(msg.rfind("RIG:" + line + ":", 0), 0u) << msg;
+  EXPECT_NE(msg.find("rig.coupled_limits[0].actuators.jaw_digastric: expected an actuator that is "
+                     "not a strut of the mandible mechanism"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("face coupled limit over jaw_pitch_deg"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("found strut 'jaw_digastric'"), std::string::npos) << msg;
 }
 
 TEST(ConfigErrors, TheShippedConfigurationLoads) {

@@ -43,6 +43,16 @@ TEST(Verify, PassesBothShippedRigs) {
   EXPECT_EQ(verify_command(o), 0);
 }
 
+TEST(Verify, ARigWithActuatorCoupledLimitsPassesItsAdversarialSearch) {
+  // Four actuator coupled limits that the mapping's extremes overrun, over
+  // jerk-limited and shared actuators: a million adversarial ticks find no
+  // violation of them, nor of any actuator's own limits (docs/SAFETY.md).
+  VerifyOptions o;
+  o.rig = kSource + "/tests/verify/rigs/actuator_coupled.yaml";
+  o.ticks = 1'000'000;
+  EXPECT_EQ(verify_command(o), 0);
+}
+
 TEST(Verify, AMappingBeyondAHardwareLimitFailsWithItsWitness) {
   const auto cfg = load_rig(kSource + "/tests/verify/rigs/beyond_hardware.yaml");
   const auto proof = verify::prove(cfg);
@@ -148,6 +158,29 @@ TEST(Verify, ChecksEncodingsOnlyWhereTheDriverUsesThem) {
   const auto proof = verify::prove(cfg);
   const auto* f = find_failure(proof.findings, "encoding");
   EXPECT_EQ(f, nullptr) << f->subject << ": " << f->message;
+}
+
+TEST(Verify, ChecksCiA402EncodingsInTheDrivesInt32Counts) {
+  std::ifstream in(kSource + "/config/rigs/default.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string rig = text.str();
+  const std::string from = "protocol: custom\n      values: int16";
+  ASSERT_NE(rig.find(from), std::string::npos);
+  rig.replace(rig.find(from), from.size(), "protocol: cia402");
+  const testing::TempFile cia402(rig, ".yaml");
+  auto cfg = load_rig(cia402.path());
+  EXPECT_EQ(find_failure(verify::prove(cfg).findings, "encoding"), nullptr);  // the bus's counts
+  // neck_pan's own encoding: 65 deg at 5e7 counts per deg is beyond int32.
+  for (ActuatorModel& a : cfg.built.model.actuators) {
+    if (a.name == "neck_pan") a.encoding = {ActuatorEncoding::Raw::kInt32, 5e7, 0.0};
+  }
+  const auto* f = find_failure(verify::prove(cfg).findings, "encoding");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->subject, "neck_pan");
+  EXPECT_NE(f->message.find("does not fit raw int32: position -65 encodes to -3250000000"),
+            std::string::npos)
+      << f->message;
 }
 
 // Soundness: millions of admissible faces (random points of the box, made
