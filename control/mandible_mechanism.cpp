@@ -162,9 +162,10 @@ void clip_strokes(const MandibleMechanism& m, MandibleStrokes& s) {
 bool newton(const MandibleMechanism& m, const MandibleStrokes& target, MandibleVector& x,
             int max_iterations, double tolerance = kForwardTolerance) {
   const auto converged = [&](const MandibleStrokes& s) {
-    double worst = 0.0;
-    for (std::size_t i = 0; i < m.count; ++i) worst = std::max(worst, std::fabs(s[i] - target[i]));
-    return worst <= tolerance;  // false for a NaN
+    for (std::size_t i = 0; i < m.count; ++i) {
+      if (!(std::fabs(s[i] - target[i]) <= tolerance)) return false;  // a NaN is not converged
+    }
+    return true;
   };
   for (int it = 0; it <= max_iterations; ++it) {
     if (it > 0) {

@@ -1,5 +1,8 @@
 #include "firmware-host/simulate/staged_dir.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace facectl {
 
 namespace fs = std::filesystem;
@@ -19,17 +22,26 @@ StagedDir::~StagedDir() {
 
 void StagedDir::commit() {
   // The earlier output is moved aside, not deleted, until the new one is in
-  // place: if that fails, it is put back, and no data is lost either way.
+  // place: if that fails, it is put back, and no data is lost either way. A
+  // run that died between the two renames left only ".DIR.previous": that is
+  // the earlier output, so it is put back first.
   const fs::path previous =
       target_.parent_path() / ("." + target_.filename().string() + ".previous");
-  fs::remove_all(previous);
+  if (!fs::exists(fs::symlink_status(target_)) && fs::exists(fs::symlink_status(previous))) {
+    fs::rename(previous, target_);
+  }
+  fs::remove_all(previous);  // superseded: a run died after both renames
   const bool had = fs::exists(fs::symlink_status(target_));
   if (had) fs::rename(target_, previous);
   try {
     fs::rename(staging_, target_);
-  } catch (...) {
-    std::error_code ignored;
-    if (had) fs::rename(previous, target_, ignored);
+  } catch (const fs::filesystem_error& e) {
+    std::error_code restore;
+    if (had) fs::rename(previous, target_, restore);
+    if (restore) {
+      throw std::runtime_error(std::string(e.what()) + "; the earlier output is kept in " +
+                               previous.string());
+    }
     throw;
   }
   committed_ = true;

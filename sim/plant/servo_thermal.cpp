@@ -32,7 +32,7 @@ void ThermalModel::step(std::int64_t now_ns, double dt, bool powered, double out
   }
 
   double effort = 0.0;
-  if (powered) effort = std::fabs(error) * effort_per_error_;
+  if (powered && effort_per_error_ > 0.0) effort = std::fabs(error) * effort_per_error_;
   if (at_extreme) effort = std::max(effort, p_.extreme_effort);
   effort = std::min(effort, 1.0);
   if (dt != alpha_dt_) {  // ticks repeat their dt: one exp per change, not per step

@@ -51,6 +51,30 @@ TEST(StagedDir, AFailedCommitKeepsTheEarlierOutput) {
   EXPECT_EQ(read_file(out / "old.txt"), "old");
 }
 
+TEST(StagedDir, AnOutputLeftAsideByACrashIsTheEarlierOutput) {
+  // A run that died between moving DIR aside and renaming the new one in
+  // left only ".out.previous": it is put back, never deleted unreplaced.
+  testing::TempDir tmp;
+  const fs::path out = tmp.path() / "out";
+  const fs::path aside = tmp.path() / ".out.previous";
+  fs::create_directories(aside);
+  write_file(aside / "old.txt", "old");
+  {
+    StagedDir staged(out);
+    write_file(staged.path() / "new.txt", "new");
+    fs::remove_all(staged.path());  // the rename into place fails
+    EXPECT_THROW(staged.commit(), fs::filesystem_error);
+  }
+  EXPECT_EQ(read_file(out / "old.txt"), "old");
+  {
+    StagedDir staged(out);
+    write_file(staged.path() / "new.txt", "new");
+    staged.commit();
+  }
+  EXPECT_EQ(read_file(out / "new.txt"), "new");
+  EXPECT_FALSE(fs::exists(aside));
+}
+
 TEST(StagedDir, WithoutCommitTheTargetIsAsItWas) {
   testing::TempDir tmp;
   const fs::path out = tmp.path() / "out";

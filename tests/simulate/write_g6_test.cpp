@@ -67,6 +67,15 @@ TEST(WriteG6, TiesPowersOfTenAndTheirNeighboursMatchToChars) {
     const int k = static_cast<int>(rng() % 12);
     around((static_cast<double>(six_digits(rng)) + 0.5) / std::pow(10.0, k));
   }
+  // Either side of the fast path's tie margin (1e-6 of the last digit), so
+  // that both the fast and the fallback rounding are exercised there.
+  for (int i = 0; i < 100000; ++i) {
+    const int k = static_cast<int>(rng() % 10);
+    const double m = static_cast<double>(six_digits(rng));
+    for (const double d : {-2e-6, -1.000001e-6, -0.999999e-6, 0.999999e-6, 1.000001e-6, 2e-6}) {
+      around((m + 0.5 + d) / std::pow(10.0, k));
+    }
+  }
   for (int k = -6; k <= 8; ++k) around(std::pow(10.0, k));
   for (const double v : {0.0, -0.0, 1e-9, 999999.5, 9.999995, 0.000099999949, 1e300,
                          std::numeric_limits<double>::infinity(), std::nan("")}) {
