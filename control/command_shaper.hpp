@@ -38,8 +38,9 @@ class CommandShaper {
   std::array<double, kMaxFaceSignals> neutral_;
   std::array<double, kMaxFaceSignals> shaped_{};
   double neutral_weight_ = 0.0;
-  // The gains for gains_dt_: ticks repeat their dt, so the exponentials are
-  // worked out once per change of dt, not every tick.
+  // The gains for gains_dt_, worked out again only when dt changes: offline
+  // ticks repeat their dt; the real-time loop's measured dt changes every
+  // tick, where this costs one comparison more than before.
   double gains_dt_ = -1.0;
   double ease_step_ = 1.0, rise_ = 1.0, fall_ = 1.0, smooth_ = 1.0;
 };

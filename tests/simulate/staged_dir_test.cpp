@@ -22,11 +22,17 @@ std::string read_file(const fs::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-TEST(StagedDir, CommitReplacesAnEarlierOutputAndLeavesNothingAside) {
-  testing::TempDir tmp;
+// An earlier output folder "out" holding old.txt.
+fs::path earlier_output(const testing::TempDir& tmp) {
   const fs::path out = tmp.path() / "out";
   fs::create_directories(out);
   write_file(out / "old.txt", "old");
+  return out;
+}
+
+TEST(StagedDir, CommitReplacesAnEarlierOutputAndLeavesNothingAside) {
+  testing::TempDir tmp;
+  const fs::path out = earlier_output(tmp);
   {
     StagedDir staged(out);
     write_file(staged.path() / "new.txt", "new");
@@ -41,9 +47,7 @@ TEST(StagedDir, CommitReplacesAnEarlierOutputAndLeavesNothingAside) {
 
 TEST(StagedDir, AFailedCommitKeepsTheEarlierOutput) {
   testing::TempDir tmp;
-  const fs::path out = tmp.path() / "out";
-  fs::create_directories(out);
-  write_file(out / "old.txt", "old");
+  const fs::path out = earlier_output(tmp);
   StagedDir staged(out);
   write_file(staged.path() / "new.txt", "new");
   fs::remove_all(staged.path());  // the rename into place now fails
