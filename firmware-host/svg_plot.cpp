@@ -1,6 +1,7 @@
 #include "firmware-host/svg_plot.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -32,10 +33,11 @@ std::string escape(const std::string& s) {
   return out;
 }
 
+// Two decimals, the same bytes as printf's "%.2f" (std::to_chars is specified
+// so), several times faster: a plot writes tens of thousands of coordinates.
 std::string num(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  return buf;
+  return {buf, std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 2).ptr};
 }
 
 std::string tick_label(double v, double step) {
