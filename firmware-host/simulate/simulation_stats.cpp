@@ -11,8 +11,9 @@ SimulationStats::SimulationStats(const ControllerModel& model)
 
 void SimulationStats::add(double t, const TelemetryRecord& r, std::span<const double> positions) {
   ++ticks_;
-  for (std::size_t i = 0; i < actuators_.size(); ++i) {
-    Actuator& a = actuators_[i];
+  Actuator* const actuators = actuators_.data();  // once, not per actuator
+  for (std::size_t i = 0, n = actuators_.size(); i < n; ++i) {
+    Actuator& a = actuators[i];
     const double e = r.command[i] - positions[i];
     a.sum_sq += e * e;
     if (std::fabs(e) > a.max_abs) a.max_abs = std::fabs(e), a.max_at_s = t;

@@ -25,6 +25,7 @@ struct FlagTallies {
   std::array<Tally, N> bits{};
   std::uint32_t previous = 0;
   void see(std::uint32_t flags) {
+    if ((flags | previous) == 0) return;  // the usual case: nothing set now or before
     const std::uint32_t rising = flags & ~previous;
     for (std::uint32_t f = flags; f != 0; f &= f - 1) ++bits[std::countr_zero(f)].ticks;
     for (std::uint32_t f = rising; f != 0; f &= f - 1) ++bits[std::countr_zero(f)].count;
