@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "firmware-host/plot_command.hpp"
+#include "firmware-host/simulate/limit_flags_or.hpp"
 #include "firmware-host/svg_plot.hpp"
 
 namespace facectl {
@@ -25,8 +26,11 @@ Plot::Series series_of(const std::string& label, const char* color, double width
 }  // namespace
 
 void ActuatorPlots::Column::see(double t, double v) {
-  if (v < lo) lo = v, t_lo = t;
-  if (v > hi) hi = v, t_hi = t;
+  if (v < lo) {
+    lo = v, t_lo = t;
+  } else if (v > hi) {  // not both: lo <= hi
+    hi = v, t_hi = t;
+  }
 }
 
 ActuatorPlots::ActuatorPlots(const ControllerModel& model, double duration_s, int columns)
@@ -58,8 +62,7 @@ void ActuatorPlots::add(double t, const TelemetryRecord& r, std::span<const doub
       row[i].position.see(t, positions[i]);
     }
   }
-  // All kMaxActuators: a fixed count the compiler turns into a few vector ORs.
-  for (std::size_t i = 0; i < kMaxActuators; ++i) flags_[c][i] |= r.limits[i];
+  or_limit_flags(flags_[c], r.limits);
 }
 
 std::vector<std::string> ActuatorPlots::write(const std::string& dir,

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "firmware-host/simulate/limit_flags_or.hpp"
+#include "firmware-host/simulate/write_f6.hpp"
 #include "firmware-host/simulate/write_g6.hpp"
 
 namespace facectl {
@@ -33,9 +35,7 @@ void DecimatedTelemetry::add(double t, const TelemetryRecord& r,
   envelope_ |= r.envelope_flags;
   coupled_ |= r.coupled_flags;
   actuator_coupled_ |= r.actuator_coupled_flags;
-  // All kMaxActuators, not actuator_count: a fixed count the compiler turns
-  // into a few vector ORs (entries past actuator_count are never written out).
-  for (std::size_t i = 0; i < kMaxActuators; ++i) limits_[i] |= r.limits[i];
+  or_limit_flags(limits_, r.limits);
   if (seen_++ % every_ != 0) return;
   // Formatted by hand, not fprintf: the same bytes, a fraction of the instructions.
   char line[64 * kMaxActuators];
@@ -49,7 +49,7 @@ void DecimatedTelemetry::add(double t, const TelemetryRecord& r,
   };
   p = std::to_chars(p, p + 20, seen_ - 1).ptr;
   *p++ = ',';
-  p = std::to_chars(p, p + 320, t, std::chars_format::fixed, 6).ptr;  // %.6f: <= 317 characters
+  p = write_f6(p, p + 320, t);  // %.6f: at most 317 characters
   *p++ = ',';
   const std::string_view state = to_string(r.state);
   p = std::copy(state.begin(), state.end(), p);

@@ -11,9 +11,12 @@
 #include <random>
 #include <string>
 
+#include "same_text.hpp"
+
 namespace facectl {
 namespace {
 
+// write_g6's text against to_chars', never using more than 16 bytes.
 class SameAsToChars {
  public:
   void check(double v) {
@@ -22,26 +25,21 @@ class SameAsToChars {
     const std::string fast(a, write_g6(a, a + 16, v));  // 16: the room it may use
     if (std::any_of(a + 16, std::end(a), [](char c) { return c != '#'; }) && ++beyond_ <= 5)
       ADD_FAILURE() << v << ": written beyond first + 16";
-    const std::string reference(
-        b, std::to_chars(b, b + sizeof b, v, std::chars_format::general, 6).ptr);
-    ++checked_;
-    if (fast != reference && ++differ_ <= 5)
-      ADD_FAILURE() << v << ": " << fast << " vs " << reference;
+    same_.compare(
+        v, fast,
+        std::string(b, std::to_chars(b, b + sizeof b, v, std::chars_format::general, 6).ptr));
   }
-  long checked() const { return checked_; }
+  long checked() const { return same_.checked(); }
 
  private:
-  long checked_ = 0, differ_ = 0, beyond_ = 0;
+  testing::SameText same_;
+  long beyond_ = 0;
 };
 
 TEST(WriteG6, RandomMagnitudesMatchToChars) {
   SameAsToChars s;
   std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> exponent(-11.0, 8.0);
-  for (int i = 0; i < 1000000; ++i) {
-    const double v = std::pow(10.0, exponent(rng));
-    s.check((rng() & 1) != 0 ? v : -v);
-  }
+  testing::for_random_magnitudes(rng, -11.0, 8.0, 1000000, 2, [&](double v) { s.check(v); });
   EXPECT_EQ(s.checked(), 1000000);
 }
 
