@@ -52,7 +52,8 @@ struct StateSpan {
 // (except when the safety state changes): per actuator the tracking error
 // (command − simulated position) and each limiter's engagements; per face and
 // actuator coupled constraint and for the face envelope, their engagements;
-// the spans of each safety state. The tallies are complete after finish().
+// the spans of each safety state. The tallies and the tracking figures
+// (actuators(), rms()) are complete after finish().
 class SimulationStats {
  public:
   struct Actuator {
