@@ -9,7 +9,6 @@
 
 #include "firmware-host/simulate/limit_flags_or.hpp"
 #include "firmware-host/simulate/write_f6.hpp"
-#include "firmware-host/simulate/write_g6.hpp"
 
 namespace facectl {
 
@@ -40,7 +39,6 @@ void DecimatedTelemetry::add(double t, const TelemetryRecord& r,
   // Formatted by hand, not fprintf: the same bytes, a fraction of the instructions.
   char line[64 * kMaxActuators];
   char* p = line;
-  char* const end = line + sizeof line;
   // An integer takes at most 20 characters; bounding to_chars by that (not by
   // `end`) also shows the compiler that the row stays inside `line`.
   const auto separated = [&](auto flags) {
@@ -56,15 +54,15 @@ void DecimatedTelemetry::add(double t, const TelemetryRecord& r,
   separated(static_cast<unsigned>(envelope_));
   separated(coupled_);
   separated(actuator_coupled_);
-  // write_g6 formats as printf's %.6g does, byte for byte, several times faster.
-  const auto value = [&](double v) {
+  // As printf's %.6g, byte for byte (write_g6), the text reused while a value repeats.
+  const auto value = [&](LastValueText& last, double v) {
     *p++ = ',';
     // Round-off below a nanometre or nanoradian is written as 0, not as e-25 noise.
-    p = write_g6(p, end, std::fabs(v) < 1e-9 ? 0.0 : v);
+    p = last.write(p, std::fabs(v) < 1e-9 ? 0.0 : v);
   };
   for (std::size_t i = 0; i < r.actuator_count; ++i) {
-    value(r.command[i]);
-    value(positions[i]);
+    value(last_command_[i], r.command[i]);
+    value(last_position_[i], positions[i]);
     separated(limits_[i]);
   }
   *p++ = '\n';
