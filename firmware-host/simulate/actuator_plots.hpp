@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -28,18 +29,23 @@ class ActuatorPlots {
  private:
   struct Column {  // one series' extremes within a time column
     double lo = 0.0, hi = 0.0, t_lo = 0.0, t_hi = 0.0;
-    bool used = false;
+    void start(double t, double v) { lo = hi = v, t_lo = t_hi = t; }
     void see(double t, double v);
   };
-  struct Track {
-    std::vector<Column> command, position;
-    std::vector<LimitFlags> flags;
+  struct Cell {  // one actuator in one time column
+    Column command, position;
   };
   std::size_t column_of(double t) const;
 
   const ControllerModel& model_;
   double duration_s_;
-  std::vector<Track> tracks_;
+  std::size_t columns_, actuators_;
+  // Column-major (all actuators of a column side by side), so that a tick
+  // touches one contiguous row; a column's first tick starts its cells
+  // instead of every tick checking whether each cell was used.
+  std::vector<Cell> cells_;
+  std::vector<std::array<LimitFlags, kMaxActuators>> flags_;  // per column, OR of the ticks
+  std::vector<bool> used_;                                    // per column
 };
 
 }  // namespace facectl

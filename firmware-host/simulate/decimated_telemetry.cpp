@@ -1,12 +1,14 @@
 #include "firmware-host/simulate/decimated_telemetry.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 
-#include "firmware-host/simulate/write_g6.hpp"
+#include "firmware-host/simulate/limit_flags_or.hpp"
+#include "firmware-host/simulate/write_f6.hpp"
 
 namespace facectl {
 
@@ -32,26 +34,36 @@ void DecimatedTelemetry::add(double t, const TelemetryRecord& r,
   envelope_ |= r.envelope_flags;
   coupled_ |= r.coupled_flags;
   actuator_coupled_ |= r.actuator_coupled_flags;
-  for (std::size_t i = 0; i < r.actuator_count; ++i) limits_[i] |= r.limits[i];
+  or_limit_flags(limits_, r.limits);
   if (seen_++ % every_ != 0) return;
-  const std::string_view state = to_string(r.state);
-  std::fprintf(file_, "%llu,%.6f,%.*s,%u,%u,%u", static_cast<unsigned long long>(seen_ - 1), t,
-               static_cast<int>(state.size()), state.data(), envelope_, coupled_,
-               actuator_coupled_);
-  // write_g6 formats as printf's %.6g does, byte for byte, several times faster.
+  // Formatted by hand, not fprintf: the same bytes, a fraction of the instructions.
   char line[64 * kMaxActuators];
   char* p = line;
-  char* const end = line + sizeof line;
-  auto value = [&](double v) {
+  // An integer takes at most 20 characters; bounding to_chars by that (not by
+  // `end`) also shows the compiler that the row stays inside `line`.
+  const auto separated = [&](auto flags) {
+    *p++ = ',';
+    p = std::to_chars(p, p + 20, flags).ptr;
+  };
+  p = std::to_chars(p, p + 20, seen_ - 1).ptr;
+  *p++ = ',';
+  p = write_f6(p, p + 320, t);  // %.6f: at most 317 characters
+  *p++ = ',';
+  const std::string_view state = to_string(r.state);
+  p = std::copy(state.begin(), state.end(), p);
+  separated(static_cast<unsigned>(envelope_));
+  separated(coupled_);
+  separated(actuator_coupled_);
+  // As printf's %.6g, byte for byte (write_g6), the text reused while a value repeats.
+  const auto value = [&](LastValueText& last, double v) {
     *p++ = ',';
     // Round-off below a nanometre or nanoradian is written as 0, not as e-25 noise.
-    p = write_g6(p, end, std::fabs(v) < 1e-9 ? 0.0 : v);
+    p = last.write(p, std::fabs(v) < 1e-9 ? 0.0 : v);
   };
   for (std::size_t i = 0; i < r.actuator_count; ++i) {
-    value(r.command[i]);
-    value(positions[i]);
-    *p++ = ',';
-    p = std::to_chars(p, end, limits_[i]).ptr;
+    value(last_command_[i], r.command[i]);
+    value(last_position_[i], positions[i]);
+    separated(limits_[i]);
   }
   *p++ = '\n';
   std::fwrite(line, 1, static_cast<std::size_t>(p - line), file_);

@@ -7,6 +7,7 @@
 
 #include "control/controller_model.hpp"
 #include "control/telemetry_record.hpp"
+#include "firmware-host/simulate/last_value_text.hpp"
 
 namespace facectl {
 
@@ -37,6 +38,8 @@ class DecimatedTelemetry {
   std::uint8_t envelope_ = 0;
   std::uint32_t coupled_ = 0, actuator_coupled_ = 0;
   std::array<LimitFlags, kMaxActuators> limits_{};
+  // Per actuator, the text of the last command and position written.
+  std::array<LastValueText, kMaxActuators> last_command_{}, last_position_{};
 };
 
 }  // namespace facectl
