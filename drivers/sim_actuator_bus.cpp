@@ -26,14 +26,10 @@ SimActuatorBus::SimActuatorBus(std::string name, const std::vector<sim::ServoPla
 }
 
 void SimActuatorBus::read(const TickTime& time, std::span<double> positions) {
-  for (std::size_t i = 0; i < plants_.size() && i < positions.size(); ++i) {
-    plants_[i].advance(time.now_ns);
-    positions[i] = plants_[i].measured();
-    // Latched: the first overloaded servo names the fault until it is cleared.
-    if (const char* overload = plants_[i].fault()) {
-      const char* none = nullptr;
-      fault_reason_.compare_exchange_strong(none, overload, std::memory_order_release);
-    }
+  // Latched: the first overloaded servo names the fault until it is cleared.
+  if (const char* overload = sim::advance_and_measure(plants_, time.now_ns, positions)) {
+    const char* none = nullptr;
+    fault_reason_.compare_exchange_strong(none, overload, std::memory_order_release);
   }
 }
 
