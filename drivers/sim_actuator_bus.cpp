@@ -1,5 +1,6 @@
 #include "drivers/sim_actuator_bus.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace facectl {
@@ -26,14 +27,10 @@ SimActuatorBus::SimActuatorBus(std::string name, const std::vector<sim::ServoPla
 }
 
 void SimActuatorBus::read(const TickTime& time, std::span<double> positions) {
-  for (std::size_t i = 0; i < plants_.size() && i < positions.size(); ++i) {
-    plants_[i].advance(time.now_ns);
-    positions[i] = plants_[i].measured();
-    // Latched: the first overloaded servo names the fault until it is cleared.
-    if (const char* overload = plants_[i].fault()) {
-      const char* none = nullptr;
-      fault_reason_.compare_exchange_strong(none, overload, std::memory_order_release);
-    }
+  // Latched: the first overloaded servo names the fault until it is cleared.
+  if (const char* overload = sim::advance_and_measure(plants_, time.now_ns, positions)) {
+    const char* none = nullptr;
+    fault_reason_.compare_exchange_strong(none, overload, std::memory_order_release);
   }
 }
 
@@ -47,8 +44,15 @@ void SimActuatorBus::write(const TickTime& time, std::span<const double> positio
     ++writes_while_disabled_;
     return;
   }
-  for (std::size_t i = 0; i < plants_.size() && i < positions.size(); ++i) {
-    if (plant_enabled_[i] != 0) plants_[i].command(time.now_ns + transfer_ns_[i], positions[i]);
+  // Locals: the compiler cannot tell that commanding a plant leaves the
+  // vectors alone, and would reload them for every servo.
+  const std::size_t n = std::min(plants_.size(), positions.size());
+  const std::int64_t now_ns = time.now_ns;
+  sim::ServoPlant* plants = plants_.data();
+  const std::uint8_t* enabled = plant_enabled_.data();
+  const std::int64_t* transfer_ns = transfer_ns_.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (enabled[i] != 0) plants[i].command(now_ns + transfer_ns[i], positions[i]);
   }
   ++frames_;
 }

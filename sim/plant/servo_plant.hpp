@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include "sim/plant/measurement_noise.hpp"
@@ -39,7 +40,16 @@ class ServoPlant {
   explicit ServoPlant(const ServoPlantParams& params, double initial_position = 0.0);
 
   // `position` takes effect at now_ns + latency (the caller adds bus time to now_ns).
-  void command(std::int64_t now_ns, double position);
+  // Inline: a simulated bus commands every servo every tick.
+  void command(std::int64_t now_ns, double position) {
+    if (delay_size_ == kDelaySlots) {
+      // Full: the oldest pending command is overtaken by newer ones anyway.
+      delay_head_ = (delay_head_ + 1) % kDelaySlots;
+      --delay_size_;
+    }
+    delay_[(delay_head_ + delay_size_) % kDelaySlots] = {now_ns + latency_ns_, position};
+    ++delay_size_;
+  }
   // Enabling or disabling drops pending commands and holds the current
   // position, as a drive does (see ActuatorBus::set_enabled).
   void set_enabled(bool enabled);
@@ -67,11 +77,15 @@ class ServoPlant {
   };
   static constexpr std::size_t kDelaySlots = 64;
 
+  void set_dt(double dt);
   void step_first_order(double dt);
   void step_pd(double dt);
   double limit_velocity(double v_wanted, double dt) const;
 
   ServoPlantParams params_;
+  // Worked out once from params_: the tick would otherwise redo them per servo.
+  std::int64_t latency_ns_;  // latency_s in ns
+  double half_backlash_;     // the play on either side of the motor
   std::array<Timed, kDelaySlots> delay_{};
   std::size_t delay_head_ = 0;
   std::size_t delay_size_ = 0;
@@ -79,9 +93,9 @@ class ServoPlant {
   double motor_;
   double output_;
   double velocity_ = 0.0;
-  double gain_dt_ = -1.0;  // the dt gain_ (first order) or pd_steps_ was computed for
+  double step_dt_ = -1.0;  // the dt gain_ (first order) or pd_steps_ was worked out for
   double gain_ = 0.0;
-  int pd_steps_ = 1;   // PD sub-steps per advance of gain_dt_
+  int pd_steps_ = 1;   // PD sub-steps per advance of step_dt_
   double pd_h_ = 0.0;  // their length
   double kp_ = 0.0;    // ω²
   double kd_ = 0.0;    // 2ζω
@@ -90,5 +104,12 @@ class ServoPlant {
   MeasurementNoise noise_;
   ThermalModel thermal_;
 };
+
+// Advances each plant to `now_ns` and writes its measured position (as many as
+// both spans hold); returns the first latched fault, or nullptr. The simulated
+// buses call this every tick: one loop in servo_plant.cpp lets the per-servo
+// steps inline into it.
+const char* advance_and_measure(std::span<ServoPlant> plants, std::int64_t now_ns,
+                                std::span<double> measured);
 
 }  // namespace facectl::sim

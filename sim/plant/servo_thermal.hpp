@@ -1,6 +1,8 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -37,7 +39,8 @@ class ThermalModel {
   ThermalModel(const ThermalParams& params, const std::string& name);
 
   // One step of `dt` seconds ending at `now_ns`; `powered` is false while the
-  // drive is disabled (no effort, no holding).
+  // drive is disabled (no effort, no holding). Inline (below): it runs for
+  // every simulated servo every tick.
   void step(std::int64_t now_ns, double dt, bool powered, double output, double error);
   const PlantStats& stats() const { return stats_; }
   const char* fault() const { return fault_; }
@@ -45,6 +48,7 @@ class ThermalModel {
 
  private:
   void trip(std::int64_t now_ns, const char* text);
+  void set_dt(double dt);  // alpha_ for a new step length
 
   ThermalParams p_;
   PlantStats stats_;
@@ -56,6 +60,8 @@ class ThermalModel {
   // Fixed by the parameters, worked out once: a step runs for every servo
   // every tick, and divisions are what it would spend its time on.
   bool banded_ = false;
+  double extreme_low_ = 0.0;       // position_min + extreme_band
+  double extreme_high_ = 0.0;      // position_max − extreme_band
   double effort_per_error_ = 0.0;  // 1 / full_effort, 0 = no effort model
   double heat_scale_ = 0.0;        // 1 / rated_duty²
   const char* fault_ = nullptr;
@@ -63,5 +69,38 @@ class ThermalModel {
   std::array<char, 128> extreme_text_{};
   std::array<char, 128> thermal_text_{};
 };
+
+inline void ThermalModel::step(std::int64_t now_ns, double dt, bool powered, double output,
+                               double error) {
+  if (dt <= 0.0) return;
+  const bool at_extreme = powered && banded_ && (output <= extreme_low_ || output >= extreme_high_);
+  bool over_time = false;  // the time-at-extreme budget is used up
+  if (at_extreme) {
+    continuous_s_ += dt;
+    stats_.time_at_extreme_s += dt;
+    stats_.longest_at_extreme_s = std::max(stats_.longest_at_extreme_s, continuous_s_);
+    over_time = p_.extreme_budget_s > 0.0 && continuous_s_ > p_.extreme_budget_s;
+  } else {
+    continuous_s_ = 0.0;
+  }
+
+  double effort = 0.0;
+  if (powered && effort_per_error_ > 0.0) effort = std::fabs(error) * effort_per_error_;
+  if (at_extreme) effort = std::max(effort, p_.extreme_effort);
+  effort = std::min(effort, 1.0);
+  if (dt != alpha_dt_) set_dt(dt);
+  const double alpha = alpha_;
+  duty_ += alpha * (effort - duty_);
+  heat_ += alpha * (effort * effort - heat_);
+  const double thermal = heat_ * heat_scale_;
+  stats_.duty_peak = std::max(stats_.duty_peak, duty_);
+  stats_.thermal_peak = std::max(stats_.thermal_peak, thermal);
+
+  if (over_time) {
+    trip(now_ns, extreme_text_.data());
+  } else if (thermal > 1.0) {
+    trip(now_ns, thermal_text_.data());
+  }
+}
 
 }  // namespace facectl::sim

@@ -82,6 +82,39 @@ TEST(PlantThermal, SustainedEffortAboveTheRatingTripsTheThermalState) {
                "thermal: jaw over its continuous rating (overload protection)");
 }
 
+// Holds both servos of `bus` at 0.99 for 3 s; returns the bus's fault text.
+std::string hold_both_at_extreme(SimActuatorBus& bus) {
+  bus.set_enabled(true);
+  double pos[2] = {0.5, 0.5};
+  const double cmd[2] = {0.99, 0.99};
+  for (int t = 0; t <= 3000; ++t) {
+    bus.read({t * kMs, 1e-3}, pos);
+    bus.write({t * kMs, 1e-3}, cmd);
+  }
+  return bus.status().fault ? bus.status().reason : "";
+}
+
+TEST(PlantThermal, ServosTrippingOnTheSameTickFaultTheBusWithTheFirstServosName) {
+  ServoPlantParams first = banded(), second = banded();
+  first.name = "first";
+  second.name = "second";
+  SimActuatorBus bus("servo_board", {first, second}, {0.5, 0.5});
+  const std::string fault = hold_both_at_extreme(bus);
+  EXPECT_EQ(bus.plant(0).stats().over_budget_time_s, bus.plant(1).stats().over_budget_time_s);
+  EXPECT_EQ(fault.rfind("thermal: first ", 0), 0u) << fault;
+}
+
+TEST(PlantThermal, TheBusKeepsTheFaultOfTheServoThatTrippedFirst) {
+  ServoPlantParams first = banded(), second = banded();
+  first.name = "first";
+  second.name = "second";
+  second.thermal.extreme_budget_s = 1.0;  // trips a second before `first`
+  SimActuatorBus bus("servo_board", {first, second}, {0.5, 0.5});
+  const std::string fault = hold_both_at_extreme(bus);
+  EXPECT_TRUE(bus.plant(0).stats().over_budget);  // it tripped too, later
+  EXPECT_EQ(fault.rfind("thermal: second ", 0), 0u) << fault;
+}
+
 TEST(PlantThermal, ClearingTheBusResetsTheServosLatchedFault) {
   SimActuatorBus bus("servo_board", {banded()}, {0.5});
   hold_at_extreme(bus, 2300, 3000);
