@@ -67,6 +67,7 @@ struct MandibleMechanism {
   // Derived by make_mandible_mechanism().
   std::array<bool, 3> driven{};                      // by DOF index (pitch, yaw, protrusion)
   std::array<double, kMaxStruts> rest_length{};      // L(rest), m
+  std::array<Eigen::Vector3d, kMaxStruts> arm{};     // mandible anchor − pitch point, m
   Eigen::Vector3d weight = Eigen::Vector3d::Ones();  // metric scale per DOF
 
   std::size_t struts() const { return count; }
@@ -126,6 +127,27 @@ std::optional<face::MandiblePose> forward(const MandibleMechanism& m,
                                           const face::MandiblePose& guess = {},
                                           int max_iterations = 30,
                                           double tolerance = kForwardTolerance);
+
+// A pose (held DOFs applied once `evaluated`) and, once `evaluated`, its strokes and Jacobian
+// (strokes_and_jacobian()). A tick's forward() warm-started from the last tick's
+// answer keeps one: Newton ends linearised at its answer, so the next solve
+// starts without evaluating the kinematics again.
+struct MandibleLinearisation {
+  MandibleLinearisation() = default;
+  explicit MandibleLinearisation(const MandibleVector& q) : pose(q) {}
+
+  MandibleVector pose = MandibleVector::Zero();
+  bool evaluated = false;
+  MandibleStrokes strokes{};
+  Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero();
+};
+
+// forward() from `warm`, which becomes the answer, linearised there, on success
+// and is left as it was on failure. The same answer as forward() from warm.pose.
+std::optional<face::MandiblePose> forward(const MandibleMechanism& m,
+                                          const MandibleStrokes& strokes,
+                                          MandibleLinearisation& warm, int max_iterations,
+                                          double tolerance);
 
 // Conditioning of the weighted Jacobian (stroke mm per metric unit) over a grid of
 // `samples` points per driven axis of `envelope` (held DOFs at their value). This
