@@ -157,7 +157,7 @@ void Controller::limit_mechanism(double dt, LimitFlags* flags) {
   const face::MandiblePose pose{pose_limiter_[0].position, pose_limiter_[1].position,
                                 pose_limiter_[2].position};
   MandibleStrokes strokes{};
-  const MandibleSolveResult r = solve(mech, pose, strokes);
+  const MandibleSolveResult r = solve(mech, pose, strokes, &limited_rotations_);
   for (std::size_t s = 0; s < mech.struts(); ++s) {
     const std::size_t i = mech.strut[s].actuator;
     LimiterState& l = limiter_[i];

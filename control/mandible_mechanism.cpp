@@ -31,14 +31,32 @@ bool finite(const Vector3d& v) {
   return v.allFinite();
 }
 
-// The pitch and yaw rotations of a pose: built once per pose and shared by every
+// The pitch and yaw rotations of a pose are built once per pose and shared by every
 // strut, because their sines cost more than a strut's own arithmetic.
-struct Motion {
-  Matrix3d P, Y;
-};
+using Motion = MandibleRotations;
+
+// Whether a rotation built for `built` serves `angle`: the same bits (sin(−0) is
+// −0; a NaN never serves).
+bool same_angle(double built, double angle) {
+  return built == angle && std::signbit(built) == std::signbit(angle);
+}
+
+// `r` updated to the rotations of q.
+void rotate_to(const face::MandibleAxes& a, const MandibleVector& q, Motion& r) {
+  if (!same_angle(r.pitch_rad, q[0])) {
+    r.pitch = face::rodrigues(a.pitch_axis, q[0]);
+    r.pitch_rad = q[0];
+  }
+  if (!same_angle(r.yaw_rad, q[1])) {
+    r.yaw = face::rodrigues(a.yaw_axis, q[1]);
+    r.yaw_rad = q[1];
+  }
+}
 
 Motion motion(const face::MandibleAxes& a, const MandibleVector& q) {
-  return {face::rodrigues(a.pitch_axis, q[0]), face::rodrigues(a.yaw_axis, q[1])};
+  Motion r;
+  rotate_to(a, q, r);
+  return r;
 }
 
 // A mandible anchor moved by the pose (pitch, then yaw, then protrusion), with the
@@ -51,17 +69,20 @@ struct Moved {
 
 Moved move(const face::MandibleAxes& a, const Motion& mo, const Vector3d& arm, double protrusion) {
   Moved m;
-  m.r = mo.P * arm;
-  m.w = mo.Y * (m.r + a.pitch_point - a.yaw_point);
+  m.r = mo.pitch * arm;
+  m.w = mo.yaw * (m.r + a.pitch_point - a.yaw_point);
   m.p = m.w + a.yaw_point + protrusion * a.protrusion_dir;
   return m;
 }
 
-// Strokes at q (held DOFs applied), and with `jacobian` also d stroke_i / d q_k.
+// Strokes at q (held DOFs applied), and with `jacobian` also d stroke_i / d q_k;
+// with `rotations`, reusing and keeping them.
 void evaluate(const MandibleMechanism& m, const MandibleVector& q, MandibleStrokes& out,
-              Matrix3d* jacobian) {
+              Matrix3d* jacobian, Motion* rotations = nullptr) {
   const face::MandibleAxes& a = m.axes;
-  const Motion mo = motion(a, q);
+  Motion local;
+  Motion& mo = rotations != nullptr ? *rotations : local;
+  rotate_to(a, q, mo);
   for (std::size_t i = 0; i < m.count; ++i) {
     const MandibleStrut& s = m.strut[i];
     const Moved mv = move(a, mo, m.arm[i], q[2]);
@@ -70,7 +91,7 @@ void evaluate(const MandibleMechanism& m, const MandibleVector& q, MandibleStrok
     out[i] = s.stroke_at_rest + L - m.rest_length[i];
     if (jacobian == nullptr) continue;
     const Vector3d e = d / L;  // unit, skull → mandible
-    (*jacobian)(i, 0) = e.dot(mo.Y * a.pitch_axis.cross(mv.r));
+    (*jacobian)(i, 0) = e.dot(mo.yaw * a.pitch_axis.cross(mv.r));
     (*jacobian)(i, 1) = e.dot(a.yaw_axis.cross(mv.w));
     (*jacobian)(i, 2) = e.dot(a.protrusion_dir);
   }
@@ -277,8 +298,9 @@ Vector3d mandible_anchor(const MandibleMechanism& m, std::size_t i, const Mandib
   return move(m.axes, motion(m.axes, q), m.arm[i], q[2]).p;
 }
 
-void strokes(const MandibleMechanism& m, const face::MandiblePose& pose, MandibleStrokes& out) {
-  evaluate(m, m.held_in(to_vector(pose)), out, nullptr);
+void strokes(const MandibleMechanism& m, const face::MandiblePose& pose, MandibleStrokes& out,
+             MandibleRotations* rotations) {
+  evaluate(m, m.held_in(to_vector(pose)), out, nullptr, rotations);
 }
 
 void strokes_and_jacobian(const MandibleMechanism& m, const MandibleVector& q, MandibleStrokes& out,
@@ -287,7 +309,7 @@ void strokes_and_jacobian(const MandibleMechanism& m, const MandibleVector& q, M
 }
 
 MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& target,
-                          MandibleStrokes& out_strokes) {
+                          MandibleStrokes& out_strokes, MandibleRotations* rotations) {
   MandibleVector goal = to_vector(target);
   MandibleSolveResult result;
   if (!goal.allFinite()) {
@@ -300,7 +322,7 @@ MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& 
     return result;
   }
   goal = m.held_in(goal);
-  strokes(m, to_pose(goal), out_strokes);
+  strokes(m, to_pose(goal), out_strokes, rotations);
   bool inside = true;
   for (std::size_t i = 0; i < m.count; ++i)
     inside = inside && out_strokes[i] >= m.strut[i].stroke.min &&

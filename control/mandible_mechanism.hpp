@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -87,8 +88,20 @@ MandibleMechanism make_mandible_mechanism(const face::MandibleAxes& axes,
                                           const MandibleMetric& metric = {},
                                           double max_condition = 50.0);
 
+// The pitch and yaw rotations of the last pose evaluated, with their angles. A
+// call site in the tick keeps its own (one mechanism each): an angle that has not
+// changed since, bit for bit (yaw while the jaw only opens, any DOF in a hold),
+// reuses its rotation instead of evaluating a sine and cosine again. The same
+// results with or without.
+struct MandibleRotations {
+  double pitch_rad = std::numeric_limits<double>::quiet_NaN();  // NaN: not built yet
+  double yaw_rad = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Matrix3d pitch, yaw;
+};
+
 // Strut strokes at `pose` (closed form; DOFs not driven take their held value).
-void strokes(const MandibleMechanism& m, const face::MandiblePose& pose, MandibleStrokes& out);
+void strokes(const MandibleMechanism& m, const face::MandiblePose& pose, MandibleStrokes& out,
+             MandibleRotations* rotations = nullptr);
 
 // The mandible anchor of strut i at `q` (held DOFs already applied), head frame.
 Eigen::Vector3d mandible_anchor(const MandibleMechanism& m, std::size_t i, const MandibleVector& q);
@@ -114,7 +127,7 @@ struct MandibleSolveResult {
 // target gives the rest pose (held DOFs held). Bounded time, deterministic, no
 // allocation.
 MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& target,
-                          MandibleStrokes& out_strokes);
+                          MandibleStrokes& out_strokes, MandibleRotations* rotations = nullptr);
 
 // The strokes forward() converges to by default, in m.
 inline constexpr double kForwardTolerance = 1e-11;
