@@ -27,7 +27,7 @@ Controller::Controller(const ControllerModel& model, std::span<ActuatorBus* cons
   std::copy(buses.begin(), buses.end(), buses_.begin());
   sanitizer_.reset(model.neutral);
   face_ = model.neutral;
-  last_measured_pose_ = model.mandible_rest;
+  last_measured_ = MandibleLinearisation(to_vector(model.mandible_rest));
   if (model.mapping.mechanism) {
     for (std::size_t s = 0; s < model.mapping.mechanism->struts(); ++s) {
       strut_mask_ |= std::uint64_t{1} << model.mapping.mechanism->strut[s].actuator;
@@ -157,7 +157,7 @@ void Controller::limit_mechanism(double dt, LimitFlags* flags) {
   const face::MandiblePose pose{pose_limiter_[0].position, pose_limiter_[1].position,
                                 pose_limiter_[2].position};
   MandibleStrokes strokes{};
-  const MandibleSolveResult r = solve(mech, pose, strokes);
+  const MandibleSolveResult r = solve(mech, pose, strokes, &limited_rotations_);
   for (std::size_t s = 0; s < mech.struts(); ++s) {
     const std::size_t i = mech.strut[s].actuator;
     LimiterState& l = limiter_[i];
@@ -201,9 +201,12 @@ std::optional<face::MandiblePose> Controller::measured_mandible_pose() {
   // resolves, and one Newton step from the warm start instead of two.
   constexpr int kIterations = 30;
   constexpr double kStrokeTolerance = 1e-8;
-  auto pose = forward(mech, measured, last_measured_pose_, kIterations, kStrokeTolerance);
-  if (!pose) pose = forward(mech, measured, model_.mandible_rest, kIterations, kStrokeTolerance);
-  if (pose) last_measured_pose_ = *pose;
+  auto pose = forward(mech, measured, last_measured_, kIterations, kStrokeTolerance);
+  if (!pose) {
+    MandibleLinearisation rest(to_vector(model_.mandible_rest));
+    pose = forward(mech, measured, rest, kIterations, kStrokeTolerance);
+    if (pose) last_measured_ = rest;
+  }
   return pose;
 }
 

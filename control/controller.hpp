@@ -175,7 +175,8 @@ class Controller {
   std::array<LimiterState, kMaxActuators> limiter_{};
   std::array<LimiterState, 3> pose_limiter_{};  // pitch, yaw, protrusion
   face::MandiblePose pose_start_;               // where ENABLING found the jaw
-  face::MandiblePose last_measured_pose_;       // warm start of the measured pose's solve
+  MandibleRotations limited_rotations_;         // of the limited pose, reused while an angle holds
+  MandibleLinearisation last_measured_;         // warm start of the measured pose's solve
 
   ControllerCounters counters_;
   std::atomic<bool> enable_request_{false};

@@ -31,19 +31,72 @@ bool finite(const Vector3d& v) {
   return v.allFinite();
 }
 
-// The mandible anchor of strut i at q, and optionally its derivatives.
-struct Motion {
-  Matrix3d P, Y;  // pitch and yaw rotations
-};
+// The pitch and yaw rotations of a pose are built once per pose and shared by every
+// strut, because their sines cost more than a strut's own arithmetic.
+using Motion = MandibleRotations;
 
-Motion motion(const face::MandibleAxes& a, const MandibleVector& q) {
-  return {face::rodrigues(a.pitch_axis, q[0]), face::rodrigues(a.yaw_axis, q[1])};
+// Whether a rotation built for `built` serves `angle`: the same bits (sin(−0) is
+// −0; a NaN never serves).
+bool same_angle(double built, double angle) {
+  return built == angle && std::signbit(built) == std::signbit(angle);
 }
 
-Vector3d anchor(const face::MandibleAxes& a, const Motion& mo, const Vector3d& rest,
-                double protrusion) {
-  const Vector3d w = mo.P * (rest - a.pitch_point) + a.pitch_point - a.yaw_point;
-  return mo.Y * w + a.yaw_point + protrusion * a.protrusion_dir;
+// `r` updated to the rotations of q.
+void rotate_to(const face::MandibleAxes& a, const MandibleVector& q, Motion& r) {
+  if (!same_angle(r.pitch_rad, q[0])) {
+    r.pitch = face::rodrigues(a.pitch_axis, q[0]);
+    r.pitch_rad = q[0];
+  }
+  if (!same_angle(r.yaw_rad, q[1])) {
+    r.yaw = face::rodrigues(a.yaw_axis, q[1]);
+    r.yaw_rad = q[1];
+  }
+}
+
+Motion motion(const face::MandibleAxes& a, const MandibleVector& q) {
+  Motion r;
+  rotate_to(a, q, r);
+  return r;
+}
+
+// A mandible anchor moved by the pose (pitch, then yaw, then protrusion), with the
+// intermediate points the Jacobian needs.
+struct Moved {
+  Vector3d r;  // pitched, relative to the pitch point
+  Vector3d w;  // pitched and yawed, relative to the yaw point
+  Vector3d p;  // the moved anchor, head frame
+};
+
+Moved move(const face::MandibleAxes& a, const Motion& mo, const Vector3d& arm, double protrusion) {
+  Moved m;
+  m.r = mo.pitch * arm;
+  m.w = mo.yaw * (m.r + a.pitch_point - a.yaw_point);
+  m.p = m.w + a.yaw_point + protrusion * a.protrusion_dir;
+  return m;
+}
+
+// Strokes at q (held DOFs applied), and with `jacobian` also d stroke_i / d q_k;
+// with `rotations`, reusing and keeping them.
+void evaluate(const MandibleMechanism& m, const MandibleVector& q, MandibleStrokes& out,
+              Matrix3d* jacobian, Motion* rotations = nullptr) {
+  const face::MandibleAxes& a = m.axes;
+  Motion local;
+  Motion& mo = rotations != nullptr ? *rotations : local;
+  rotate_to(a, q, mo);
+  for (std::size_t i = 0; i < m.count; ++i) {
+    const MandibleStrut& s = m.strut[i];
+    const Moved mv = move(a, mo, m.arm[i], q[2]);
+    const Vector3d d = mv.p - s.skull;
+    const double L = d.norm();
+    out[i] = s.stroke_at_rest + L - m.rest_length[i];
+    if (jacobian == nullptr) continue;
+    const Vector3d e = d / L;  // unit, skull → mandible
+    (*jacobian)(i, 0) = e.dot(mo.yaw * a.pitch_axis.cross(mv.r));
+    (*jacobian)(i, 1) = e.dot(a.yaw_axis.cross(mv.w));
+    (*jacobian)(i, 2) = e.dot(a.protrusion_dir);
+  }
+  if (jacobian == nullptr) return;
+  for (std::size_t i = m.count; i < 3; ++i) jacobian->row(i).setZero();
 }
 
 // Rows i < count: d stroke_i / dq (only the driven columns are used). Rows for the
@@ -55,11 +108,10 @@ struct Augmented {
   Vector3d lo, hi;
 };
 
-Augmented augmented(const MandibleMechanism& m, const MandibleVector& q) {
+// From the strokes `s` and their Jacobian `full` at q.
+Augmented augmented(const MandibleMechanism& m, const MandibleVector& q, const MandibleStrokes& s,
+                    const Matrix3d& full) {
   Augmented a;
-  MandibleStrokes s{};
-  Matrix3d full;
-  strokes_and_jacobian(m, q, s, full);
   std::size_t row = 0;
   for (std::size_t i = 0; i < m.count; ++i, ++row) {
     a.J.row(row).setZero();
@@ -156,10 +208,11 @@ void clip_strokes(const MandibleMechanism& m, MandibleStrokes& s) {
     s[i] = std::clamp(s[i], m.strut[i].stroke.min, m.strut[i].stroke.max);
 }
 
-// Newton on strokes(x) = target from x (updated in place; held DOFs stay held).
-// True once every residual is at most `tolerance`. After a step only the
-// strokes are evaluated first: the Jacobian is needed only if another step is.
-bool newton(const MandibleMechanism& m, const MandibleStrokes& target, MandibleVector& x,
+// Newton on strokes(x) = target from at.pose (updated in place; held DOFs stay
+// held). True once every residual is at most `tolerance`. Each step evaluates
+// the strokes with their Jacobian once, so `at` ends linearised at its pose: the
+// next solve from there (the tick's, warm-started) needs no evaluation to start.
+bool newton(const MandibleMechanism& m, const MandibleStrokes& target, MandibleLinearisation& at,
             int max_iterations, double tolerance = kForwardTolerance) {
   const auto converged = [&](const MandibleStrokes& s) {
     for (std::size_t i = 0; i < m.count; ++i) {
@@ -167,14 +220,17 @@ bool newton(const MandibleMechanism& m, const MandibleStrokes& target, MandibleV
     }
     return true;
   };
+  MandibleVector& x = at.pose;
   for (int it = 0; it <= max_iterations; ++it) {
+    if (!at.evaluated) {
+      strokes_and_jacobian(m, x, at.strokes, at.jacobian);
+      at.evaluated = true;
+    }
     if (it > 0) {
-      MandibleStrokes s{};
-      strokes(m, to_pose(x), s);
-      if (converged(s)) return true;
+      if (converged(at.strokes)) return true;
       if (it == max_iterations) break;
     }
-    const Augmented a = augmented(m, x);
+    const Augmented a = augmented(m, x, at.strokes, at.jacobian);
     Vector3d residual = Vector3d::Zero();
     for (std::size_t i = 0; i < m.count; ++i) residual[i] = a.value[i] - target[i];
     if (!residual.allFinite()) return false;
@@ -183,8 +239,18 @@ bool newton(const MandibleMechanism& m, const MandibleStrokes& target, MandibleV
     Matrix3d Jinv;
     if (!invert(a.J, Jinv)) return false;
     x = m.held_in(x - Jinv * residual);
+    at.evaluated = false;
   }
   return false;
+}
+
+// Newton from x (updated in place), evaluated from scratch.
+bool newton(const MandibleMechanism& m, const MandibleStrokes& target, MandibleVector& x,
+            int max_iterations) {
+  MandibleLinearisation at(x);
+  const bool ok = newton(m, target, at, max_iterations);
+  x = at.pose;
+  return ok;
 }
 
 [[noreturn]] void reject(const std::string& what) {
@@ -229,41 +295,21 @@ MandibleVector MandibleMechanism::held_in(const MandibleVector& q) const {
 }
 
 Vector3d mandible_anchor(const MandibleMechanism& m, std::size_t i, const MandibleVector& q) {
-  return anchor(m.axes, motion(m.axes, q), m.strut[i].mandible, q[2]);
+  return move(m.axes, motion(m.axes, q), m.arm[i], q[2]).p;
 }
 
-void strokes(const MandibleMechanism& m, const face::MandiblePose& pose, MandibleStrokes& out) {
-  const MandibleVector q = m.held_in(to_vector(pose));
-  const Motion mo = motion(m.axes, q);
-  for (std::size_t i = 0; i < m.count; ++i) {
-    const MandibleStrut& s = m.strut[i];
-    const double L = (s.skull - anchor(m.axes, mo, s.mandible, q[2])).norm();
-    out[i] = s.stroke_at_rest + L - m.rest_length[i];
-  }
+void strokes(const MandibleMechanism& m, const face::MandiblePose& pose, MandibleStrokes& out,
+             MandibleRotations* rotations) {
+  evaluate(m, m.held_in(to_vector(pose)), out, nullptr, rotations);
 }
 
 void strokes_and_jacobian(const MandibleMechanism& m, const MandibleVector& q, MandibleStrokes& out,
                           Matrix3d& jacobian) {
-  const face::MandibleAxes& a = m.axes;
-  const Motion mo = motion(a, q);
-  for (std::size_t i = 0; i < m.count; ++i) {
-    const MandibleStrut& s = m.strut[i];
-    const Vector3d r = mo.P * (s.mandible - a.pitch_point);  // about the pitch axis
-    const Vector3d w = mo.Y * (r + a.pitch_point - a.yaw_point);
-    const Vector3d p = w + a.yaw_point + q[2] * a.protrusion_dir;
-    const Vector3d d = p - s.skull;
-    const double L = d.norm();
-    const Vector3d e = d / L;  // unit, skull → mandible
-    out[i] = s.stroke_at_rest + L - m.rest_length[i];
-    jacobian(i, 0) = e.dot(mo.Y * a.pitch_axis.cross(r));
-    jacobian(i, 1) = e.dot(a.yaw_axis.cross(w));
-    jacobian(i, 2) = e.dot(a.protrusion_dir);
-  }
-  for (std::size_t i = m.count; i < 3; ++i) jacobian.row(i).setZero();
+  evaluate(m, q, out, &jacobian);
 }
 
 MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& target,
-                          MandibleStrokes& out_strokes) {
+                          MandibleStrokes& out_strokes, MandibleRotations* rotations) {
   MandibleVector goal = to_vector(target);
   MandibleSolveResult result;
   if (!goal.allFinite()) {
@@ -276,7 +322,7 @@ MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& 
     return result;
   }
   goal = m.held_in(goal);
-  strokes(m, to_pose(goal), out_strokes);
+  strokes(m, to_pose(goal), out_strokes, rotations);
   bool inside = true;
   for (std::size_t i = 0; i < m.count; ++i)
     inside = inside && out_strokes[i] >= m.strut[i].stroke.min &&
@@ -301,7 +347,10 @@ MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& 
   }
   double f = (W * (x - goal)).squaredNorm();
   for (int it = 0; it < kSolveIterations; ++it) {
-    Augmented a = augmented(m, x);
+    MandibleStrokes s{};
+    Matrix3d full;
+    strokes_and_jacobian(m, x, s, full);
+    Augmented a = augmented(m, x, s, full);
     for (std::size_t i = 0; i < m.count; ++i) a.value[i] = y[i];  // the box point itself
     Matrix3d Jinv;
     if (!invert(a.J, Jinv)) break;
@@ -337,9 +386,19 @@ MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& 
 std::optional<face::MandiblePose> forward(const MandibleMechanism& m, const MandibleStrokes& target,
                                           const face::MandiblePose& guess, int max_iterations,
                                           double tolerance) {
-  MandibleVector x = m.held_in(to_vector(guess));
-  if (!x.allFinite() || !newton(m, target, x, max_iterations, tolerance)) return std::nullopt;
-  return to_pose(x);
+  MandibleLinearisation at(m.held_in(to_vector(guess)));
+  return forward(m, target, at, max_iterations, tolerance);
+}
+
+std::optional<face::MandiblePose> forward(const MandibleMechanism& m, const MandibleStrokes& target,
+                                          MandibleLinearisation& warm, int max_iterations,
+                                          double tolerance) {
+  MandibleLinearisation at = warm;
+  if (!at.evaluated) at.pose = m.held_in(at.pose);
+  if (!at.pose.allFinite() || !newton(m, target, at, max_iterations, tolerance))
+    return std::nullopt;
+  warm = at;
+  return to_pose(at.pose);
 }
 
 MandibleConditioning conditioning(const MandibleMechanism& m, const MandibleEnvelope& envelope,
@@ -426,6 +485,7 @@ MandibleMechanism make_mandible_mechanism(const face::MandibleAxes& axes,
       reject(name + "the stroke limits need min < max, found [" + std::to_string(s.stroke.min) +
              ", " + std::to_string(s.stroke.max) + "] m");
     m.rest_length[i] = (s.skull - s.mandible).norm();
+    m.arm[i] = s.mandible - axes.pitch_point;
     if (m.rest_length[i] < 1e-3) reject(name + "the anchors are less than 1 mm apart");
     m.strut[i] = s;
   }

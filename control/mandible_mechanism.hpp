@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -67,6 +68,7 @@ struct MandibleMechanism {
   // Derived by make_mandible_mechanism().
   std::array<bool, 3> driven{};                      // by DOF index (pitch, yaw, protrusion)
   std::array<double, kMaxStruts> rest_length{};      // L(rest), m
+  std::array<Eigen::Vector3d, kMaxStruts> arm{};     // mandible anchor − pitch point, m
   Eigen::Vector3d weight = Eigen::Vector3d::Ones();  // metric scale per DOF
 
   std::size_t struts() const { return count; }
@@ -86,8 +88,20 @@ MandibleMechanism make_mandible_mechanism(const face::MandibleAxes& axes,
                                           const MandibleMetric& metric = {},
                                           double max_condition = 50.0);
 
+// The pitch and yaw rotations of the last pose evaluated, with their angles. A
+// call site in the tick keeps its own (one mechanism each): an angle that has not
+// changed since, bit for bit (yaw while the jaw only opens, any DOF in a hold),
+// reuses its rotation instead of evaluating a sine and cosine again. The same
+// results with or without.
+struct MandibleRotations {
+  double pitch_rad = std::numeric_limits<double>::quiet_NaN();  // NaN: not built yet
+  double yaw_rad = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Matrix3d pitch, yaw;
+};
+
 // Strut strokes at `pose` (closed form; DOFs not driven take their held value).
-void strokes(const MandibleMechanism& m, const face::MandiblePose& pose, MandibleStrokes& out);
+void strokes(const MandibleMechanism& m, const face::MandiblePose& pose, MandibleStrokes& out,
+             MandibleRotations* rotations = nullptr);
 
 // The mandible anchor of strut i at `q` (held DOFs already applied), head frame.
 Eigen::Vector3d mandible_anchor(const MandibleMechanism& m, std::size_t i, const MandibleVector& q);
@@ -113,7 +127,7 @@ struct MandibleSolveResult {
 // target gives the rest pose (held DOFs held). Bounded time, deterministic, no
 // allocation.
 MandibleSolveResult solve(const MandibleMechanism& m, const face::MandiblePose& target,
-                          MandibleStrokes& out_strokes);
+                          MandibleStrokes& out_strokes, MandibleRotations* rotations = nullptr);
 
 // The strokes forward() converges to by default, in m.
 inline constexpr double kForwardTolerance = 1e-11;
@@ -126,6 +140,27 @@ std::optional<face::MandiblePose> forward(const MandibleMechanism& m,
                                           const face::MandiblePose& guess = {},
                                           int max_iterations = 30,
                                           double tolerance = kForwardTolerance);
+
+// A pose (held DOFs applied once `evaluated`) and, once `evaluated`, its strokes and Jacobian
+// (strokes_and_jacobian()). A tick's forward() warm-started from the last tick's
+// answer keeps one: Newton ends linearised at its answer, so the next solve
+// starts without evaluating the kinematics again.
+struct MandibleLinearisation {
+  MandibleLinearisation() = default;
+  explicit MandibleLinearisation(const MandibleVector& q) : pose(q) {}
+
+  MandibleVector pose = MandibleVector::Zero();
+  bool evaluated = false;
+  MandibleStrokes strokes{};
+  Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero();
+};
+
+// forward() from `warm`, which becomes the answer, linearised there, on success
+// and is left as it was on failure. The same answer as forward() from warm.pose.
+std::optional<face::MandiblePose> forward(const MandibleMechanism& m,
+                                          const MandibleStrokes& strokes,
+                                          MandibleLinearisation& warm, int max_iterations,
+                                          double tolerance);
 
 // Conditioning of the weighted Jacobian (stroke mm per metric unit) over a grid of
 // `samples` points per driven axis of `envelope` (held DOFs at their value). This

@@ -89,7 +89,7 @@ std::uint64_t solve_mechanism(const RigMapping& m, MappingWorkspace& w,
   const MandibleMechanism& mech = *m.mechanism;
   const face::MandiblePose target{face[m.jaw_pitch], face[m.jaw_yaw], face[m.jaw_protrusion]};
   MandibleStrokes strokes{};
-  w.mechanism = solve(mech, target, strokes);
+  w.mechanism = solve(mech, target, strokes, &w.mechanism_rotations);
   std::uint64_t bits = 0;
   for (std::size_t i = 0; i < mech.struts(); ++i) {
     out[mech.strut[i].actuator] = strokes[i];

@@ -56,7 +56,8 @@ struct MappingWorkspace {
   face::ReducedFaceWorkspace reduced;
   std::array<double, kMaxActuators> point_effector{};  // one per projection row
   std::array<double, kMaxActuators> effector{};
-  MandibleSolveResult mechanism;  // the last inverse kinematics result
+  MandibleSolveResult mechanism;          // the last inverse kinematics result
+  MandibleRotations mechanism_rotations;  // of its target, reused while an angle holds
 };
 
 MappingWorkspace make_mapping_workspace(const RigMapping& mapping);
