@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <system_error>
 
 namespace facectl {
 namespace {
@@ -37,7 +38,11 @@ std::string escape(const std::string& s) {
 // so), several times faster: a plot writes tens of thousands of coordinates.
 std::string num(double v) {
   char buf[32];
-  return {buf, std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 2).ptr};
+  const auto [end, error] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 2);
+  if (error == std::errc()) return {buf, end};
+  std::string wide(400, '\0');  // |v| ≥ 1e29 (a degenerate axis): printf's full width
+  wide.resize(static_cast<std::size_t>(std::snprintf(wide.data(), wide.size(), "%.2f", v)));
+  return wide;
 }
 
 std::string tick_label(double v, double step) {

@@ -15,6 +15,12 @@ valgrind --tool=callgrind --callgrind-out-file="$work/callgrind.out" \
   '--toggle-collect=facectl::run_simulation*' "$bin" simulate \
   --rig "$root/config/rigs/default.yaml" --show "$root/config/shows/demo.yaml" \
   --duration 10 --out "$work/out" --quiet >/dev/null 2>"$work/valgrind.log"
-grep -o 'refs: .*' "$work/valgrind.log"
+refs=$(grep -o 'refs: .*' "$work/valgrind.log" || true)
+# A count of 0 means the toggle found no run_simulation (inlined away, renamed).
+if [[ -z "$refs" || "$refs" =~ refs:\ +0$ ]]; then
+  echo "no instructions counted in facectl::run_simulation: $refs" >&2
+  exit 1
+fi
+echo "$refs"
 callgrind_annotate "$work/callgrind.out" 2>/dev/null | sed -n '/file:function/,$p' |
   sed -n "3,$((top + 2))p" | cut -c1-140

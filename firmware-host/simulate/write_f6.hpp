@@ -16,18 +16,15 @@ namespace facectl {
 // within 1e-4 of a tie. Anything else (negative values, -0, larger values,
 // near ties, NaN, infinities) goes to std::to_chars. Returns the end.
 inline char* write_f6(char* first, char* last, double v) {
-  if (!(v >= 0.0 && v < 1e5) || std::signbit(v)) {
-    return std::to_chars(first, last, v, std::chars_format::fixed, 6).ptr;
-  }
+  const auto slow = [&] { return std::to_chars(first, last, v, std::chars_format::fixed, 6).ptr; };
+  if (!(v >= 0.0 && v < 1e5) || std::signbit(v)) return slow();
   const double s = v * 1e6;
   const auto whole = static_cast<std::uint64_t>(s);        // floor: 0 <= s < 1e11
   const double fraction = s - static_cast<double>(whole);  // exact
-  if (std::fabs(fraction - 0.5) < 1e-4) {
-    return std::to_chars(first, last, v, std::chars_format::fixed, 6).ptr;
-  }
+  if (std::fabs(fraction - 0.5) < 1e-4) return slow();
   const std::uint64_t millionths = whole + (fraction > 0.5 ? 1u : 0u);
   char* p = std::to_chars(first, last, millionths / 1000000u).ptr;
-  if (last - p < 7) return std::to_chars(first, last, v, std::chars_format::fixed, 6).ptr;
+  if (last - p < 7) return slow();  // no room for the fraction: let to_chars report it
   *p++ = '.';
   write_six_digits(p, static_cast<std::uint32_t>(millionths % 1000000u));
   return p + 6;
