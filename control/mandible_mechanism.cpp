@@ -53,12 +53,6 @@ void rotate_to(const face::MandibleAxes& a, const MandibleVector& q, Motion& r) 
   }
 }
 
-Motion motion(const face::MandibleAxes& a, const MandibleVector& q) {
-  Motion r;
-  rotate_to(a, q, r);
-  return r;
-}
-
 // A mandible anchor moved by the pose (pitch, then yaw, then protrusion), with the
 // intermediate points the Jacobian needs.
 struct Moved {
@@ -295,7 +289,9 @@ MandibleVector MandibleMechanism::held_in(const MandibleVector& q) const {
 }
 
 Vector3d mandible_anchor(const MandibleMechanism& m, std::size_t i, const MandibleVector& q) {
-  return move(m.axes, motion(m.axes, q), m.arm[i], q[2]).p;
+  Motion mo;
+  rotate_to(m.axes, q, mo);
+  return move(m.axes, mo, m.arm[i], q[2]).p;
 }
 
 void strokes(const MandibleMechanism& m, const face::MandiblePose& pose, MandibleStrokes& out,
