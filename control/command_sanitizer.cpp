@@ -1,5 +1,6 @@
 #include "control/command_sanitizer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace facectl {
@@ -22,7 +23,8 @@ std::uint32_t CommandSanitizer::apply(const FaceCommand& in) {
       ++rejected_now;
       continue;
     }
-    good_[i] = std::fmin(std::fmax(v, info.domain_min), info.domain_max);
+    // v is finite here: min/max inline, where fmin/fmax (NaN rules) are libm calls.
+    good_[i] = std::min(std::max(v, info.domain_min), info.domain_max);
   }
   rejected_total_ += rejected_now;
   return rejected_now;

@@ -419,7 +419,9 @@ void Controller::tick(const TickTiming& timing) {
   std::uint32_t rejected = 0;
   if (fresh_) rejected = sanitizer_.apply(command_in_);
   // 3. Shape: neutral blend on stale input, activation dynamics, smoothing.
-  face_ = shaper_.apply(sanitizer_.values(), input_stale_, dt);
+  //    (Only the layout's signals: the whole array is 768 bytes.)
+  const auto& shaped = shaper_.apply(sanitizer_.values(), input_stale_, dt);
+  std::copy_n(shaped.begin(), model_.layout.size(), face_.begin());
   // 4. Face envelope: mandible limits and admissible rigid ranges.
   std::copy_n(face_.begin(), model_.layout.size(), before_envelope_.begin());
   const std::uint8_t envelope_flags = envelope_.apply(face_);

@@ -28,7 +28,14 @@ void LinearMapping::apply(const std::array<double, kMaxFaceSignals>& signals,
   for (Eigen::Index a = 0; a < offsets_.size(); ++a) {
     positions[static_cast<std::size_t>(a)] = offsets_[a];
   }
-  for (const Term& t : terms_) positions[t.actuator] += t.gain * signals[t.signal];
+  // terms_ is in (actuator, signal) order: each actuator's sum stays in a
+  // register, added in the same order as one term at a time into positions.
+  for (auto t = terms_.begin(); t != terms_.end();) {
+    const std::size_t a = t->actuator;
+    double sum = positions[a];
+    for (; t != terms_.end() && t->actuator == a; ++t) sum += t->gain * signals[t->signal];
+    positions[a] = sum;
+  }
 }
 
 }  // namespace facectl

@@ -21,6 +21,14 @@ PointProjection project_point_terms(const face::ReducedFaceModel& reduced,
           p.gain * p.axis[static_cast<std::size_t>(k)] * reduced.coefficients.row(source);
     }
   }
+  std::vector<int> used;
+  for (Eigen::Index k = 0; k < out.rows.cols(); ++k) {
+    if ((out.rows.col(k).array() != 0.0).any()) used.push_back(static_cast<int>(k));
+  }
+  out.features = face::select_features(reduced, used);
+  out.weights.resize(out.rows.rows(), static_cast<Eigen::Index>(used.size()));
+  for (std::size_t k = 0; k < used.size(); ++k)
+    out.weights.col(static_cast<Eigen::Index>(k)) = out.rows.col(used[k]);
   return out;
 }
 

@@ -25,18 +25,18 @@ MappingWorkspace make_mapping_workspace(const RigMapping& mapping) {
   if (!mapping.points.empty() && mapping.projection.actuator.empty())
     throw std::logic_error("rig mapping: points without a projection (call finish_points)");
   MappingWorkspace w;
-  if (mapping.reduced) w.reduced = face::make_reduced_workspace(*mapping.reduced);
+  if (mapping.reduced) w.point_features = face::make_subset_workspace(mapping.projection.features);
   return w;
 }
 
 void evaluate_control_points(const RigMapping& m, MappingWorkspace& w,
                              const std::array<double, kMaxFaceSignals>& face) {
   if (!m.reduced) return;
-  face::evaluate_features(*m.reduced, w.reduced,
+  face::evaluate_features(m.projection.features, w.point_features,
                           std::span<const double>(face.data(), m.muscle_count), face[m.jaw_pitch],
                           face[m.jaw_yaw], face[m.jaw_protrusion]);
-  Eigen::Map<Eigen::VectorXd> out(w.point_effector.data(), m.projection.rows.rows());
-  out.noalias() = m.projection.rows * w.reduced.features;
+  Eigen::Map<Eigen::VectorXd> out(w.point_effector.data(), m.projection.weights.rows());
+  out.noalias() = m.projection.weights * w.point_features.values;
 }
 
 void map_effectors(const RigMapping& m, MappingWorkspace& w,

@@ -53,7 +53,7 @@ struct RigMapping {
 
 // Preallocated scratch space of one mapping (one per controller).
 struct MappingWorkspace {
-  face::ReducedFaceWorkspace reduced;
+  face::FeatureSubsetWorkspace point_features;         // those the projection weighs
   std::array<double, kMaxActuators> point_effector{};  // one per projection row
   std::array<double, kMaxActuators> effector{};
   MandibleSolveResult mechanism;          // the last inverse kinematics result

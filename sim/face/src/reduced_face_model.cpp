@@ -7,6 +7,8 @@
 #include <numbers>
 #include <random>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "facectl/face/input_error.hpp"
 
@@ -47,6 +49,46 @@ void fill_features(std::span<const double> c, double pitch, double yaw, double p
 }
 
 }  // namespace
+
+// Column for column as fill_features, whose products these are in the same order.
+std::array<int, 3> feature_factors(const ReducedFaceModel& m, int column) {
+  const int n = static_cast<int>(m.muscles.size());
+  const int pitch = n, yaw = n + 1, prot = n + 2, one = n + 3;
+  const int per_muscle = static_cast<int>(kPerMuscle) * n;
+  if (column < 0 || column >= feature_count(m.muscles.size(), m.pairs.size()))
+    throw std::out_of_range("reduced face model: no feature column " + std::to_string(column));
+  if (column < per_muscle) {
+    const int i = column % n;
+    const std::array<std::array<int, 3>, kPerMuscle> kinds = {
+        {{i, one, one}, {i, i, one}, {i, i, i}, {i, pitch, one}, {i, yaw, one}, {i, prot, one}}};
+    return kinds[static_cast<std::size_t>(column / n)];
+  }
+  const int j = column - per_muscle;
+  if (j < 9) {
+    const std::array<std::array<int, 3>, 9> jaw = {{{pitch, one, one},
+                                                    {yaw, one, one},
+                                                    {prot, one, one},
+                                                    {pitch, pitch, one},
+                                                    {yaw, yaw, one},
+                                                    {prot, prot, one},
+                                                    {pitch, yaw, one},
+                                                    {pitch, prot, one},
+                                                    {yaw, prot, one}}};
+    return jaw[static_cast<std::size_t>(j)];
+  }
+  const auto [a, b] = m.pairs[static_cast<std::size_t>(j - 9)];
+  return {a, b, one};
+}
+
+void fill_feature_variables(std::span<const double> c, double pitch, double yaw, double prot,
+                            std::span<double> v) {
+  const std::size_t n = c.size();
+  std::copy(c.begin(), c.end(), v.begin());
+  v[n] = pitch * kPitchScale;
+  v[n + 1] = yaw * kYawScale;
+  v[n + 2] = prot * kProtrusionScale;
+  v[n + 3] = 1.0;
+}
 
 // The symbolic twin of fill_features, column for column: keep the two in step (the
 // drift guard in tests/unit/feature_monomials_test.cpp evaluates both on random inputs).

@@ -43,6 +43,14 @@ struct Monomial {
 std::vector<Monomial> feature_monomials(const ReducedFaceModel& m);
 double evaluate_monomial(const Monomial& m, std::span<const double> variables);
 
+// Feature column `column` is the product (v[a]·v[b])·v[c] of its factors {a, b, c} over
+// the variables v of fill_feature_variables(), and equals evaluate_features()' column bit
+// for bit (a factor of 1 is exact). For callers that need only a few columns (FeatureSubset).
+std::array<int, 3> feature_factors(const ReducedFaceModel& m, int column);
+// v = (c_0 … c_{n−1}, pitch, yaw and protrusion in the fit's scaled units, 1): n + 4 values.
+void fill_feature_variables(std::span<const double> contractions, double pitch_rad, double yaw_rad,
+                            double protrusion_m, std::span<double> v);
+
 struct ReducedFaceWorkspace {
   Eigen::VectorXd features;
 };
