@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <span>
 #include <stdexcept>
+#include <string>
 
 namespace facectl {
 
@@ -25,13 +26,19 @@ MappingWorkspace make_mapping_workspace(const RigMapping& mapping) {
   if (!mapping.points.empty() && mapping.projection.actuator.empty())
     throw std::logic_error("rig mapping: points without a projection (call finish_points)");
   MappingWorkspace w;
-  if (mapping.reduced) w.point_features = face::make_subset_workspace(mapping.projection.features);
+  if (!mapping.reduced || mapping.projection.actuator.empty()) return w;
+  // The tick passes the first muscle_count face signals as the model's contractions.
+  if (mapping.muscle_count != mapping.reduced->muscles.size())
+    throw std::logic_error("rig mapping: " + std::to_string(mapping.muscle_count) +
+                           " muscle signals, but the reduced face model has " +
+                           std::to_string(mapping.reduced->muscles.size()) + " muscles");
+  w.point_features = face::make_subset_workspace(mapping.projection.features);
   return w;
 }
 
 void evaluate_control_points(const RigMapping& m, MappingWorkspace& w,
                              const std::array<double, kMaxFaceSignals>& face) {
-  if (!m.reduced) return;
+  if (!m.reduced || m.projection.actuator.empty()) return;
   face::evaluate_features(m.projection.features, w.point_features,
                           std::span<const double>(face.data(), m.muscle_count), face[m.jaw_pitch],
                           face[m.jaw_yaw], face[m.jaw_protrusion]);

@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <random>
+#include <stdexcept>
 
+#include "control/rig_mapping.hpp"
 #include "facectl/face/head_spec.hpp"
 #include "facectl/face/reduced_face_model.hpp"
 
@@ -50,6 +53,61 @@ TEST(PointProjection, EqualsTheSumOfItsPointTermsOverTheDisplacements) {
           << "actuator " << p.actuator[r] << ", trial " << trial;
     }
   }
+}
+
+// The tick's path (finish_points, make_mapping_workspace, evaluate_control_points,
+// over the projection's feature subset) against the dense rows over every feature,
+// with an actuator whose point terms all have zero gain (a row of zeros: no columns).
+TEST(PointProjection, TheTickEvaluatesTheDenseRowsOverTheFeatureSubset) {
+  const auto model = std::make_shared<const face::ReducedFaceModel>(
+      face::load_reduced_model(FACECTL_DEFAULT_HEAD_DIR "/reduced_face.txt",
+                               face::load_head_spec(FACECTL_DEFAULT_HEAD_DIR)));
+  const std::size_t n = model->muscles.size();
+  RigMapping map;
+  map.linear = LinearMapping(4, n + 3);
+  map.transforms.resize(4);
+  map.reduced = model;
+  map.muscle_count = n;
+  map.jaw_pitch = n, map.jaw_yaw = n + 1, map.jaw_protrusion = n + 2;
+  map.points = {{0, 0, {0, 1, 0}, 1.8},
+                {0, 0, {1, 0, 0}, 0.6},
+                {2, 1, {0, 1, 0}, 1.8},
+                {2, 1, {-1, 0, 0}, 0.6},
+                {3, 4, {0, 0, 1}, 0.0}};
+  finish_points(map);
+  ASSERT_EQ(map.projection.actuator, (std::vector<std::size_t>{0, 2, 3}));
+  MappingWorkspace w = make_mapping_workspace(map);
+  face::ReducedFaceWorkspace full = face::make_reduced_workspace(*model);
+
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::array<double, kMaxFaceSignals> face{};
+  for (int trial = 0; trial < 100; ++trial) {
+    for (std::size_t i = 0; i < n; ++i) face[i] = u(rng);
+    face[n] = 0.3 * u(rng), face[n + 1] = 0.08 * (u(rng) - 0.5), face[n + 2] = 0.008 * u(rng);
+    evaluate_control_points(map, w, face);
+    face::evaluate_features(*model, full, std::span<const double>(face.data(), n), face[n],
+                            face[n + 1], face[n + 2]);
+    const Eigen::VectorXd dense = map.projection.rows * full.features;
+    for (std::size_t r = 0; r < 3; ++r) {
+      const double e = dense[static_cast<Eigen::Index>(r)];
+      ASSERT_NEAR(w.point_effector[r], e, 1e-13 * (1.0 + std::fabs(e))) << "row " << r;
+    }
+    ASSERT_EQ(w.point_effector[2], 0.0);  // the zero-gain actuator
+  }
+}
+
+TEST(PointProjection, AWorkspaceForAModelOfOtherMusclesIsRefused) {
+  RigMapping map;
+  map.linear = LinearMapping(1, 40);
+  map.transforms.resize(1);
+  map.reduced = std::make_shared<const face::ReducedFaceModel>(
+      face::load_reduced_model(FACECTL_DEFAULT_HEAD_DIR "/reduced_face.txt",
+                               face::load_head_spec(FACECTL_DEFAULT_HEAD_DIR)));
+  map.muscle_count = map.reduced->muscles.size() - 1;
+  map.points = {{0, 0, {0, 1, 0}, 1.0}};
+  finish_points(map);
+  EXPECT_THROW(make_mapping_workspace(map), std::logic_error);
 }
 
 }  // namespace

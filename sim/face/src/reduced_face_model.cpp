@@ -91,7 +91,8 @@ void fill_feature_variables(std::span<const double> c, double pitch, double yaw,
 }
 
 // The symbolic twin of fill_features, column for column: keep the two in step (the
-// drift guard in tests/unit/feature_monomials_test.cpp evaluates both on random inputs).
+// drift guard in tests/unit/feature_monomials_test.cpp evaluates both on random inputs;
+// feature_factors above is the other twin, tests/unit/feature_subset_test.cpp).
 std::vector<Monomial> feature_monomials(const ReducedFaceModel& m) {
   const int n = static_cast<int>(m.muscles.size());
   const int pitch = n, yaw = n + 1, prot = n + 2;
