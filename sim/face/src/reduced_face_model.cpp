@@ -23,10 +23,15 @@ int feature_count(std::size_t muscles, std::size_t pairs) {
   return static_cast<int>(kPerMuscle * muscles + 9 + pairs);
 }
 
+// The jaw variables in the fit's units, for fill_features and fill_feature_variables.
+std::array<double, 3> scaled_jaw(double pitch, double yaw, double prot) {
+  return {pitch * kPitchScale, yaw * kYawScale, prot * kProtrusionScale};
+}
+
 void fill_features(std::span<const double> c, double pitch, double yaw, double prot,
                    const std::vector<std::array<int, 2>>& pairs, Eigen::Ref<Eigen::VectorXd> f) {
   const std::size_t n = c.size();
-  const double p = pitch * kPitchScale, y = yaw * kYawScale, t = prot * kProtrusionScale;
+  const auto [p, y, t] = scaled_jaw(pitch, yaw, prot);
   for (std::size_t i = 0; i < n; ++i) {
     f[i] = c[i];
     f[n + i] = c[i] * c[i];
@@ -84,9 +89,8 @@ void fill_feature_variables(std::span<const double> c, double pitch, double yaw,
                             std::span<double> v) {
   const std::size_t n = c.size();
   std::copy(c.begin(), c.end(), v.begin());
-  v[n] = pitch * kPitchScale;
-  v[n + 1] = yaw * kYawScale;
-  v[n + 2] = prot * kProtrusionScale;
+  const std::array<double, 3> jaw = scaled_jaw(pitch, yaw, prot);
+  std::copy(jaw.begin(), jaw.end(), v.begin() + static_cast<std::ptrdiff_t>(n));
   v[n + 3] = 1.0;
 }
 
