@@ -1,7 +1,9 @@
 # Profile-guided optimisation of facectl (GCC 11 or later, single-configuration
 # optimised native builds; docs/PERFORMANCE.md, "Offline simulation").
 #
-# The main build first builds an instrumented facectl in a sub-build of the
+# Off by default: a first build then compiles once. `make bench` turns it on
+# (-DFACECTL_PGO=ON) for the fully optimised build the benchmarks measure.
+# With it, the main build first builds an instrumented facectl in a sub-build of the
 # same sources and flags (build/pgo/build), runs it on 60 s of the demo show
 # offline (`facectl simulate`, the default rig; cmake/pgo_train.cmake), and
 # then compiles every target with the counts that run wrote (build/pgo/profile).
@@ -17,9 +19,9 @@
 # The sub-build runs on every build (BUILD_ALWAYS): after an edit it recompiles
 # the edited files instrumented and retrains (about a second), so the profile
 # always matches the sources. If the training run fails, the build goes on
-# without a profile (a warning says so). -DFACECTL_PGO=OFF builds once.
+# without a profile (a warning says so).
 
-option(FACECTL_PGO "Optimise with a profile of a simulated show (GCC, optimised builds)" ON)
+option(FACECTL_PGO "Optimise with a profile of a simulated show (GCC, optimised builds)" OFF)
 # Set only in the instrumented sub-build: where its objects write their counts.
 set(FACECTL_PGO_GENERATE "" CACHE PATH "Internal: build instrumented, writing the profile here")
 mark_as_advanced(FACECTL_PGO_GENERATE)

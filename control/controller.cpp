@@ -5,7 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "control/coupled_position_bounds.hpp"
+#include "control/limits/coupled_position_bounds.hpp"
+#include "control/units.hpp"
 
 namespace facectl {
 
@@ -217,7 +218,7 @@ bool Controller::mechanism_out_of_envelope() {
   if (!model_.mapping.mechanism) return false;
   const auto pose = measured_mandible_pose();
   if (!pose) return true;
-  constexpr double kAngle = 0.5 * 3.14159265358979323846 / 180.0, kLength = 0.5e-3;
+  constexpr double kAngle = 0.5 * kDeg, kLength = 0.5e-3;
   const MandibleEnvelope& e = model_.envelope;
   return pose->pitch_rad < e.pitch.min - kAngle || pose->pitch_rad > e.pitch.max + kAngle ||
          pose->yaw_rad < e.yaw.min - kAngle || pose->yaw_rad > e.yaw.max + kAngle ||

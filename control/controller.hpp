@@ -7,17 +7,17 @@
 #include <span>
 
 #include "control/actuator_bus.hpp"
-#include "control/command_sanitizer.hpp"
-#include "control/command_shaper.hpp"
+#include "control/command/command_sanitizer.hpp"
+#include "control/command/command_shaper.hpp"
+#include "control/command/face_command.hpp"
 #include "control/controller_model.hpp"
-#include "control/face_command.hpp"
-#include "control/face_envelope.hpp"
-#include "control/latest_value_mailbox.hpp"
-#include "control/mandible_envelope.hpp"
-#include "control/safety_state_machine.hpp"
-#include "control/spsc_ring.hpp"
+#include "control/envelope/face_envelope.hpp"
+#include "control/envelope/mandible_envelope.hpp"
+#include "control/limits/trajectory_limiter.hpp"
+#include "control/realtime/latest_value_mailbox.hpp"
+#include "control/realtime/spsc_ring.hpp"
+#include "control/safety/safety_state_machine.hpp"
 #include "control/telemetry_record.hpp"
-#include "control/trajectory_limiter.hpp"
 
 namespace facectl {
 

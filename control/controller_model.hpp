@@ -4,51 +4,16 @@
 #include <string>
 #include <vector>
 
-#include "control/actuator_limits.hpp"
+#include "control/actuator_model.hpp"
 #include "control/capacity.hpp"
-#include "control/command_shaper.hpp"
-#include "control/coupled_constraints.hpp"
-#include "control/face_layout.hpp"
-#include "control/mandible_envelope.hpp"
-#include "control/rig_mapping.hpp"
-#include "control/safety_state_machine.hpp"
+#include "control/command/command_shaper.hpp"
+#include "control/command/face_layout.hpp"
+#include "control/envelope/mandible_envelope.hpp"
+#include "control/limits/coupled_constraints.hpp"
+#include "control/mapping/rig_mapping.hpp"
+#include "control/safety/safety_state_machine.hpp"
 
 namespace facectl {
-
-enum class ActuatorKind { kRotary, kLinear };
-
-// What an actuator does when the controller faults (not on e-stop, which cuts
-// everything at once): see docs/SAFETY.md, "Fault reaction".
-enum class FaultReaction { kRelax, kHold, kRest };
-
-// How positions travel on the wire: raw = round(value · scale + offset), value
-// in the actuator's YAML unit (deg or mm), for command and feedback alike.
-struct ActuatorEncoding {
-  enum class Raw { kInt16, kUint16, kInt32 };
-  Raw raw = Raw::kInt16;
-  double scale = 100.0;  // counts per deg or mm
-  double offset = 0.0;   // counts
-};
-
-struct ActuatorModel {
-  std::string name;
-  ActuatorKind kind = ActuatorKind::kRotary;
-  std::string bus;
-  int address = 0;
-  ActuatorLimits limits;
-  double rest = 0.0;  // SI
-  FaultReaction fault_reaction = FaultReaction::kRelax;
-  ActuatorEncoding encoding;
-  double max_current_a = 0.0;  // 0 = not monitored; where the bus reports current
-};
-
-// A bus owns a contiguous slice of the actuators.
-struct BusModel {
-  std::string name;
-  std::string type;  // "can", "modbus_rtu", "modbus_tcp"
-  std::size_t first = 0;
-  std::size_t count = 0;
-};
 
 // Everything the tick needs that never changes while it runs (MuJoCo's mjModel
 // role): built and validated once from the configuration.

@@ -3,9 +3,9 @@
 #include <array>
 #include <cstdint>
 
-#include "control/actuator_limits.hpp"
+#include "control/actuator_model.hpp"
 #include "control/capacity.hpp"
-#include "control/safety_state.hpp"
+#include "control/safety/safety_state.hpp"
 
 namespace facectl {
 

@@ -11,12 +11,12 @@
 #include <set>
 #include <thread>
 
-#include "drivers/cia402_bus.hpp"
-#include "drivers/cia402_frames.hpp"
-#include "drivers/custom_can_bus.hpp"
-#include "drivers/custom_can_frames.hpp"
-#include "drivers/modbus_register_map.hpp"
-#include "drivers/monotonic_clock.hpp"
+#include "control/clock.hpp"
+#include "drivers/can/cia402_bus.hpp"
+#include "drivers/can/custom_can_bus.hpp"
+#include "drivers/protocol/cia402_frames.hpp"
+#include "drivers/protocol/custom_can_frames.hpp"
+#include "drivers/protocol/modbus_register_map.hpp"
 
 namespace facectl {
 

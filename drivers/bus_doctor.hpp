@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "control/controller_model.hpp"
-#include "drivers/can_bus_options.hpp"
-#include "drivers/can_transport.hpp"
-#include "drivers/modbus_bus.hpp"
+#include "control/actuator_model.hpp"
+#include "drivers/can/can_bus_options.hpp"
+#include "drivers/can/can_transport.hpp"
+#include "drivers/modbus/modbus_bus.hpp"
 
 namespace facectl {
 

@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
-#include "drivers/cia402_bus.hpp"
-#include "drivers/custom_can_bus.hpp"
-#include "drivers/socketcan_transport.hpp"
+#include "drivers/can/cia402_bus.hpp"
+#include "drivers/can/custom_can_bus.hpp"
+#include "drivers/can/socketcan_transport.hpp"
 
 namespace facectl {
 

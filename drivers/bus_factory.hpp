@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "control/actuator_bus.hpp"
-#include "control/controller_model.hpp"
+#include "control/actuator_model.hpp"
 #include "drivers/bus_spec.hpp"
-#include "drivers/can_transport.hpp"
-#include "drivers/modbus_bus.hpp"
+#include "drivers/can/can_transport.hpp"
+#include "drivers/modbus/modbus_bus.hpp"
 
 namespace facectl {
 

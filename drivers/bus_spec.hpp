@@ -2,9 +2,9 @@
 
 #include <string>
 
-#include "drivers/can_bus_options.hpp"
-#include "drivers/modbus_register_map.hpp"
-#include "drivers/modbus_timing.hpp"
+#include "drivers/can/can_bus_options.hpp"
+#include "drivers/modbus/modbus_timing.hpp"
+#include "drivers/protocol/modbus_register_map.hpp"
 
 namespace facectl {
 

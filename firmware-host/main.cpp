@@ -2,11 +2,11 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "firmware-host/bench_command.hpp"
-#include "firmware-host/bus_doctor_command.hpp"
-#include "firmware-host/face_cli.hpp"
-#include "firmware-host/plot_command.hpp"
-#include "firmware-host/run_command.hpp"
+#include "firmware-host/cli/bench_command.hpp"
+#include "firmware-host/cli/bus_doctor_command.hpp"
+#include "firmware-host/cli/face_cli.hpp"
+#include "firmware-host/cli/plot_command.hpp"
+#include "firmware-host/cli/run_command.hpp"
 #include "firmware-host/simulate/simulate_bench.hpp"
 #include "firmware-host/simulate/simulate_command.hpp"
 #include "firmware-host/verify/verify_command.hpp"

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "firmware-host/config_node.hpp"
+#include "firmware-host/config/config_node.hpp"
 #include "firmware-host/fap/fap_table.hpp"
 
 namespace facectl {

@@ -6,13 +6,11 @@
 #include <filesystem>
 #include <numbers>
 
+#include "control/units.hpp"
 #include "facectl/face/input_error.hpp"
 
 namespace facectl {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 
 face::Vec3 direction_vector(FapDirection d) {
   switch (d) {

@@ -5,14 +5,14 @@
 #include <vector>
 
 #include "control/capacity.hpp"
-#include "control/mandible_envelope.hpp"
-#include "facectl/face/mandible.hpp"
-#include "facectl/face/reduced_face_model.hpp"
-#include "firmware-host/expression_library.hpp"
+#include "control/envelope/mandible_envelope.hpp"
+#include "control/face/mandible.hpp"
+#include "facectl/face/reduced_model_fit.hpp"
+#include "firmware-host/config/expression_library.hpp"
+#include "firmware-host/config/head_config.hpp"
 #include "firmware-host/fap/fap_file.hpp"
 #include "firmware-host/fap/fapu.hpp"
 #include "firmware-host/fap/viseme_table.hpp"
-#include "firmware-host/head_config.hpp"
 
 namespace facectl {
 

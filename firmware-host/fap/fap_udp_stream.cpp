@@ -10,17 +10,13 @@
 #include <cstring>
 #include <ctime>
 
+#include "control/clock.hpp"
+
 namespace facectl {
 namespace {
 
 constexpr std::size_t kMaxDatagram = 65536;
 constexpr std::size_t kMaxKeptClamps = 1024;
-
-std::int64_t monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 }  // namespace
 

@@ -8,8 +8,8 @@
 #include <thread>
 #include <vector>
 
-#include "control/face_command.hpp"
-#include "control/latest_value_mailbox.hpp"
+#include "control/command/face_command.hpp"
+#include "control/realtime/latest_value_mailbox.hpp"
 #include "firmware-host/fap/fap_file.hpp"
 #include "firmware-host/fap/fap_mapping.hpp"
 

@@ -1,7 +1,7 @@
 #include "firmware-host/fap/fapu.hpp"
 
 #include "facectl/face/obj_io.hpp"
-#include "firmware-host/config_node.hpp"
+#include "firmware-host/config/config_node.hpp"
 
 namespace facectl {
 

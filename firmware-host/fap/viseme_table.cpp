@@ -1,6 +1,6 @@
 #include "firmware-host/fap/viseme_table.hpp"
 
-#include "firmware-host/config_node.hpp"
+#include "firmware-host/config/config_node.hpp"
 
 namespace facectl {
 

@@ -3,8 +3,8 @@
 #include <array>
 #include <string>
 
-#include "control/face_layout.hpp"
-#include "firmware-host/face_pose.hpp"
+#include "control/command/face_layout.hpp"
+#include "firmware-host/config/face_pose.hpp"
 
 namespace facectl {
 

@@ -5,9 +5,9 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "firmware-host/plot_command.hpp"
+#include "firmware-host/cli/plot_command.hpp"
+#include "firmware-host/report/svg_plot.hpp"
 #include "firmware-host/simulate/limit_flags_or.hpp"
-#include "firmware-host/svg_plot.hpp"
 
 namespace facectl {
 namespace {

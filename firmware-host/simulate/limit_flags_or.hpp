@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "control/actuator_limits.hpp"
+#include "control/actuator_model.hpp"
 #include "control/capacity.hpp"
 
 namespace facectl {

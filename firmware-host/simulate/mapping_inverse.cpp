@@ -5,7 +5,7 @@
 #include <cmath>
 #include <optional>
 
-#include "control/mandible_mechanism.hpp"
+#include "control/mapping/mandible_mechanism.hpp"
 
 namespace facectl {
 

@@ -1,4 +1,4 @@
-// The inverse of a rig's mapping (control/rig_mapping.hpp): from actuator
+// The inverse of a rig's mapping (control/mapping/rig_mapping.hpp): from actuator
 // positions back to the face command that the rig's forward mapping turns into
 // those positions, as closely as possible. Offline only (`facectl simulate
 // --render` draws the face this gives); docs/SIMULATE.md, "Render frames".
@@ -11,7 +11,7 @@
 
 #include "control/capacity.hpp"
 #include "control/controller_model.hpp"
-#include "control/rig_mapping.hpp"
+#include "control/mapping/rig_mapping.hpp"
 
 namespace facectl {
 

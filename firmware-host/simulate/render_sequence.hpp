@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "firmware-host/loaded_config.hpp"
+#include "firmware-host/config/loaded_config.hpp"
 
 namespace facectl {
 

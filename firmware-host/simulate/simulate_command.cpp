@@ -6,9 +6,9 @@
 #include <fstream>
 #include <memory>
 
+#include "firmware-host/report/html_report.hpp"
 #include "firmware-host/simulate/actuator_plots.hpp"
 #include "firmware-host/simulate/decimated_telemetry.hpp"
-#include "firmware-host/simulate/html_report.hpp"
 #include "firmware-host/simulate/progress_bar.hpp"
 #include "firmware-host/simulate/render_sequence.hpp"
 #include "firmware-host/simulate/simulation_run.hpp"

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "control/capacity.hpp"
+#include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/fap/fap_show.hpp"
-#include "firmware-host/loaded_config.hpp"
-#include "firmware-host/show.hpp"
+#include "firmware-host/inputs/show.hpp"
 
 namespace facectl {
 

@@ -4,7 +4,7 @@
 #include <functional>
 #include <span>
 
-#include "firmware-host/offline_head.hpp"
+#include "firmware-host/run/offline_head.hpp"
 #include "firmware-host/simulate/simulation_input.hpp"
 
 namespace facectl {

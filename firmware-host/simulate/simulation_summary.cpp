@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "control/units.hpp"
+
 namespace facectl {
 namespace {
 
@@ -55,7 +57,7 @@ SummaryJson make_summary(const LoadedConfig& cfg, const SimulationInput& input,
     const ActuatorModel& a = m.actuators[i];
     const SimulationStats::Actuator& st = stats.actuators()[i];
     const bool rotary = a.kind == ActuatorKind::kRotary;
-    const double scale = rotary ? 180.0 / std::numbers::pi : 1e3;
+    const double scale = rotary ? kDegPerRad : 1e3;
     SummaryJson limits = SummaryJson::object();
     for (int b = 0; b < kLimitFlagCount; ++b) {
       const Tally& t = st.limits.bits[static_cast<std::size_t>(b)];

@@ -4,11 +4,11 @@
 #include <string>
 #include <vector>
 
-#include "firmware-host/loaded_config.hpp"
-#include "firmware-host/sim_hardware.hpp"
+#include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/simulate/simulation_input.hpp"
 #include "firmware-host/simulate/simulation_run.hpp"
 #include "firmware-host/simulate/simulation_stats.hpp"
+#include "sim/devices/sim_hardware.hpp"
 
 namespace facectl {
 

@@ -8,7 +8,8 @@
 #include <limits>
 #include <random>
 
-#include "firmware-host/offline_head.hpp"
+#include "control/units.hpp"
+#include "firmware-host/run/offline_head.hpp"
 
 namespace facectl::verify {
 namespace {
@@ -19,7 +20,7 @@ constexpr std::size_t kMaxReported = 40;
 enum class Mode { kUniform, kExtremes, kBangBang, kNeutral, kNaN };
 
 double to_yaml(ActuatorKind kind) {
-  return kind == ActuatorKind::kRotary ? 180.0 / M_PI : 1e3;
+  return kind == ActuatorKind::kRotary ? kDegPerRad : 1e3;
 }
 
 // The search drives the controller with a million ticks of bang-bang and

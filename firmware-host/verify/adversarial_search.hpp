@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "firmware-host/loaded_config.hpp"
+#include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/verify/findings.hpp"
 
 namespace facectl::verify {

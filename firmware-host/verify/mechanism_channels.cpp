@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "control/mechanism_range_proof.hpp"
+#include "control/analysis/mechanism_range_proof.hpp"
 
 namespace facectl::verify {
 

@@ -3,8 +3,8 @@
 #include <optional>
 #include <vector>
 
+#include "control/analysis/lp_range.hpp"
 #include "control/controller_model.hpp"
-#include "firmware-host/verify/lp_range.hpp"
 
 namespace facectl::verify {
 

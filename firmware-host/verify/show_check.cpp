@@ -5,10 +5,11 @@
 #include <filesystem>
 #include <map>
 
-#include "firmware-host/offline_head.hpp"
-#include "firmware-host/plot_command.hpp"
-#include "firmware-host/telemetry_csv.hpp"
-#include "firmware-host/telemetry_writer.hpp"
+#include "control/units.hpp"
+#include "firmware-host/cli/plot_command.hpp"
+#include "firmware-host/report/telemetry_csv.hpp"
+#include "firmware-host/run/offline_head.hpp"
+#include "firmware-host/run/telemetry_writer.hpp"
 
 namespace facectl::verify {
 namespace {
@@ -119,7 +120,7 @@ ShowCheck check_show(const LoadedConfig& base, const std::string& show_path,
         if (f == 0) continue;
         const ActuatorModel& a = m.actuators[i];
         const bool rotary = a.kind == ActuatorKind::kRotary;
-        const double scale = rotary ? 180.0 / M_PI : 1e3;
+        const double scale = rotary ? kDegPerRad : 1e3;
         const double gap = std::fabs(c.targets()[i] - r->command[i]) * scale;
         const std::string unit = rotary ? "deg" : "mm";
         const std::pair<LimitFlags, const char*> kinds[] = {

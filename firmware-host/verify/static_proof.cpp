@@ -8,9 +8,10 @@
 #include <optional>
 #include <stdexcept>
 
-#include "drivers/cia402_counts.hpp"
-#include "drivers/wire_encoding.hpp"
-#include "firmware-host/verify/channel_bound.hpp"
+#include "control/analysis/channel_bound.hpp"
+#include "control/units.hpp"
+#include "drivers/protocol/cia402_counts.hpp"
+#include "drivers/protocol/wire_encoding.hpp"
 #include "firmware-host/verify/mechanism_channels.hpp"
 
 namespace facectl::verify {
@@ -19,7 +20,7 @@ namespace {
 using Severity = Finding::Severity;
 
 double to_yaml(ActuatorKind kind) {
-  return kind == ActuatorKind::kRotary ? 180.0 / M_PI : 1e3;
+  return kind == ActuatorKind::kRotary ? kDegPerRad : 1e3;
 }
 
 std::string fmt(const char* f, double a) {

@@ -3,9 +3,9 @@
 #include <string>
 #include <vector>
 
-#include "firmware-host/loaded_config.hpp"
+#include "control/analysis/lp_range.hpp"
+#include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/verify/findings.hpp"
-#include "firmware-host/verify/lp_range.hpp"
 
 namespace facectl::verify {
 

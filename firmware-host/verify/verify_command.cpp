@@ -4,7 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "firmware-host/loaded_config.hpp"
+#include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/verify/adversarial_search.hpp"
 #include "firmware-host/verify/show_check.hpp"
 #include "firmware-host/verify/static_proof.hpp"

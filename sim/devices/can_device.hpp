@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <deque>
 
-#include "drivers/can_transport.hpp"
+#include "drivers/can/can_transport.hpp"
 
 namespace facectl::sim {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <mutex>
 
-#include "drivers/cia402_counts.hpp"
-#include "drivers/cia402_frames.hpp"
+#include "drivers/protocol/cia402_counts.hpp"
+#include "drivers/protocol/cia402_frames.hpp"
 #include "sim/devices/can_device.hpp"
 #include "sim/plant/servo_plant.hpp"
 

@@ -4,7 +4,7 @@
 #include <mutex>
 #include <vector>
 
-#include "drivers/custom_can_frames.hpp"
+#include "drivers/protocol/custom_can_frames.hpp"
 #include "sim/devices/can_device.hpp"
 #include "sim/devices/modbus_actuator_board.hpp"
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "drivers/modbus_register_map.hpp"
+#include "drivers/protocol/modbus_register_map.hpp"
 #include "sim/plant/servo_plant.hpp"
 
 namespace facectl::sim {

@@ -12,7 +12,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "drivers/monotonic_clock.hpp"
+#include "control/clock.hpp"
 
 namespace facectl::sim {
 

@@ -3,7 +3,7 @@
 // with coupled limits. Results are recorded in docs/PERFORMANCE.md.
 #include <benchmark/benchmark.h>
 
-#include "firmware-host/verify/channel_bound.hpp"
+#include "control/analysis/channel_bound.hpp"
 #include "tests/support/default_face_space.hpp"
 
 namespace facectl::verify {

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-#include "control/mechanism_range_proof.hpp"
+#include "control/analysis/mechanism_range_proof.hpp"
 #include "tests/support/mandible_mechanisms.hpp"
 
 namespace facectl {

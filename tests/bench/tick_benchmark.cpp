@@ -2,7 +2,7 @@
 // hardware, and its parts. Results are recorded in docs/PERFORMANCE.md.
 #include <benchmark/benchmark.h>
 
-#include "control/trajectory_limiter.hpp"
+#include "control/limits/trajectory_limiter.hpp"
 #include "tests/support/sim_head.hpp"
 
 namespace facectl {

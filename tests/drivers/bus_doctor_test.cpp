@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "drivers/memory_can_link.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
+#include "sim/devices/memory_can_link.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "tests/drivers/can_test_axes.hpp"
 

@@ -7,11 +7,11 @@
 
 #include <memory>
 
-#include "drivers/cia402_bus.hpp"
-#include "drivers/custom_can_bus.hpp"
-#include "drivers/memory_can_link.hpp"
+#include "drivers/can/cia402_bus.hpp"
+#include "drivers/can/custom_can_bus.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
+#include "sim/devices/memory_can_link.hpp"
 
 namespace facectl {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "drivers/can_bus_budget.hpp"
-#include "drivers/cia402_frames.hpp"
-#include "drivers/custom_can_frames.hpp"
+#include "drivers/protocol/can_bus_budget.hpp"
+#include "drivers/protocol/cia402_frames.hpp"
+#include "drivers/protocol/custom_can_frames.hpp"
 
 namespace facectl {
 namespace {

@@ -8,12 +8,12 @@
 #include <cmath>
 #include <memory>
 
-#include "drivers/cia402_bus.hpp"
-#include "drivers/memory_can_link.hpp"
-#include "firmware-host/head_config.hpp"
-#include "firmware-host/rig_config.hpp"
+#include "drivers/can/cia402_bus.hpp"
+#include "firmware-host/config/head_config.hpp"
+#include "firmware-host/config/rig_config.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
+#include "sim/devices/memory_can_link.hpp"
 #include "tests/drivers/can_test_axes.hpp"
 #include "tests/support/temp_file.hpp"
 

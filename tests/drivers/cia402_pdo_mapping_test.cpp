@@ -3,10 +3,10 @@
 // remap they cannot.
 #include <gtest/gtest.h>
 
-#include "drivers/cia402_bus.hpp"
-#include "drivers/memory_can_link.hpp"
+#include "drivers/can/cia402_bus.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
+#include "sim/devices/memory_can_link.hpp"
 #include "tests/drivers/can_test_axes.hpp"
 
 namespace facectl {

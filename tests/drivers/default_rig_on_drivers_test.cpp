@@ -10,16 +10,16 @@
 #include <string>
 #include <thread>
 
+#include "control/clock.hpp"
 #include "control/controller.hpp"
-#include "drivers/custom_can_bus.hpp"
-#include "drivers/memory_can_link.hpp"
-#include "drivers/modbus_bus.hpp"
-#include "drivers/monotonic_clock.hpp"
-#include "drivers/sim_safety_io.hpp"
-#include "firmware-host/loaded_config.hpp"
+#include "drivers/can/custom_can_bus.hpp"
+#include "drivers/modbus/modbus_bus.hpp"
+#include "firmware-host/config/loaded_config.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
+#include "sim/devices/memory_can_link.hpp"
 #include "sim/devices/modbus_board_server.hpp"
+#include "sim/devices/sim_safety_io.hpp"
 #include "tests/drivers/can_test_axes.hpp"
 
 namespace facectl {

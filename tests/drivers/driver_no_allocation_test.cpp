@@ -9,13 +9,13 @@
 #include <chrono>
 #include <thread>
 
-#include "drivers/cia402_bus.hpp"
-#include "drivers/custom_can_bus.hpp"
-#include "drivers/memory_can_link.hpp"
-#include "drivers/modbus_bus.hpp"
+#include "drivers/can/cia402_bus.hpp"
+#include "drivers/can/custom_can_bus.hpp"
+#include "drivers/modbus/modbus_bus.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
+#include "sim/devices/memory_can_link.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "tests/drivers/can_test_axes.hpp"
 #include "tests/support/allocation_counter.hpp"

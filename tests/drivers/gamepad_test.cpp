@@ -4,8 +4,8 @@
 #include <array>
 #include <vector>
 
-#include "drivers/gamepad_mapping.hpp"
-#include "drivers/gamepad_report.hpp"
+#include "drivers/hid/gamepad_mapping.hpp"
+#include "drivers/hid/gamepad_report.hpp"
 
 namespace facectl {
 namespace {

@@ -1,14 +1,14 @@
 // GPIO safety I/O over the chip interface: the simulated chip for behaviour,
 // the real libgpiod v1 chip for its error path (this machine's kernel has no
 // gpio-sim, so no real line can be requested here).
-#include "drivers/gpio_safety_io.hpp"
+#include "drivers/gpio/gpio_safety_io.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "drivers/gpiod_chip.hpp"
-#include "drivers/sim_gpio_chip.hpp"
+#include "drivers/gpio/gpiod_chip.hpp"
+#include "sim/devices/sim_gpio_chip.hpp"
 
 namespace facectl {
 namespace {

@@ -3,7 +3,7 @@
 // over a pseudo-terminal pair. Faults are injected into the server's replies
 // and into the boards. The bounds asserted here are the ones docs/PROTOCOLS.md
 // documents.
-#include "drivers/modbus_bus.hpp"
+#include "drivers/modbus/modbus_bus.hpp"
 
 #include <gtest/gtest.h>
 #include <poll.h>

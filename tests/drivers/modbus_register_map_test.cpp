@@ -1,6 +1,6 @@
 // The Modbus register map's scaling and placement, byte for byte as
 // docs/PROTOCOLS.md documents them.
-#include "drivers/modbus_register_map.hpp"
+#include "drivers/protocol/modbus_register_map.hpp"
 
 #include <gtest/gtest.h>
 

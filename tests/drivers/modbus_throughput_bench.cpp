@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <thread>
 
-#include "drivers/modbus_bus.hpp"
+#include "drivers/modbus/modbus_bus.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 
 using namespace facectl;

@@ -2,7 +2,7 @@
 // command -> bytes -> simulated peer -> feedback for the custom CAN layout and
 // the Modbus board, with the bytes checked by hand; the default encoding
 // keeps the old fixed scaling bit for bit.
-#include "drivers/wire_encoding.hpp"
+#include "drivers/protocol/wire_encoding.hpp"
 
 #include <gtest/gtest.h>
 #include <modbus/modbus.h>
@@ -12,11 +12,11 @@
 #include <optional>
 #include <thread>
 
-#include "drivers/custom_can_bus.hpp"
-#include "drivers/memory_can_link.hpp"
-#include "drivers/modbus_bus.hpp"
+#include "drivers/can/custom_can_bus.hpp"
+#include "drivers/modbus/modbus_bus.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
+#include "sim/devices/memory_can_link.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "tests/drivers/can_test_axes.hpp"
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "control/analysis/channel_bound.hpp"
 #include "facectl/face/head_spec.hpp"
-#include "facectl/face/reduced_face_model.hpp"
-#include "firmware-host/verify/channel_bound.hpp"
+#include "facectl/face/reduced_model_fit.hpp"
 
 namespace facectl::testing {
 

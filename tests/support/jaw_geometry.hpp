@@ -2,7 +2,7 @@
 // independently of the FAP mapping's closed form (docs/FAP.md, "Jaw").
 #pragma once
 
-#include "facectl/face/mandible.hpp"
+#include "control/face/mandible.hpp"
 #include "firmware-host/fap/fapu.hpp"
 
 namespace facectl::testing {

@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-#include "control/mandible_mechanism.hpp"
+#include "control/mapping/mandible_mechanism.hpp"
 
 namespace facectl::testing {
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "firmware-host/offline_head.hpp"
+#include "firmware-host/run/offline_head.hpp"
 
 namespace facectl::testing {
 

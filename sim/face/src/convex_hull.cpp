@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "facectl/face/mandible.hpp"
+#include "control/face/mandible.hpp"
 
 namespace facectl::face {
 

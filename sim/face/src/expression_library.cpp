@@ -4,6 +4,8 @@
 
 #include <numbers>
 
+#include "control/envelope/mandible_envelope.hpp"
+#include "control/units.hpp"
 #include "facectl/face/input_error.hpp"
 
 namespace facectl::face {
@@ -45,7 +47,6 @@ ExpressionLibrary load_expression_library(const std::string& path, const HeadSpe
   const YAML::Node ex = root["expressions"];
   if (!ex.IsMap())
     throw InputError(path + ": key 'expressions': expected a mapping of expressions");
-  constexpr double kDeg = std::numbers::pi / 180;
   for (const auto& kv : ex) {
     Expression e;
     e.name = kv.first.as<std::string>();
@@ -81,9 +82,9 @@ ExpressionLibrary load_expression_library(const std::string& path, const HeadSpe
                   std::to_string(hi) + ", found " + j[key].Scalar());
         return v;
       };
-      e.jaw.pitch_rad = get("pitch_deg", -4, 18) * kDeg;
-      e.jaw.yaw_rad = get("yaw_deg", -5, 5) * kDeg;
-      e.jaw.protrusion_m = get("protrusion_mm", 0, 8) * 1e-3;
+      e.jaw.pitch_rad = get("pitch_deg", kJawPitchMinDeg, kJawPitchMaxDeg) * kDeg;
+      e.jaw.yaw_rad = get("yaw_deg", -kJawYawMaxDeg, kJawYawMaxDeg) * kDeg;
+      e.jaw.protrusion_m = get("protrusion_mm", 0, kJawProtrusionMaxMm) * 1e-3;
     }
     if (n["rigid"].IsDefined()) {
       for (const auto& r : n["rigid"]) {

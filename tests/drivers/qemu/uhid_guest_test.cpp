@@ -15,10 +15,10 @@
 #include <cstring>
 #include <thread>
 
-#include "drivers/hid_gamepad.hpp"
-#include "drivers/monotonic_clock.hpp"
-#include "firmware-host/gamepad_puppeteer.hpp"
-#include "firmware-host/show.hpp"
+#include "control/clock.hpp"
+#include "drivers/hid/hid_gamepad.hpp"
+#include "firmware-host/inputs/gamepad_puppeteer.hpp"
+#include "firmware-host/inputs/show.hpp"
 
 namespace facectl {
 namespace {

@@ -15,9 +15,9 @@
 #include <thread>
 
 #include "drivers/bus_doctor.hpp"
-#include "drivers/cia402_bus.hpp"
-#include "drivers/custom_can_bus.hpp"
-#include "drivers/socketcan_transport.hpp"
+#include "drivers/can/cia402_bus.hpp"
+#include "drivers/can/custom_can_bus.hpp"
+#include "drivers/can/socketcan_transport.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "control/face/mandible.hpp"
 #include "facectl/face/constraints.hpp"
 #include "facectl/face/convex_hull.hpp"
 #include "facectl/face/head_spec.hpp"
-#include "facectl/face/mandible.hpp"
 #include "facectl/face/muscle.hpp"
 
 namespace facectl::face {

@@ -7,10 +7,9 @@
 #include <cstddef>
 #include <vector>
 
-namespace facectl::face {
+#include "control/face/geometry.hpp"
 
-using Vec3 = Eigen::Vector3d;
-using Mat3 = Eigen::Matrix3d;
+namespace facectl::face {
 
 struct Points {
   std::vector<double> x, y, z;

@@ -1,0 +1,34 @@
+#include "control/face/feature_subset.hpp"
+
+#include <algorithm>
+
+namespace facectl::face {
+
+FeatureSubset select_features(const ReducedFaceModel& m, std::vector<int> columns) {
+  std::sort(columns.begin(), columns.end());
+  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  FeatureSubset s;
+  for (int c : columns) s.factors.push_back(feature_factors(m, c));
+  s.columns = std::move(columns);
+  s.variables = m.muscles.size() + 4;
+  return s;
+}
+
+FeatureSubsetWorkspace make_subset_workspace(const FeatureSubset& s) {
+  return {Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.variables)),
+          Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.columns.size()))};
+}
+
+void evaluate_features(const FeatureSubset& s, FeatureSubsetWorkspace& w,
+                       std::span<const double> contractions, double pitch_rad, double yaw_rad,
+                       double protrusion_m) {
+  fill_feature_variables(contractions, pitch_rad, yaw_rad, protrusion_m,
+                         std::span<double>(w.variables.data(), s.variables));
+  const double* v = w.variables.data();
+  for (std::size_t k = 0; k < s.factors.size(); ++k) {
+    const auto [a, b, c] = s.factors[k];
+    w.values[static_cast<Eigen::Index>(k)] = v[a] * v[b] * v[c];
+  }
+}
+
+}  // namespace facectl::face

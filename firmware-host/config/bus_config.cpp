@@ -1,0 +1,173 @@
+#include "firmware-host/config/bus_config.hpp"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace facectl {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+void parse_can(const ConfigNode& node, BusConfig& bus) {
+  bus.endpoint = node["interface"].string();
+  bus.bitrate = node["bitrate"].integer();
+  if (bus.bitrate <= 0 || bus.bitrate > 1'000'000) {
+    node["bitrate"].fail("a CAN bitrate in (0, 1000000] bit/s");
+  }
+  CanBusOptions& o = bus.can;
+  if (auto n = node.get("protocol")) {
+    bus.can_protocol = n->string();
+    if (bus.can_protocol != "custom" && bus.can_protocol != "cia402") n->fail("custom or cia402");
+  }
+  const bool cia402 = bus.can_protocol == "cia402";
+  const auto only_for = [&](const char* key, bool allowed, const char* which) {
+    if (!allowed && node.has(key)) {
+      node[key].fail(
+          std::string("no ") + key + " on a " + bus.can_protocol + " bus (" + which + ")",
+          node[key].found());
+    }
+  };
+  only_for("fd", !cia402, "CAN FD is for custom boards");
+  only_for("data_bitrate", !cia402, "CAN FD is for custom boards");
+  only_for("values", !cia402, "value width is for custom boards");
+  for (const char* key :
+       {"map_pdos", "host_node", "host_heartbeat_ms", "drive_heartbeat_ms", "drive_watchdog_ms",
+        "sdo_timeout_ms", "enable_timeout_ms", "counts_per_rev", "counts_per_mm"}) {
+    only_for(key, cia402, "CiA 402 drives only");
+  }
+  if (auto n = node.get("rate_divider")) o.cycle_divider = static_cast<int>(n->integer_in(1, 100));
+  if (auto n = node.get("heartbeat_timeout_ms")) {
+    o.heartbeat_timeout_s = n->number_in(5.0, 10'000.0) * 1e-3;
+  }
+  if (auto n = node.get("fd")) o.fd = n->boolean();
+  if (auto n = node.get("data_bitrate")) {
+    if (!o.fd) n->fail("data_bitrate only with fd: true", "fd: false");
+    o.data_bitrate = n->integer_in(bus.bitrate, 8'000'000);
+  }
+  if (auto n = node.get("values")) {
+    const std::string w = n->string();
+    if (w == "int16") {
+      o.width = custom_can::Width::kInt16;
+    } else if (w == "int32") {
+      o.width = custom_can::Width::kInt32;
+    } else {
+      n->fail("int16 or int32");
+    }
+  }
+  if (auto n = node.get("map_pdos")) o.map_pdos = n->boolean();
+  if (auto n = node.get("host_node")) o.host_node = static_cast<int>(n->integer_in(1, 127));
+  if (auto n = node.get("host_heartbeat_ms"))
+    o.host_heartbeat_ms = static_cast<int>(n->integer_in(1, 65535));
+  if (auto n = node.get("drive_heartbeat_ms"))
+    o.drive_heartbeat_ms = static_cast<int>(n->integer_in(1, 65535));
+  if (auto n = node.get("drive_watchdog_ms"))
+    o.drive_watchdog_ms = static_cast<int>(n->integer_in(1, 65535));
+  if (auto n = node.get("sdo_timeout_ms")) o.sdo_timeout_s = n->number_in(1.0, 1000.0) * 1e-3;
+  if (auto n = node.get("enable_timeout_ms"))
+    o.enable_timeout_s = n->number_in(10.0, 10'000.0) * 1e-3;
+  if (auto n = node.get("counts_per_rev")) o.rotary_counts_per_rad = n->positive() / kTwoPi;
+  if (auto n = node.get("counts_per_mm")) o.linear_counts_per_m = n->positive() * 1e3;
+  if (cia402) {
+    // The drive's watchdog on our heartbeat must outlast a couple of our beats,
+    // and our consumer must not call a drive lost before its next beat is due.
+    if (o.drive_watchdog_ms < 2 * o.host_heartbeat_ms) {
+      const ConfigNode at = node.get("drive_watchdog_ms") ? node["drive_watchdog_ms"] : node;
+      at.fail("drive_watchdog_ms of at least twice host_heartbeat_ms (" +
+                  std::to_string(2 * o.host_heartbeat_ms) + " ms)",
+              std::to_string(o.drive_watchdog_ms) + " ms");
+    }
+    if (o.heartbeat_timeout_s * 1e3 < 2.0 * o.drive_heartbeat_ms) {
+      const ConfigNode at = node.get("heartbeat_timeout_ms") ? node["heartbeat_timeout_ms"] : node;
+      at.fail("heartbeat_timeout_ms of at least twice drive_heartbeat_ms (" +
+                  std::to_string(2 * o.drive_heartbeat_ms) + " ms)",
+              std::to_string(std::lround(o.heartbeat_timeout_s * 1e3)) + " ms");
+    }
+  }
+}
+
+void parse_modbus(const ConfigNode& node, BusConfig& bus) {
+  if (bus.type == "modbus_rtu") {
+    bus.endpoint = node["device"].string();
+    bus.bitrate = node["baud"].integer();
+    if (bus.bitrate <= 0) node["baud"].fail("a baud rate > 0");
+  } else {
+    bus.endpoint = node["host"].string();
+    if (bus.endpoint.empty()) node["host"].fail("host or host:port", "an empty string");
+  }
+  ModbusTiming& t = bus.modbus;
+  if (auto n = node.get("network_latency_ms")) t.network_latency_s = n->number_in(0.0, 20.0) * 1e-3;
+  // libmodbus's own 500 ms default is what these keys exist to avoid.
+  if (auto n = node.get("response_timeout_ms"))
+    t.response_timeout_s = n->number_in(1.0, 250.0) * 1e-3;
+  if (auto n = node.get("byte_timeout_ms")) t.byte_timeout_s = n->number_in(0.1, 100.0) * 1e-3;
+  if (auto n = node.get("retries")) t.max_retries = static_cast<int>(n->integer_in(0, 5));
+  if (auto n = node.get("fault_after_ms")) t.board_timeout_s = n->number_in(5.0, 10'000.0) * 1e-3;
+  if (auto n = node.get("cycle_ms")) t.cycle_period_s = n->number_in(0.1, 100.0) * 1e-3;
+  if (auto n = node.get("reconnect_ms"))
+    t.reconnect_interval_s = n->number_in(1.0, 10'000.0) * 1e-3;
+  if (auto n = node.get("watchdog_ms"))
+    t.board_watchdog_ms = static_cast<int>(n->integer_in(1, 65535));
+  modbus_map::Addresses& r = bus.modbus_registers;
+  if (auto n = node.get("enable_register")) r.control = static_cast<int>(n->integer_in(0, 65525));
+  if (auto n = node.get("status_register")) r.status = static_cast<int>(n->integer_in(0, 65523));
+  r.watchdog = r.control + modbus_map::kHrWatchdogMs;  // the board's layout, unless told
+  if (auto n = node.get("watchdog_register")) {
+    r.watchdog = static_cast<int>(n->integer_in(0, 65535));
+    // CONTROL, HEARTBEAT and up to 8 targets are written as one block.
+    if (r.watchdog >= r.control && r.watchdog < r.control + 2 + modbus_map::kChannelsPerBoard) {
+      n->fail("a register outside the enable block [" + std::to_string(r.control) + ", " +
+              std::to_string(r.control + 2 + modbus_map::kChannelsPerBoard) +
+              ") (CONTROL, HEARTBEAT, 8 targets)");
+    }
+  }
+  // One silent board costs (retries + 1) response timeouts per cycle: the
+  // fault must not fire before a single cycle has had its chance.
+  const double worst_ms = (t.max_retries + 1) * t.response_timeout_s * 1e3;
+  if (t.board_timeout_s * 1e3 <= worst_ms) {
+    const ConfigNode at = node.get("fault_after_ms") ? node["fault_after_ms"] : node;
+    at.fail("fault_after_ms above (retries + 1) x response_timeout_ms = " +
+                std::to_string(std::lround(worst_ms)) + " ms",
+            std::to_string(std::lround(t.board_timeout_s * 1e3)) + " ms");
+  }
+}
+
+}  // namespace
+
+BusConfig parse_bus_config(const ConfigNode& node) {
+  BusConfig bus;
+  bus.where = node.where();
+  bus.name = node["name"].string();
+  bus.type = node["type"].string();
+  if (bus.type == "can") {
+    node.expect_keys({"name", "type", "interface", "bitrate", "protocol", "rate_divider", "fd",
+                      "data_bitrate", "values", "heartbeat_timeout_ms", "map_pdos", "host_node",
+                      "host_heartbeat_ms", "drive_heartbeat_ms", "drive_watchdog_ms",
+                      "sdo_timeout_ms", "enable_timeout_ms", "counts_per_rev", "counts_per_mm"});
+    parse_can(node, bus);
+  } else if (bus.type == "modbus_rtu" || bus.type == "modbus_tcp") {
+    std::vector<std::string> keys = {"name",
+                                     "type",
+                                     "response_timeout_ms",
+                                     "retries",
+                                     "fault_after_ms",
+                                     "cycle_ms",
+                                     "reconnect_ms",
+                                     "watchdog_ms",
+                                     "enable_register",
+                                     "watchdog_register",
+                                     "status_register"};
+    if (bus.type == "modbus_rtu") {
+      keys.insert(keys.end(), {"device", "baud", "byte_timeout_ms"});
+    } else {
+      keys.insert(keys.end(), {"host", "network_latency_ms"});
+    }
+    node.expect_keys(keys);
+    parse_modbus(node, bus);
+  } else {
+    node["type"].fail("one of: can, modbus_rtu, modbus_tcp");
+  }
+  return bus;
+}
+
+}  // namespace facectl

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "control/command/command_shaper.hpp"
+#include "control/safety/safety_state_machine.hpp"
+#include "firmware-host/config/hardware_config.hpp"
+
+namespace facectl {
+
+struct RealtimeSettings {
+  int priority = 80;        // SCHED_FIFO priority; 0 = do not ask for SCHED_FIFO
+  int cpu = -1;             // pin the loop to this CPU; -1 = no affinity
+  bool lock_memory = true;  // mlockall(MCL_CURRENT | MCL_FUTURE)
+  // Request for /dev/cpu_dma_latency while running, in µs; -1 = leave alone.
+  // 0 keeps idle CPUs out of deep sleep states (what cyclictest does), which
+  // cuts wake-up latency from milliseconds to tens of µs on virtual machines.
+  int cpu_dma_latency_us = 0;
+};
+
+// config/facectl.yaml: the runtime settings and which head, rig, expression
+// library and show to use (paths relative to this file).
+struct RuntimeConfig {
+  std::string file;
+  double rate_hz = 1000.0;
+  RealtimeSettings realtime;
+  SafetyParams safety;
+  ShapingParams shaping;
+  std::size_t telemetry_ring = 16384;  // records; 16 s at 1 kHz
+  double show_rate_hz = 250.0;
+  std::string head_path;
+  std::string rig_path;
+  std::string expressions_path;
+  std::string show_path;
+  HardwareMode hardware = HardwareMode::kSim;  // `hardware:`; `facectl run --hardware` overrides
+  std::optional<SafetyIoConfig> safety_io;     // required by hardware: real
+  std::optional<GamepadConfig> gamepad;        // puppeteering (`facectl run --gamepad`)
+};
+
+RuntimeConfig load_runtime_config(const std::string& path);
+
+}  // namespace facectl

@@ -1,0 +1,111 @@
+#include "firmware-host/model/bus_budget_check.hpp"
+
+#include <cstdio>
+#include <map>
+
+#include "drivers/protocol/modbus_register_map.hpp"
+#include "drivers/protocol/modbus_rtu_wire.hpp"
+
+namespace facectl {
+namespace {
+
+std::string address_range_error(const ActuatorConfig& a, const BusConfig& bus, int max) {
+  return a.where + ": rig.actuators '" + a.model.name + "'.address: expected 1.." +
+         std::to_string(max) + " on " + bus.can_protocol + " bus " + bus.name + ", found " +
+         std::to_string(a.model.address);
+}
+
+BusBudgetResult budget_can(const BusConfig& bus, const std::vector<const ActuatorConfig*>& acts,
+                           double tick_hz) {
+  BusBudgetResult r;
+  std::vector<int> addresses;
+  if (bus.can_protocol == "cia402") {
+    for (const ActuatorConfig* a : acts) {
+      if (a->model.address < 1 || a->model.address > 127) {
+        throw ConfigError(address_range_error(*a, bus, 127));
+      }
+    }
+    r.can = cia402_budget(acts.size(), bus.can, tick_hz, bus.bitrate);
+  } else {
+    const int per_frame = custom_can::channels_per_frame(bus.can.fd, bus.can.width);
+    for (const ActuatorConfig* a : acts) {
+      if (a->model.address < 1 || (a->model.address - 1) / per_frame + 1 > 63) {
+        throw ConfigError(address_range_error(*a, bus, 63 * per_frame));
+      }
+      addresses.push_back(a->model.address);
+    }
+    r.can = custom_can_budget(addresses, bus.can, tick_hz, bus.bitrate);
+  }
+  r.load = r.can.load;
+  r.text = r.can.describe(bus.name);
+  r.verdict = r.can.refused()  ? BusBudgetResult::Verdict::kRefused
+              : r.can.warned() ? BusBudgetResult::Verdict::kWarning
+                               : BusBudgetResult::Verdict::kOk;
+  return r;
+}
+
+BusBudgetResult budget_modbus(const BusConfig& bus,
+                              const std::vector<const ActuatorConfig*>& acts) {
+  BusBudgetResult r;
+  std::vector<int> addresses;
+  for (const ActuatorConfig* a : acts) {
+    if (a->model.address < 1 || a->model.address > 247 * modbus_map::kChannelsPerBoard) {
+      throw ConfigError(address_range_error(*a, bus, 247 * modbus_map::kChannelsPerBoard));
+    }
+    addresses.push_back(a->model.address);
+  }
+  const std::map<int, int> channels = modbus_map::board_channels(addresses);
+  char buf[240];
+  if (bus.type != "modbus_rtu") {
+    std::snprintf(buf, sizeof buf, "%s: %zu boards over TCP (not budgeted)", bus.name.c_str(),
+                  channels.size());
+    r.text = buf;
+    return r;
+  }
+  double chars = 0.0;
+  for (const auto& [unit, n] : channels) chars += modbus_rtu::BoardCycleChars(n).total();
+  const double wire_s = modbus_rtu::chars_to_seconds(chars, bus.bitrate);
+  const double period_s = bus.modbus.cycle_period_s;
+  r.load = wire_s / period_s;
+  r.verdict = r.load > 1.0 ? BusBudgetResult::Verdict::kWarning : BusBudgetResult::Verdict::kOk;
+  std::snprintf(buf, sizeof buf,
+                "%s: %zu boards, %.0f characters per I/O cycle = %.2f ms at %ld baud, %.0f%% of "
+                "the %g ms cycle%s",
+                bus.name.c_str(), channels.size(), chars, wire_s * 1e3, bus.bitrate, 100.0 * r.load,
+                period_s * 1e3,
+                r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)" : "");
+  r.text = buf;
+  return r;
+}
+
+}  // namespace
+
+std::vector<BusBudgetResult> check_bus_budgets(const RigConfig& rig, double tick_hz) {
+  std::vector<BusBudgetResult> out;
+  for (const BusConfig& bus : rig.buses) {
+    std::vector<const ActuatorConfig*> acts;
+    for (const ActuatorConfig& a : rig.actuators) {
+      if (a.model.bus == bus.name) acts.push_back(&a);
+    }
+    BusBudgetResult r = bus.is_can() ? budget_can(bus, acts, tick_hz) : budget_modbus(bus, acts);
+    r.bus = bus.name;
+    r.where = bus.where;
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+void enforce_bus_budgets(const std::vector<BusBudgetResult>& results,
+                         std::vector<std::string>& warnings) {
+  for (const BusBudgetResult& r : results) {
+    if (r.verdict == BusBudgetResult::Verdict::kRefused) {
+      throw ConfigError(r.where + ": rig.buses '" + r.bus +
+                        "': expected a bus load of at most 70%, found " + r.text +
+                        "; raise rate_divider, use protocol: custom (several actuators per "
+                        "frame) or fd: true, or split the bus");
+    }
+    if (r.verdict == BusBudgetResult::Verdict::kWarning) warnings.push_back("warning: " + r.text);
+  }
+}
+
+}  // namespace facectl

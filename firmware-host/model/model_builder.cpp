@@ -1,0 +1,300 @@
+#include "firmware-host/model/model_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "control/units.hpp"
+#include "facectl/face/head_spec.hpp"
+#include "facectl/face/input_error.hpp"
+#include "facectl/face/reduced_model_fit.hpp"
+#include "firmware-host/config/config_node.hpp"
+#include "firmware-host/model/mechanism_builder.hpp"
+
+namespace facectl {
+namespace {
+
+Range intersect(const Range& a, const Range& b) {
+  return {std::max(a.min, b.min), std::min(a.max, b.max)};
+}
+
+std::string describe(const MandibleEnvelope& e) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf,
+                "pitch %.2f..%.2f deg, yaw %.2f..%.2f deg, protrusion %.2f..%.2f mm",
+                e.pitch.min / kDeg, e.pitch.max / kDeg, e.yaw.min / kDeg, e.yaw.max / kDeg,
+                e.protrusion.min * 1e3, e.protrusion.max * 1e3);
+  return buf;
+}
+
+std::string unit_name(ActuatorKind kind) {
+  return kind == ActuatorKind::kRotary ? "deg" : "mm";
+}
+
+// A rig axis wider than what it would narrow, stated without the override, is
+// silently narrowed at run time: the rig's author meant something else.
+void check_unmarked_widening(const EnvelopeSpec& spec, const MandibleEnvelope& before,
+                             std::vector<std::string>& problems) {
+  if (spec.widen_override) return;
+  auto check = [&](const std::optional<Range>& stated, const Range& axis, const char* name,
+                   double unit, const char* suffix) {
+    if (stated && !axis.contains(*stated)) {
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "%s: mandible_envelope.%s: states %.2f..%.2f %s, wider than the %.2f..%.2f %s "
+                    "it narrows, without `widen_override: true`",
+                    spec.where.c_str(), name, stated->min / unit, stated->max / unit, suffix,
+                    axis.min / unit, axis.max / unit, suffix);
+      problems.emplace_back(buf);
+    }
+  };
+  check(spec.pitch, before.pitch, "pitch_deg", kDeg, "deg");
+  check(spec.yaw, before.yaw, "yaw_deg", kDeg, "deg");
+  check(spec.protrusion, before.protrusion, "protrusion_mm", 1e-3, "mm");
+}
+
+// The reduced face model of the head, for rigs that read control points.
+std::shared_ptr<const face::ReducedFaceModel> load_reduced(const HeadConfig& head) {
+  const std::string dir = head.file.substr(0, head.file.find_last_of('/') + 1);
+  try {
+    const face::HeadSpec spec = face::load_head_spec(dir.empty() ? "." : dir);
+    return std::make_shared<const face::ReducedFaceModel>(
+        face::load_reduced_model(dir + "reduced_face.txt", spec));
+  } catch (const face::InputError& e) {
+    throw ConfigError(std::string(e.what()) + " (the rig reads control points of this head)");
+  }
+}
+
+}  // namespace
+
+BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const RuntimeConfig& runtime) {
+  BuiltModel out;
+  ControllerModel& m = out.model;
+  m.layout = head.layout;
+  m.neutral = head.neutral;
+  m.rate_hz = runtime.rate_hz;
+  m.safety = runtime.safety;
+  m.shaping = runtime.shaping;
+
+  for (std::size_t i = 0; i < m.layout.size(); ++i) {
+    const SignalInfo& info = m.layout.signal(i);
+    m.admissible[i] = {info.domain_min, info.domain_max};
+    if (auto it = head.rigid_ranges.find(info.name); it != head.rigid_ranges.end()) {
+      m.admissible[i] = it->second;
+    }
+  }
+
+  // Envelope, axis by axis: the design default, then the head's, then the
+  // rig's. A stated axis narrows (intersects) unless its block carries
+  // `widen_override`, in which case it replaces. Anything wider than the
+  // design default, or than the head's own envelope, is announced loudly.
+  const MandibleEnvelope design = MandibleEnvelope::design_default();
+  auto apply = [](Range& axis, const std::optional<Range>& stated, bool override_widen) {
+    if (stated) axis = override_widen ? *stated : intersect(axis, *stated);
+  };
+  MandibleEnvelope env = design;
+  if (head.envelope) {
+    apply(env.pitch, head.envelope->pitch, head.envelope->widen_override);
+    apply(env.yaw, head.envelope->yaw, head.envelope->widen_override);
+    apply(env.protrusion, head.envelope->protrusion, head.envelope->widen_override);
+  }
+  const MandibleEnvelope head_env = env;
+  if (head.envelope) check_unmarked_widening(*head.envelope, design, out.problems);
+  if (rig.envelope) check_unmarked_widening(*rig.envelope, head_env, out.problems);
+  if (rig.envelope) {
+    apply(env.pitch, rig.envelope->pitch, rig.envelope->widen_override);
+    apply(env.yaw, rig.envelope->yaw, rig.envelope->widen_override);
+    apply(env.protrusion, rig.envelope->protrusion, rig.envelope->widen_override);
+  }
+  for (const Range* r : {&env.pitch, &env.yaw, &env.protrusion}) {
+    if (!(r->min <= r->max)) {
+      throw ConfigError((rig.envelope ? rig.envelope->where : rig.file) +
+                        ": rig.mandible_envelope: expected an envelope that overlaps the "
+                        "head's, found an empty intersection");
+    }
+  }
+  m.envelope = env;
+  m.envelope_widened = !env.within(design) || !env.within(head_env);
+  if (!env.within(design)) {
+    const std::string where =
+        rig.envelope && rig.envelope->widen_override ? rig.envelope->where : head.envelope->where;
+    out.warnings.push_back("WARNING: mandible envelope WIDENED beyond the design default by " +
+                           where + ": " + describe(env) + " (default: " + describe(design) + ")");
+  }
+  if (!env.within(head_env)) {
+    out.warnings.push_back("WARNING: the rig WIDENS the head's mandible envelope at " +
+                           rig.envelope->where + ": " + describe(env) +
+                           " (head: " + describe(head_env) + ")");
+  }
+
+  // Coupled face limits: the neutral pose must satisfy them (it is where the
+  // face goes on stale input, and the projection's fallback).
+  std::array<double, kMaxFaceSignals> lo{};
+  std::array<double, kMaxFaceSignals> hi{};
+  for (std::size_t i = 0; i < m.layout.size(); ++i) {
+    Range r = m.admissible[i];
+    if (i == m.layout.jaw_pitch()) r = env.pitch;
+    if (i == m.layout.jaw_yaw()) r = env.yaw;
+    if (i == m.layout.jaw_protrusion()) r = env.protrusion;
+    lo[i] = r.min;
+    hi[i] = r.max;
+  }
+  for (std::size_t i = 0; i < m.layout.size(); ++i) {
+    if (m.neutral[i] < lo[i] || m.neutral[i] > hi[i]) {
+      throw ConfigError(head.file +
+                        ": head.neutral: expected a pose inside the envelope and the "
+                        "admissible ranges, found " +
+                        m.layout.signal(i).name + " = " + std::to_string(m.neutral[i]) +
+                        " (SI) outside [" + std::to_string(lo[i]) + ", " + std::to_string(hi[i]) +
+                        "]");
+    }
+  }
+  for (const CoupledLimitConfig& c : rig.coupled_limits) {
+    if (c.over_actuators) continue;
+    try {
+      m.face_constraints.add(c.constraint);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(c.where + ": rig.coupled_limits: " + e.what());
+    }
+  }
+  try {
+    m.face_constraints.finalize(m.layout.size(), lo.data(), hi.data(), m.neutral.data());
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(rig.file +
+                      ": rig.coupled_limits: expected limits that the head's neutral "
+                      "pose satisfies, found " +
+                      std::string(e.what()));
+  }
+
+  // Actuators grouped by bus, in bus order then file order.
+  std::vector<std::size_t> ordered;  // file index of each controller actuator
+  for (const BusConfig& bus : rig.buses) {
+    BusModel bm{bus.name, bus.type, ordered.size(), 0};
+    for (std::size_t k = 0; k < rig.actuators.size(); ++k) {
+      if (rig.actuators[k].model.bus == bus.name) ordered.push_back(k);
+    }
+    bm.count = ordered.size() - bm.first;
+    m.buses.push_back(bm);
+  }
+  out.file_order.assign(rig.actuators.size(), 0);
+  for (std::size_t i = 0; i < ordered.size(); ++i) out.file_order[ordered[i]] = i;
+
+  RigMapping& map = m.mapping;
+  map.linear = LinearMapping(rig.actuators.size(), m.layout.size());
+  map.transforms.resize(rig.actuators.size());
+  map.muscle_count = m.layout.muscle_count();
+  map.jaw_pitch = m.layout.jaw_pitch();
+  map.jaw_yaw = m.layout.jaw_yaw();
+  map.jaw_protrusion = m.layout.jaw_protrusion();
+  build_mechanism(head, rig, out.file_order, m, out.problems);
+  const bool reads_points =
+      std::any_of(rig.actuators.begin(), rig.actuators.end(),
+                  [](const ActuatorConfig& a) { return !a.map.points.empty(); });
+  if (reads_points) {
+    map.reduced = load_reduced(head);
+    if (map.reduced->muscles.size() != m.layout.muscle_count() ||
+        map.reduced->control_points.size() > kMaxControlPoints) {
+      throw ConfigError(head.file +
+                        ": the reduced face model's muscles differ from head.muscles "
+                        "(rebuild it with `facectl face reduce`)");
+    }
+    for (std::size_t k = 0; k < m.layout.muscle_count(); ++k) {
+      if (map.reduced->muscles[k] != m.layout.signal(k).name) {
+        throw ConfigError(head.file + ": the reduced face model's muscle " + std::to_string(k) +
+                          " is '" + map.reduced->muscles[k] + "', head.muscles has '" +
+                          m.layout.signal(k).name + "' (rebuild it with `facectl face reduce`)");
+      }
+    }
+  }
+  for (std::size_t i = 0; i < ordered.size(); ++i) {
+    const ActuatorConfig& a = rig.actuators[ordered[i]];
+    const std::string who = "actuator '" + a.model.name + "'";
+    m.actuators.push_back(a.model);
+    map.linear.set_offset(i, a.map.offset_si);
+    for (const MappingTerm& t : a.map.terms) map.linear.set_gain(i, t.signal, t.gain_si);
+    for (const PointTermConfig& p : a.map.points) {
+      const auto& names = map.reduced->control_points;
+      const auto it = std::find(names.begin(), names.end(), p.point);
+      if (it == names.end()) {
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+        throw ConfigError(p.where + ": " + who +
+                          ": map.points.point: expected a control point of "
+                          "the head (" +
+                          list + "), found '" + p.point + "'");
+      }
+      map.points.push_back({i, static_cast<std::size_t>(it - names.begin()), p.axis, p.gain_si});
+    }
+    map.transforms[i] = a.map.transform;
+    if (!a.map.calibration_problem.empty()) {
+      out.problems.push_back(a.map.calibration_problem + " (" + who + ")");
+      map.transforms[i].kind = ChannelTransform::Kind::kNone;  // never run: a problem refuses it
+    }
+    if (a.map.transform.kind == ChannelTransform::Kind::kLinkage) {
+      const Linkage::Kind k = a.map.transform.linkage.kind;
+      const bool wants_linear = k == Linkage::Kind::kSliderCrank;
+      if (wants_linear != (a.model.kind == ActuatorKind::kLinear)) {
+        out.problems.push_back(
+            a.map.transform_where + ": " + who + ": a " + std::string(to_string(k)) +
+            " linkage drives a " + (wants_linear ? "linear (mm)" : "rotary (deg)") +
+            " actuator, but this one is " + unit_name(a.model.kind) + " (inconsistent units)");
+      }
+    }
+    if (!map.drives(i)) {
+      out.problems.push_back(a.map.where + ": " + who +
+                             ": nothing drives it (no non-zero term or point in `map`, and no "
+                             "strut of the mandible mechanism)");
+    }
+    // The mapping must stay finite over every admissible input (an overflow
+    // would be a NaN command); `facectl verify` proves the tighter ranges.
+    double reach = std::fabs(a.map.offset_si);
+    for (const MappingTerm& t : a.map.terms) {
+      reach += std::fabs(t.gain_si) * std::max(std::fabs(lo[t.signal]), std::fabs(hi[t.signal]));
+    }
+    if (!std::isfinite(reach) || reach > 1e3) {
+      throw ConfigError(a.map.where + ": rig.actuators '" + a.model.name +
+                        "'.map: expected gains and offset that keep the command finite and "
+                        "physical (|command| <= 1000 SI units), found a reach of " +
+                        std::to_string(reach));
+    }
+    // The simulated twin's delay line holds 64 commands.
+    if (a.plant.latency_s * runtime.rate_hz >= 60.0) {
+      throw ConfigError(a.plant_where + ": rig.actuators '" + a.model.name +
+                        "'.plant.latency_ms: expected less than 60 ticks of latency at " +
+                        std::to_string(runtime.rate_hz) + " Hz, found " +
+                        std::to_string(a.plant.latency_s * 1e3) + " ms");
+    }
+  }
+  finish_points(map);
+
+  // Actuator coupled limits, over controller order; rest must satisfy them
+  // (it is where STOPPING goes, and the projection's fallback).
+  std::array<double, kMaxActuators> act_lo{}, act_hi{}, rest{};
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    act_lo[i] = m.actuators[i].limits.soft_min;
+    act_hi[i] = m.actuators[i].limits.soft_max;
+    rest[i] = m.actuators[i].rest;
+  }
+  for (const CoupledLimitConfig& c : rig.coupled_limits) {
+    if (!c.over_actuators) continue;
+    CoupledConstraints::Constraint k = c.constraint;
+    for (std::size_t t = 0; t < k.terms; ++t) k.index[t] = out.file_order[k.index[t]];
+    try {
+      m.actuator_constraints.add(k);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(c.where + ": rig.coupled_limits: " + e.what());
+    }
+  }
+  try {
+    m.actuator_constraints.finalize(m.actuators.size(), act_lo.data(), act_hi.data(), rest.data());
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(rig.file +
+                      ": rig.coupled_limits: expected actuator limits that every actuator's "
+                      "rest position satisfies, found " +
+                      std::string(e.what()));
+  }
+  return out;
+}
+
+}  // namespace facectl

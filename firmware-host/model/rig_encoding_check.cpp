@@ -1,0 +1,74 @@
+#include "firmware-host/model/rig_encoding_check.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+#include "control/units.hpp"
+#include "drivers/protocol/cia402_counts.hpp"
+#include "drivers/protocol/custom_can_frames.hpp"
+#include "drivers/protocol/wire_encoding.hpp"
+
+namespace facectl {
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+[[noreturn]] void refuse(const ActuatorConfig& a, const std::string& expected,
+                         const std::string& found) {
+  throw ConfigError(a.encoding_where + ": actuator " + a.model.name + " encoding: expected " +
+                    expected + ", found " + found);
+}
+
+}  // namespace
+
+void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
+  ActuatorEncoding& e = actuator.model.encoding;
+  const char* raw = raw_name(e.raw);
+  if (bus.is_cia402() && actuator.has_encoding && e.raw != ActuatorEncoding::Raw::kInt32) {
+    refuse(actuator, "raw int32 on CiA 402 bus " + bus.name + " (drives count in 32 bits)",
+           std::string("raw ") + raw);
+  }
+  if (bus.is_modbus() && e.raw == ActuatorEncoding::Raw::kInt32) {
+    refuse(actuator,
+           "raw int16 or uint16 on Modbus bus " + bus.name + " (one register per channel)",
+           "raw int32");
+  }
+  if (bus.is_can() && !bus.is_cia402()) {
+    if (bus.can.width == custom_can::Width::kInt16 && e.raw == ActuatorEncoding::Raw::kInt32) {
+      refuse(actuator, "raw int16 or uint16 on bus " + bus.name + " (values: int16, 2-byte fields)",
+             "raw int32");
+    }
+    if (!actuator.has_encoding) e = custom_can::default_encoding(bus.can.width);
+  }
+  const double per_unit = actuator.model.kind == ActuatorKind::kRotary ? kDeg : 1e-3;
+  const char* unit = actuator.model.kind == ActuatorKind::kRotary ? "deg" : "mm";
+  // A CiA 402 drive counts with the actuator's int32 encoding or, without
+  // one, the bus's counts_per_rev / counts_per_mm.
+  const bool drive = bus.is_cia402();
+  const cia402::DriveCounts drive_counts =
+      drive ? cia402::drive_counts(actuator.model, bus.can) : cia402::DriveCounts{};
+  const ActuatorEncoding::Raw type = drive ? ActuatorEncoding::Raw::kInt32 : e.raw;
+  const double lo = raw_min(type);
+  const double hi = raw_max(type);
+  for (const double si : {actuator.model.limits.position_min, actuator.model.limits.position_max}) {
+    const double counts = drive ? std::nearbyint(si * drive_counts.per_si + drive_counts.offset)
+                                : std::nearbyint(si / per_unit * e.scale + e.offset);
+    // Strictly inside: a reading at the raw type's limit may be a saturated
+    // one, which would hide an actuator beyond its hardware range.
+    if (counts <= lo || counts >= hi) {
+      refuse(actuator,
+             std::string("the hardware range to fit strictly inside raw ") + raw_name(type) + " (" +
+                 number(lo) + ", " + number(hi) + ")",
+             "position " + number(si / per_unit) + " " + unit + " encoding to " + number(counts) +
+                 " counts");
+    }
+  }
+}
+
+}  // namespace facectl

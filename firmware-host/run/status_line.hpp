@@ -1,0 +1,14 @@
+#pragma once
+
+#include <string>
+
+#include "control/safety/safety_state.hpp"
+#include "firmware-host/run/realtime_loop.hpp"
+
+namespace facectl {
+
+// One line for a terminal: rate, latency percentiles, overruns, state, faults.
+std::string format_status(const LoopStats& stats, SafetyState state, double elapsed_s,
+                          const char* fault);
+
+}  // namespace facectl

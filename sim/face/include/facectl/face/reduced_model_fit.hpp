@@ -1,0 +1,48 @@
+// Fitting the reduced face model (control/face/reduced_face_model.hpp) by least squares to
+// full-model steady states, and its file. Each control point is fitted only on the muscles
+// that move it (by a single-muscle probe of the full model), so unrelated muscles cannot add
+// noise.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "control/face/reduced_face_model.hpp"
+#include "facectl/face/face_model.hpp"
+
+namespace facectl::face {
+
+struct ReduceOptions {
+  int train_samples = 400, test_samples = 100;
+  int frames = 250;  // full-model frames to steady state per sample
+  double active_probability = 0.35, max_contraction = 0.7;
+  unsigned seed = 1;
+  double ridge = 1e-6;
+  double relevance_mm = 0.3;  // a muscle moves a point if c = 0.6 alone moves it this much
+};
+
+struct ReduceReport {
+  double train_rms_mm = 0, test_rms_mm = 0, test_max_mm = 0;
+  double test_median_mm = 0, test_p95_mm = 0;  // of the per-point 3-D errors
+  int train_samples = 0, test_samples = 0;
+};
+
+// One random input of the distribution used for fitting and testing.
+struct ReducedSample {
+  std::vector<double> contractions;
+  MandiblePose jaw;
+};
+std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOptions& o, int n,
+                                          unsigned seed);
+// Full-model steady-state control-point displacements (m) for one sample.
+std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
+                                        const std::vector<int>& control_landmarks,
+                                        const ReducedSample& s, int frames);
+
+ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions& o,
+                                     ReduceReport* report);
+void save_reduced_model(const ReducedFaceModel& m, const std::string& path);
+// Throws InputError naming file:line when the file is malformed or does not match `head`.
+ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& head);
+
+}  // namespace facectl::face

@@ -1,0 +1,70 @@
+// Drift guard: feature_monomials() must describe, column for column, the features the
+// reduced face model evaluates. With an identity coefficient matrix, evaluate() returns
+// the feature vector itself, so every column is compared on random inputs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "facectl/face/head_spec.hpp"
+#include "facectl/face/reduced_model_fit.hpp"
+
+namespace facectl::face {
+namespace {
+
+ReducedFaceModel shipped() {
+  return load_reduced_model(FACECTL_DEFAULT_HEAD_DIR "/reduced_face.txt",
+                            load_head_spec(FACECTL_DEFAULT_HEAD_DIR));
+}
+
+// m's coefficient matrix is replaced by the identity of the monomials' count.
+void expect_monomials_match_features(ReducedFaceModel m, unsigned seed) {
+  const std::vector<Monomial> monomials = feature_monomials(m);
+  const int F = static_cast<int>(monomials.size()), n = static_cast<int>(m.muscles.size());
+  m.coefficients = decltype(m.coefficients)::Identity(F, F);
+  ReducedFaceWorkspace w = make_reduced_workspace(m);
+  std::mt19937 rng(seed);
+  // Beyond the admissible ranges too, so that a sign or a scale cannot hide.
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  std::vector<double> x(static_cast<std::size_t>(n + 3)), features(static_cast<std::size_t>(F));
+  for (int trial = 0; trial < 200; ++trial) {
+    for (double& v : x) v = u(rng);
+    x[n] *= 0.4;       // pitch, rad
+    x[n + 1] *= 0.1;   // yaw, rad
+    x[n + 2] *= 0.01;  // protrusion, m
+    evaluate(m, w, std::span<const double>(x).first(static_cast<std::size_t>(n)), x[n], x[n + 1],
+             x[n + 2], features);
+    for (int k = 0; k < F; ++k) {
+      const double expected = features[static_cast<std::size_t>(k)];
+      const double got = evaluate_monomial(monomials[static_cast<std::size_t>(k)], x);
+      ASSERT_NEAR(got, expected, 1e-14 * (1 + std::fabs(expected)))
+          << "feature column " << k << " of " << F;
+    }
+  }
+}
+
+TEST(FeatureMonomials, DescribeEveryFeatureOfTheShippedModel) {
+  const ReducedFaceModel m = shipped();
+  ASSERT_EQ(static_cast<int>(feature_monomials(m).size()), m.feature_count());
+  expect_monomials_match_features(m, 1);
+}
+
+TEST(FeatureMonomials, DescribeAnyPairList) {
+  ReducedFaceModel m = shipped();
+  m.pairs = {{3, 1}, {0, 28}, {5, 5}};  // reversed, wide and a muscle with itself
+  expect_monomials_match_features(m, 2);
+}
+
+TEST(FeatureMonomials, PowersAreAscendingAndPositive) {
+  for (const Monomial& mono : feature_monomials(shipped())) {
+    for (std::size_t k = 0; k < mono.powers.size(); ++k) {
+      EXPECT_GE(mono.powers[k][1], 1);
+      if (k > 0) {
+        EXPECT_LT(mono.powers[k - 1][0], mono.powers[k][0]);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace facectl::face

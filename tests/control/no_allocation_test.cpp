@@ -1,0 +1,161 @@
+// The real-time tick allocates nothing: this binary counts every malloc,
+// calloc, realloc and operator new made while a tick runs, and Eigen's
+// runtime no-malloc check turns any Eigen allocation into an assertion.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <new>
+#include <thread>
+
+#include "firmware-host/run/realtime_loop.hpp"
+#include "tests/support/allocation_counter.hpp"
+#include "tests/support/sim_head.hpp"
+
+namespace facectl {
+namespace {
+
+using testing::begin_counting_allocations;
+using testing::end_counting_allocations;
+
+// Counts this thread's allocations while alive, with Eigen's check armed too.
+class AllocationGuard {
+ public:
+  AllocationGuard() {
+    Eigen::internal::set_is_malloc_allowed(false);
+    begin_counting_allocations();
+  }
+  ~AllocationGuard() {
+    counted_ = end_counting_allocations();
+    Eigen::internal::set_is_malloc_allowed(true);
+  }
+  static long last() { return counted_; }
+
+ private:
+  static inline long counted_ = 0;
+};
+
+TEST(NoAllocation, TheCountingHookSeesAnAllocation) {
+  // The hook itself works: otherwise the test below could never fail.
+  long seen = 0;
+  std::vector<int>* p = nullptr;
+  {
+    AllocationGuard guard;
+    p = new std::vector<int>(100);
+  }
+  seen = AllocationGuard::last();
+  delete p;
+  EXPECT_GE(seen, 1);
+}
+
+TEST(NoAllocation, EigensRuntimeCheckIsLiveInThisBinary) {
+  // With NDEBUG compiled out here, a forbidden Eigen allocation aborts.
+  EXPECT_DEATH(
+      {
+        Eigen::internal::set_is_malloc_allowed(false);
+        Eigen::VectorXd v(1000);
+        v.setZero();
+      },
+      "heap allocation is forbidden");
+}
+
+TEST(NoAllocation, TicksInEveryStateAllocateNothing) {
+  testing::SimHead head(default_config_path(), 1 << 14);
+  auto cmd = head.model().neutral;
+  head.controller().request_enable();
+  // Warm up outside the guard: first-touch effects are not the tick's concern.
+  head.send(cmd);
+  head.step(head.period());
+
+  long total = 0;
+  long ticks = 0;
+  auto run = [&](double seconds) {
+    const long n = static_cast<long>(seconds / head.period());
+    for (long i = 0; i < n; ++i) {
+      cmd[static_cast<std::size_t>(i) % head.model().layout.muscle_count()] =
+          static_cast<double>(i % 7) / 7.0;
+      head.send(cmd);
+      {
+        AllocationGuard guard;
+        head.step(head.period());
+      }
+      total += AllocationGuard::last();
+      ++ticks;
+    }
+    while (head.telemetry()->front() != nullptr) head.telemetry()->pop();
+  };
+  run(1.5);  // ENABLING then RUNNING
+  EXPECT_EQ(head.controller().state(), SafetyState::kRunning);
+  head.hardware().io.press_estop();
+  run(0.1);  // ESTOP
+  EXPECT_EQ(head.controller().state(), SafetyState::kEstop);
+  head.hardware().io.release_estop();
+  head.controller().request_reset();
+  head.controller().request_enable();
+  run(1.5);
+  head.controller().request_shutdown();
+  run(1.0);  // STOPPING then IDLE
+  EXPECT_EQ(head.controller().state(), SafetyState::kIdle);
+  // The fault paths: a bus fault, then an overrun storm, each logged with its detail.
+  head.controller().request_enable();
+  run(1.5);
+  head.hardware().find("can0")->inject_fault("bus-off");
+  run(0.05);
+  EXPECT_EQ(head.controller().state(), SafetyState::kFault);
+  head.hardware().find("can0")->clear_fault();
+  head.controller().request_reset();
+  run(0.01);
+  EXPECT_EQ(head.controller().state(), SafetyState::kIdle);
+  // FAULT that holds the jaw (its struts hold): can0 stays driven after a
+  // modbus0 fault, then relaxes when can0 faults too.
+  head.controller().request_enable();
+  run(1.5);
+  head.hardware().find("modbus0")->inject_fault("board 3 not answering");
+  run(0.3);
+  EXPECT_TRUE(head.hardware().find("can0")->enabled());
+  head.hardware().find("can0")->inject_fault("bus-off");
+  run(0.05);
+  EXPECT_FALSE(head.hardware().find("can0")->enabled());
+  head.hardware().find("can0")->clear_fault();
+  head.hardware().find("modbus0")->clear_fault();
+  head.controller().request_reset();
+  head.controller().request_enable();
+  run(1.5);
+  for (int k = 1; k <= head.model().safety.overrun_fault_count; ++k) {
+    {
+      AllocationGuard guard;
+      head.step(head.period(), k);
+    }
+    total += AllocationGuard::last();
+    ++ticks;
+  }
+  EXPECT_EQ(head.controller().state(), SafetyState::kFault);
+  EXPECT_EQ(total, 0) << "allocations in " << ticks << " ticks";
+}
+
+// The whole real-time loop (timer, histograms, tick) on a real thread.
+TEST(NoAllocation, TheRealTimeLoopAllocatesNothing) {
+  testing::SimHead head(default_config_path(), 1 << 14);
+  head.controller().request_enable();
+  LoopStats stats;
+  RealtimeLoop loop(head.controller(), head.model().rate_hz, stats);
+  std::atomic<bool> stop{false};
+  long seen = -1;
+  std::thread rt([&] {
+    Eigen::internal::set_is_malloc_allowed(false);
+    begin_counting_allocations();
+    loop.run(stop);
+    seen = end_counting_allocations();
+    Eigen::internal::set_is_malloc_allowed(true);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  stop = true;
+  rt.join();
+  EXPECT_GT(stats.ticks.load(), 100u);
+  EXPECT_EQ(seen, 0);
+}
+
+}  // namespace
+}  // namespace facectl

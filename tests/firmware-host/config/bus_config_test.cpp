@@ -1,0 +1,364 @@
+// Rig bus keys, actuator encodings against their bus, the runtime file's
+// hardware, safety_io and gamepad blocks, and the bus budget at config load:
+// what they accept, and errors that name file:line:col, the key, what was
+// expected and what was found.
+#include <gtest/gtest.h>
+
+#include "drivers/protocol/can_bus_budget.hpp"
+#include "firmware-host/config/head_config.hpp"
+#include "firmware-host/config/loaded_config.hpp"
+#include "firmware-host/config/rig_config.hpp"
+#include "firmware-host/config/runtime_config.hpp"
+#include "firmware-host/model/bus_budget_check.hpp"
+#include "tests/support/temp_file.hpp"
+
+namespace facectl {
+namespace {
+
+using testing::TempFile;
+
+const HeadConfig& head() {
+  static const HeadConfig h =
+      load_head_config(std::string(FACECTL_SOURCE_DIR) + "/config/heads/default/head.yaml");
+  return h;
+}
+
+// A rig with one bus (`bus` is its flow mapping's inner keys) and `count`
+// rotary actuators on it, addresses 1..count.
+std::string rig(const std::string& bus, int count = 1) {
+  std::string s = "rig:\n  name: t\n  buses:\n    - { name: b0, " + bus + " }\n  actuators:\n";
+  for (int i = 1; i <= count; ++i) {
+    s += "    - { name: a" + std::to_string(i) +
+         ", kind: rotary, bus: b0, address: " + std::to_string(i) +
+         ", position_deg: { min: -6, max: 20 }, max_velocity_deg_s: 100, "
+         "max_acceleration_deg_s2: 1000, rest_deg: 0, map: { terms: { jaw_pitch_deg: 1 } } }\n";
+  }
+  return s;
+}
+
+const std::string kCan = "type: can, interface: can0, bitrate: 1000000";
+
+// The rig's budgets at `tick_hz`, or the error with the temp path replaced by RIG.
+std::string budget_error(const std::string& text, double tick_hz = 1000.0,
+                         std::vector<BusBudgetResult>* out = nullptr) {
+  TempFile f(text);
+  try {
+    const RigConfig r = load_rig_config(f.path(), head().layout);
+    std::vector<std::string> warnings;
+    auto results = check_bus_budgets(r, tick_hz);
+    enforce_bus_budgets(results, warnings);
+    if (out) *out = results;
+    return warnings.empty() ? "ok" : warnings.front();
+  } catch (const ConfigError& e) {
+    std::string msg = e.what();
+    const auto at = msg.find(f.path());
+    if (at != std::string::npos) msg.replace(at, f.path().size(), "RIG");
+    return msg;
+  }
+}
+
+TEST(BusConfig, CanKeysReachTheBusOptions) {
+  TempFile f(rig(kCan + ", protocol: custom, values: int32, rate_divider: 4, fd: true, "
+                        "data_bitrate: 5000000, heartbeat_timeout_ms: 50"));
+  const RigConfig r = load_rig_config(f.path(), head().layout);
+  const BusConfig& b = r.buses.at(0);
+  EXPECT_EQ(b.can_protocol, "custom");
+  EXPECT_EQ(b.endpoint, "can0");
+  EXPECT_EQ(b.can.width, custom_can::Width::kInt32);
+  EXPECT_EQ(b.can.cycle_divider, 4);
+  EXPECT_TRUE(b.can.fd);
+  EXPECT_EQ(b.can.data_bitrate, 5'000'000);
+  EXPECT_DOUBLE_EQ(b.can.heartbeat_timeout_s, 0.05);
+
+  TempFile g(rig(kCan +
+                 ", protocol: cia402, map_pdos: false, host_node: 100, drive_watchdog_ms: 60, "
+                 "counts_per_rev: 65536, counts_per_mm: 2000"));
+  const BusConfig c = load_rig_config(g.path(), head().layout).buses.at(0);
+  EXPECT_EQ(c.can_protocol, "cia402");
+  EXPECT_EQ(c.can.host_node, 100);
+  EXPECT_FALSE(c.can.map_pdos);
+  EXPECT_EQ(c.can.drive_watchdog_ms, 60);
+  EXPECT_NEAR(c.can.rotary_counts_per_rad, 65536 / 6.283185307179586, 1e-9);
+  EXPECT_DOUBLE_EQ(c.can.linear_counts_per_m, 2e6);
+}
+
+TEST(BusConfig, ModbusKeysReachTheTiming) {
+  TempFile f(
+      rig("type: modbus_rtu, device: /dev/ttyUSB0, baud: 115200, response_timeout_ms: 15, "
+          "byte_timeout_ms: 2, retries: 2, fault_after_ms: 80, cycle_ms: 5, watchdog_ms: 250"));
+  const BusConfig b = load_rig_config(f.path(), head().layout).buses.at(0);
+  EXPECT_EQ(b.endpoint, "/dev/ttyUSB0");
+  EXPECT_EQ(b.bitrate, 115200);
+  EXPECT_DOUBLE_EQ(b.modbus.response_timeout_s, 0.015);
+  EXPECT_DOUBLE_EQ(b.modbus.byte_timeout_s, 0.002);
+  EXPECT_EQ(b.modbus.max_retries, 2);
+  EXPECT_DOUBLE_EQ(b.modbus.board_timeout_s, 0.08);
+  EXPECT_DOUBLE_EQ(b.modbus.cycle_period_s, 0.005);
+  EXPECT_EQ(b.modbus.board_watchdog_ms, 250);
+  EXPECT_EQ(b.modbus_registers.control, 0);
+  EXPECT_EQ(b.modbus_registers.watchdog, 10);
+  EXPECT_EQ(b.modbus_registers.status, 0);
+  TempFile g(
+      rig("type: modbus_tcp, host: 10.0.0.7:1502, enable_register: 40, "
+          "watchdog_register: 7, status_register: 300"));
+  EXPECT_EQ(load_rig_config(g.path(), head().layout).buses.at(0).modbus_registers.watchdog, 7);
+  EXPECT_EQ(load_rig_config(g.path(), head().layout).buses.at(0).modbus_registers.status, 300);
+  EXPECT_EQ(load_rig_config(g.path(), head().layout).buses.at(0).endpoint, "10.0.0.7:1502");
+}
+
+TEST(BusConfig, BadBusKeysNameTheirPositionKeyExpectedAndFound) {
+  EXPECT_EQ(budget_error(rig(kCan + ", protocol: canopen")),
+            "RIG:4:75: rig.buses[0].protocol: expected custom or cia402, found 'canopen'");
+  EXPECT_EQ(budget_error(rig(kCan + ", protocol: cia402, fd: true")),
+            "RIG:4:87: rig.buses[0].fd: expected no fd on a cia402 bus (CAN FD is for custom "
+            "boards), found 'true'");
+  EXPECT_EQ(budget_error(rig(kCan + ", values: int8")),
+            "RIG:4:73: rig.buses[0].values: expected int16 or int32, found 'int8'");
+  EXPECT_EQ(budget_error(rig(kCan + ", data_bitrate: 2000000")),
+            "RIG:4:79: rig.buses[0].data_bitrate: expected data_bitrate only with fd: true, "
+            "found fd: false");
+  EXPECT_EQ(budget_error(rig(kCan + ", rate_divider: 0")),
+            "RIG:4:79: rig.buses[0].rate_divider: expected an integer in [1, 100], found '0'");
+  EXPECT_EQ(budget_error(rig(kCan + ", retries: 1")),
+            "RIG:4:65: rig.buses[0].retries: expected one of: name, type, interface, bitrate, "
+            "protocol, rate_divider, fd, data_bitrate, values, heartbeat_timeout_ms, map_pdos, "
+            "host_node, "
+            "host_heartbeat_ms, drive_heartbeat_ms, drive_watchdog_ms, sdo_timeout_ms, "
+            "enable_timeout_ms, counts_per_rev, counts_per_mm, found unknown key 'retries'");
+  const std::string rtu = "type: modbus_rtu, device: /dev/ttyS0, baud: 115200";
+  EXPECT_EQ(budget_error(rig(rtu + ", response_timeout_ms: 500")),
+            "RIG:4:92: rig.buses[0].response_timeout_ms: expected a number in [1, 250], found "
+            "'500'");
+  EXPECT_EQ(budget_error(rig(rtu + ", enable_register: 20, watchdog_register: 25")),
+            "RIG:4:111: rig.buses[0].watchdog_register: expected a register outside the enable "
+            "block [20, 30) (CONTROL, HEARTBEAT, 8 targets), found '25'");
+  EXPECT_EQ(budget_error(rig(rtu + ", retries: 9")),
+            "RIG:4:80: rig.buses[0].retries: expected an integer in [0, 5], found '9'");
+  EXPECT_EQ(budget_error(rig(rtu + ", response_timeout_ms: 40, retries: 2, fault_after_ms: 100")),
+            "RIG:4:124: rig.buses[0].fault_after_ms: expected fault_after_ms above (retries + 1) "
+            "x response_timeout_ms = 120 ms, found 100 ms");
+}
+
+TEST(BusBudget, TheDefaultRigPassesWithItsDividerAndWouldBeRefusedWithout) {
+  const LoadedConfig cfg = load_config(default_config_path());
+  ASSERT_EQ(cfg.budgets.size(), 2u);
+  EXPECT_EQ(cfg.budgets[0].text,
+            "can0: 8 frames per cycle at 250 Hz = 270000 bit/s, 27.0% of 1000000 bit/s");
+  EXPECT_EQ(cfg.budgets[0].verdict, BusBudgetResult::Verdict::kOk);
+  EXPECT_EQ(cfg.budgets[1].verdict, BusBudgetResult::Verdict::kOk) << cfg.budgets[1].text;
+  EXPECT_NEAR(cfg.budgets[1].load, 0.84, 1e-9);  // 168 characters at 1 Mbaud in 2 ms
+
+  // 12 axes on custom boards every tick: 108%, refused with the numbers.
+  EXPECT_EQ(budget_error(rig(kCan, 12)),
+            "RIG:4:7: rig.buses 'b0': expected a bus load of at most 70%, found b0: 8 frames "
+            "per cycle at 1000 Hz = 1080000 bit/s, 108.0% of 1000000 bit/s (refused: above "
+            "70%); raise rate_divider, use protocol: custom (several actuators per frame) or "
+            "fd: true, or split the bus");
+  // Every second tick: 54%, a warning.
+  EXPECT_EQ(budget_error(rig(kCan + ", rate_divider: 2", 12)),
+            "warning: b0: 8 frames per cycle at 500 Hz = 540000 bit/s, 54.0% of 1000000 "
+            "bit/s (warning: above 50%)");
+  // CiA 402 drives, one frame pair each plus SYNC and heartbeats: refused even at 250 Hz.
+  EXPECT_NE(budget_error(rig(kCan + ", protocol: cia402, rate_divider: 4", 12))
+                .find("28 frames per cycle at 250 Hz = 945000 bit/s, 94.5%"),
+            std::string::npos);
+}
+
+TEST(BusBudget, CanFdFramesAreBudgetedAtTheirOwnWorstCase) {
+  EXPECT_EQ(can_fd_length(26), 32);
+  EXPECT_EQ(can_fd_length(8), 8);
+  EXPECT_EQ(can_fd_length(49), 64);
+  // 8 data bytes without a bit rate switch: 34 nominal + 114 data-phase bits.
+  EXPECT_DOUBLE_EQ(can_fd_frame_bits(8, 1'000'000, 1'000'000), 148.0);
+  // 12 int16 channels on one FD board: 26 bytes sent as 32; the data phase
+  // (359 bits) at 5 Mbit/s takes 71.8 nominal bit times.
+  EXPECT_NEAR(can_fd_frame_bits(26, 1'000'000, 5'000'000), 34.0 + 359.0 / 5.0, 1e-9);
+  std::vector<BusBudgetResult> r;
+  EXPECT_EQ(budget_error(rig(kCan + ", fd: true, data_bitrate: 5000000", 12), 1000.0, &r), "ok");
+  EXPECT_EQ(r.at(0).can.frames_per_cycle, 2);
+  EXPECT_NEAR(r.at(0).load, 2 * (34.0 + 71.8) * 1000.0 / 1e6, 1e-9);  // 21.2% every tick
+  // Without the switch the same frames are 393 bits each: 78.6%, refused.
+  EXPECT_NE(budget_error(rig(kCan + ", fd: true", 12)).find("78.6%"), std::string::npos);
+}
+
+TEST(BusBudget, AddressesTheProtocolCannotCarryAreRefusedAtTheActuator) {
+  std::string text = rig(kCan + ", protocol: cia402");
+  text.replace(text.find("address: 1"), 10, "address: 128");
+  EXPECT_EQ(budget_error(text),
+            "RIG:6:7: rig.actuators 'a1'.address: expected 1..127 on cia402 bus b0, found 128");
+}
+
+// A runtime file around `extra` top-level blocks.
+std::string runtime(const std::string& extra) {
+  return "head: h\nrig: r\nexpressions: e\n" + extra;
+}
+
+TEST(HardwareConfig, HardwareSafetyIoAndGamepadBlocksParse) {
+  const LoadedConfig cfg = load_config(default_config_path());
+  EXPECT_EQ(cfg.runtime.hardware, HardwareMode::kSim);
+  ASSERT_TRUE(cfg.runtime.safety_io.has_value());
+  EXPECT_EQ(cfg.runtime.safety_io->chip, "gpiochip0");
+  EXPECT_EQ(cfg.runtime.safety_io->gpio.estop_line, 17u);
+  EXPECT_FALSE(cfg.runtime.safety_io->gpio.estop_active_low);
+  EXPECT_EQ(cfg.runtime.safety_io->gpio.led_line, 22);
+  ASSERT_TRUE(cfg.runtime.gamepad.has_value());
+  const GamepadConfig& g = *cfg.runtime.gamepad;
+  EXPECT_EQ(g.selector.vendor, 0x1209);
+  EXPECT_EQ(g.selector.product, 0xFACE);
+  ASSERT_EQ(g.terms.size(), 8u);
+  // jaw_pitch_deg = 9 + 9·y degrees, in radians.
+  EXPECT_EQ(g.terms[0].signal, cfg.head.layout.jaw_pitch());
+  EXPECT_NEAR(g.terms[0].gain, 9.0 * 3.14159265358979 / 180.0, 1e-9);
+  EXPECT_NEAR(g.terms[0].offset, 9.0 * 3.14159265358979 / 180.0, 1e-9);
+  EXPECT_EQ(g.terms[2].source, GamepadTerm::Source::kButton);
+
+  ConfigOverrides o;
+  o.hardware = HardwareMode::kReal;
+  EXPECT_EQ(load_config(default_config_path(), o).runtime.hardware, HardwareMode::kReal);
+}
+
+std::string runtime_error(const std::string& text) {
+  TempFile f(text);
+  try {
+    load_runtime_config(f.path());
+  } catch (const ConfigError& e) {
+    std::string msg = e.what();
+    const auto at = msg.find(f.path());
+    if (at != std::string::npos) msg.replace(at, f.path().size(), "RT");
+    return msg;
+  }
+  return "ok";
+}
+
+TEST(HardwareConfig, BadBlocksNameTheirPositionKeyExpectedAndFound) {
+  EXPECT_EQ(runtime_error(runtime("hardware: yes\n")),
+            "RT:4:11: hardware: expected sim or real, found 'yes'");
+  EXPECT_EQ(runtime_error(runtime("safety_io: { estop_line: 3, power_line: 3 }\n")),
+            "RT:4:41: safety_io.power_line: expected a line other than estop_line, found '3'");
+  EXPECT_EQ(
+      runtime_error(runtime("safety_io: { estop_line: 3, power_line: 4, estop_active: up }\n")),
+      "RT:4:58: safety_io.estop_active: expected high or low, found 'up'");
+  EXPECT_EQ(runtime_error(runtime("gamepad: { vendor: 0x1209, map: [] }\n")),
+            "RT:4:10: gamepad: expected either path, or vendor and product, found neither");
+  EXPECT_EQ(runtime_error(runtime("gamepad: { path: /dev/hidraw0, axes: [{ name: x, byte: 0 }], "
+                                  "map: [{ axis: z, signal: jaw_pitch_deg }] }\n")),
+            "RT:4:76: gamepad.map[0].axis: expected the name of one of the gamepad's axes (x), "
+            "found 'z'");
+}
+
+TEST(HardwareConfig, AGamepadSignalTheHeadDoesNotHaveIsNamed) {
+  TempFile f(
+      runtime("gamepad: { path: /dev/hidraw0, buttons: [{ name: a, byte: 0, bit: 0 }], "
+              "map: [{ button: a, signal: jaw_roll_deg }] }\n"));
+  RuntimeConfig rt = load_runtime_config(f.path());
+  try {
+    resolve_gamepad_terms(*rt.gamepad, head().layout);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              f.path() +
+                  ":4:100: gamepad.map[0].signal: expected a face signal of the head "
+                  "(muscle name, jaw_pitch_deg, eyelid_closure_l, ...), found unknown "
+                  "signal 'jaw_roll_deg'");
+  }
+}
+
+// An actuator's `encoding` against its bus (firmware-host/model/rig_encoding_check.hpp).
+
+// One rotary actuator, hardware range -6..20 deg, on one bus; `encoding` is
+// its flow mapping or empty.
+std::string encoded_rig(const std::string& bus, const std::string& encoding) {
+  return "rig:\n  name: t\n  buses:\n    - { name: b0, " + bus +
+         " }\n  actuators:\n    - { name: a1, kind: rotary, bus: b0, address: 1, "
+         "position_deg: { min: -6, max: 20 }, max_velocity_deg_s: 100, "
+         "max_acceleration_deg_s2: 1000, rest_deg: 0, map: { terms: { jaw_pitch_deg: 1 } }" +
+         (encoding.empty() ? "" : ", encoding: " + encoding) + " }\n";
+}
+
+// Where its encoding's flow mapping starts: RIG:6:<column>.
+std::string at(const std::string& text) {
+  const std::size_t line6 = text.find("    - { name: a1");
+  return "RIG:6:" + std::to_string(text.find("encoding: ", line6) + 10 - line6 + 1);
+}
+
+const std::string kModbus = "type: modbus_tcp, host: 127.0.0.1";
+
+TEST(RigEncoding, ARawTypeThatCannotCarryTheRangeIsRefusedWithItsPlace) {
+  const std::string text = encoded_rig(kModbus, "{ raw: uint16, scale: 100 }");
+  EXPECT_EQ(budget_error(text),
+            at(text) +
+                ": actuator a1 encoding: expected the hardware range to fit strictly inside raw "
+                "uint16 (0, 65535), found position -6 deg encoding to -600 counts");
+  const std::string wide = encoded_rig(kModbus, "{ raw: int16, scale: 2000 }");  // 20 deg -> 40000
+  EXPECT_EQ(budget_error(wide),
+            at(wide) +
+                ": actuator a1 encoding: expected the hardware range to fit strictly inside raw "
+                "int16 (-32767, 32767), found position 20 deg encoding to 40000 "
+                "counts");
+  EXPECT_EQ(budget_error(encoded_rig(kModbus, "{ raw: uint16, scale: 50, offset: 32768 }")), "ok");
+  // The hardware minimum on the raw limit itself: a saturated reading there
+  // could hide the actuator beyond its range, so it is refused too.
+  const std::string edge = encoded_rig(kModbus, "{ raw: uint16, scale: 100, offset: 600 }");
+  EXPECT_EQ(budget_error(edge),
+            at(edge) +
+                ": actuator a1 encoding: expected the hardware range to fit strictly inside raw "
+                "uint16 (0, 65535), found position -6 deg encoding to 0 counts");
+}
+
+TEST(RigEncoding, Int32IsRefusedOnModbusAndInTwoByteCanFields) {
+  const std::string modbus = encoded_rig(kModbus, "{ raw: int32, scale: 10000 }");
+  EXPECT_EQ(budget_error(modbus),
+            at(modbus) +
+                ": actuator a1 encoding: expected raw int16 or uint16 on Modbus bus b0 (one "
+                "register per channel), found raw int32");
+  const std::string can = encoded_rig(kCan + ", protocol: custom, values: int16", "{ raw: int32 }");
+  EXPECT_EQ(budget_error(can), at(can) +
+                                   ": actuator a1 encoding: expected raw int16 or uint16 on bus b0 "
+                                   "(values: int16, 2-byte fields), found raw int32");
+  EXPECT_EQ(budget_error(encoded_rig(kCan + ", protocol: custom, values: int32", "{ raw: int32 }")),
+            "ok");
+}
+
+TEST(RigEncoding, CiA402DrivesTakeAnInt32EncodingOnly) {
+  const std::string cia = kCan + ", protocol: cia402, rate_divider: 4";
+  const std::string i16 = encoded_rig(cia, "{ raw: int16, scale: 100 }");
+  EXPECT_EQ(budget_error(i16), at(i16) +
+                                   ": actuator a1 encoding: expected raw int32 on CiA 402 bus b0 "
+                                   "(drives count in 32 bits), found raw int16");
+  const std::string u16 = encoded_rig(cia, "{ raw: uint16, scale: 100 }");
+  EXPECT_EQ(budget_error(u16), at(u16) +
+                                   ": actuator a1 encoding: expected raw int32 on CiA 402 bus b0 "
+                                   "(drives count in 32 bits), found raw uint16");
+  EXPECT_EQ(budget_error(encoded_rig(cia, "{ raw: int32, scale: 2000, offset: -40000 }")), "ok");
+  EXPECT_EQ(budget_error(encoded_rig(cia, "")), "ok");  // the bus's counts_per_rev
+  // 20 deg at 2e8 counts per deg is beyond int32.
+  const std::string wide = encoded_rig(cia, "{ raw: int32, scale: 2e8 }");
+  EXPECT_EQ(budget_error(wide),
+            at(wide) +
+                ": actuator a1 encoding: expected the hardware range to fit strictly inside raw "
+                "int32 (-2.14748e+09, 2.14748e+09), found position 20 deg encoding to 4e+09 "
+                "counts");
+  // Without an encoding, the bus's counts must fit too: 20 deg at 1e11 counts per rev.
+  const std::string bus = encoded_rig(cia + ", counts_per_rev: 1e11", "");
+  EXPECT_NE(budget_error(bus).find("actuator a1 encoding: expected the hardware range to fit "
+                                   "strictly inside raw int32 (-2.14748e+09, 2.14748e+09), found "
+                                   "position 20 deg encoding to 5.55556e+09 counts"),
+            std::string::npos)
+      << budget_error(bus);
+}
+
+TEST(RigEncoding, AnActuatorWithoutEncodingTakesItsBusDefault) {
+  TempFile i32(encoded_rig(kCan + ", protocol: custom, values: int32", ""));
+  const ActuatorEncoding e = load_rig_config(i32.path(), head().layout).actuators[0].model.encoding;
+  EXPECT_EQ(e.raw, ActuatorEncoding::Raw::kInt32);  // 0.0001 deg per count, as before encodings
+  EXPECT_EQ(e.scale, 10000.0);
+  TempFile mb(encoded_rig(kModbus, "{ raw: uint16, scale: 50, offset: 32768 }"));
+  const ActuatorEncoding m = load_rig_config(mb.path(), head().layout).actuators[0].model.encoding;
+  EXPECT_EQ(m.raw, ActuatorEncoding::Raw::kUint16);
+  EXPECT_EQ(m.offset, 32768.0);
+  TempFile i16(encoded_rig(kCan, ""));
+  EXPECT_EQ(load_rig_config(i16.path(), head().layout).actuators[0].model.encoding.scale, 100.0);
+}
+
+}  // namespace
+}  // namespace facectl

@@ -1,0 +1,78 @@
+// Bad and truncated FAP files and shows: a clear line-numbered error, exit 2,
+// and no output (an existing output folder stays as it was).
+#include <gtest/gtest.h>
+
+#include "simulate_process.hpp"
+
+namespace facectl {
+namespace {
+
+using testing::run_facectl;
+using testing::source_path;
+using testing::TempDir;
+
+struct BadInput {
+  std::string flag;  // --fap or --show
+  std::string file;  // a FAP test file, or show text to write
+  std::string text;  // empty: `file` is in tests/firmware-host/fap/files
+  int line;
+  std::string says = "expected";  // a part of the message
+};
+
+void PrintTo(const BadInput& b, std::ostream* os) {
+  *os << b.flag << " " << b.file;
+}
+
+class SimulateBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(SimulateBadInput, GetsALineNumberedErrorAndWritesNothing) {
+  const BadInput& b = GetParam();
+  TempDir tmp;
+  const std::string path =
+      b.text.empty() ? std::string(FAP_TEST_FILES) + "/" + b.file : tmp / b.file;
+  if (!b.text.empty()) testing::write_text(path, b.text);
+  // A folder from an earlier run: it must survive a failed one untouched.
+  std::filesystem::create_directories(tmp.path() / "kept");
+  testing::write_text(tmp.path() / "kept/summary.json", "{}\n");
+  for (const std::string& out : {tmp / "new", tmp / "kept"}) {
+    const auto r = run_facectl(
+        {"simulate", "--rig", source_path("config/rigs/default.yaml"), b.flag, path, "--out", out},
+        tmp / "log");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(path + ":" + std::to_string(b.line) + ":"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find(b.says), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "new"));
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / ".new.partial"));
+  EXPECT_EQ(testing::folder_contents(tmp.path() / "kept").size(), 1u);
+  EXPECT_EQ(testing::read_text(tmp.path() / "kept/summary.json"), "{}\n");
+}
+
+INSTANTIATE_TEST_SUITE_P(Fap, SimulateBadInput,
+                         ::testing::Values(BadInput{"--fap", "bad_version.fap", "", 1},
+                                           BadInput{"--fap", "bad_header_fields.fap", "", 1},
+                                           BadInput{"--fap", "mask_count.fap", "", 2},
+                                           BadInput{"--fap", "non_numeric.fap", "", 4},
+                                           BadInput{"--fap", "out_of_order.fap", "", 7},
+                                           BadInput{"--fap", "truncated_frames.fap", "", 6},
+                                           BadInput{"--fap", "truncated_values.fap", "", 5}));
+
+INSTANTIATE_TEST_SUITE_P(
+    Show, SimulateBadInput,
+    ::testing::Values(
+        BadInput{"--show", "bad_time.yaml",
+                 "show:\n  name: bad\n  keyframes:\n    - { t: 0.0, expression: neutral }\n"
+                 "    - { t: soon, expression: joy }\n",
+                 5},
+        BadInput{"--show", "truncated.yaml",
+                 "show:\n  name: cut\n  keyframes:\n    - { t: 0.0, expression: neutral }\n"
+                 "    - { t: 1.0, expression: jo",
+                 5, "YAML syntax error"},
+        BadInput{"--show", "unknown_expression.yaml",
+                 "show:\n  name: bad\n  keyframes:\n    - { t: 0.0, expression: neutral }\n"
+                 "    - { t: 1.0, expression: glee }\n",
+                 5}));
+
+}  // namespace
+}  // namespace facectl

@@ -1,0 +1,228 @@
+// facectl verify: passes the shipped rigs, fails each deliberately broken rig
+// under tests/firmware-host/verify/rigs naming the actuator, the limit and a witness, and
+// its static proof is sound (sampling never finds a command outside it).
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "firmware-host/config/loaded_config.hpp"
+#include "firmware-host/verify/static_proof.hpp"
+#include "firmware-host/verify/verify_command.hpp"
+#include "tests/support/temp_file.hpp"
+
+namespace facectl {
+namespace {
+
+const std::string kSource = FACECTL_SOURCE_DIR;
+
+LoadedConfig load_rig(const std::string& rig) {
+  ConfigOverrides o;
+  o.rig_path = rig;
+  o.keep_problems = true;
+  return load_config(default_config_path(), o);
+}
+
+const verify::Finding* find_failure(const std::vector<verify::Finding>& findings,
+                                    const std::string& check) {
+  for (const auto& f : findings) {
+    if (f.severity == verify::Finding::Severity::kFail && f.check == check) return &f;
+  }
+  return nullptr;
+}
+
+TEST(Verify, PassesBothShippedRigs) {
+  VerifyOptions o;
+  o.ticks = 100'000;
+  o.rig = kSource + "/config/rigs/default.yaml";
+  o.shows = {kSource + "/config/shows/demo.yaml"};
+  EXPECT_EQ(verify_command(o), 0);
+  o.rig = kSource + "/config/rigs/hobby.yaml";
+  o.shows.clear();
+  EXPECT_EQ(verify_command(o), 0);
+}
+
+TEST(Verify, ARigWithActuatorCoupledLimitsPassesItsAdversarialSearch) {
+  // Four actuator coupled limits that the mapping's extremes overrun, over
+  // jerk-limited and shared actuators: a million adversarial ticks find no
+  // violation of them, nor of any actuator's own limits (docs/SAFETY.md).
+  VerifyOptions o;
+  o.rig = kSource + "/tests/firmware-host/verify/rigs/actuator_coupled.yaml";
+  o.ticks = 1'000'000;
+  EXPECT_EQ(verify_command(o), 0);
+}
+
+TEST(Verify, AMappingBeyondAHardwareLimitFailsWithItsWitness) {
+  const auto cfg = load_rig(kSource + "/tests/firmware-host/verify/rigs/beyond_hardware.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "hardware range");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->subject, "mouth_corner_l");
+  EXPECT_NE(f->message.find("60 deg > hardware max 50 deg"), std::string::npos) << f->message;
+  EXPECT_EQ(f->witness, "zygomaticus_major_l=1, levator_anguli_oris_l=1");
+  VerifyOptions o;
+  o.rig = kSource + "/tests/firmware-host/verify/rigs/beyond_hardware.yaml";
+  o.ticks = 1000;
+  EXPECT_EQ(verify_command(o), 1);
+}
+
+TEST(Verify, ANonMonotoneCalibrationFailsNamingThePoints) {
+  const auto cfg =
+      load_rig(kSource + "/tests/firmware-host/verify/rigs/non_monotone_calibration.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "rig");
+  ASSERT_NE(f, nullptr);
+  EXPECT_NE(f->message.find("calibration is not monotone: effector_mm '4' -> position_deg '30', "
+                            "but effector_mm '8' -> position_deg '25' (actuator 'brow_l')"),
+            std::string::npos)
+      << f->message;
+  // And `facectl run` refuses such a rig outright.
+  ConfigOverrides strict;
+  strict.rig_path = kSource + "/tests/firmware-host/verify/rigs/non_monotone_calibration.yaml";
+  EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
+}
+
+TEST(Verify, AnEnvelopeWidenedWithoutTheOverrideIsRefused) {
+  VerifyOptions o;
+  o.rig = kSource + "/tests/firmware-host/verify/rigs/widened_envelope.yaml";
+  o.ticks = 1000;
+  EXPECT_EQ(verify_command(o), 2);  // the rig is refused as it is read
+  try {
+    load_rig(o.rig);
+    FAIL() << "a widened envelope was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("widened_envelope.yaml:14:16: rig.mandible_envelope."
+                                         "pitch_deg: expected a range inside the design envelope "
+                                         "-4..18 deg (widening needs `widen_override: true`), "
+                                         "found [0.000000, 25.000000]"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Verify, AntagonistsAllowedToCoActivateFail) {
+  const auto cfg = load_rig(kSource + "/tests/firmware-host/verify/rigs/antagonists.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "antagonists");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->subject, "zygomaticus_major_l + depressor_anguli_oris_l");
+  EXPECT_NE(f->message.find("co-activation reaches 2 > max_sum 1"), std::string::npos);
+  EXPECT_EQ(f->witness, "zygomaticus_major_l=1, depressor_anguli_oris_l=1");
+}
+
+TEST(Verify, AnActuatorThatNothingDrivesFails) {
+  const auto cfg = load_rig(kSource + "/tests/firmware-host/verify/rigs/undriven.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "rig");
+  ASSERT_NE(f, nullptr);
+  EXPECT_NE(f->message.find("actuator 'neck_pan': nothing drives it"), std::string::npos);
+}
+
+TEST(Verify, AnOvercommittedBusFailsWithItsNumbers) {
+  const auto cfg = load_rig(kSource + "/tests/firmware-host/verify/rigs/bus_overcommitted.yaml");
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "bus budget");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->subject, "can0");
+  EXPECT_NE(f->message.find("216.0% of 125000 bit/s"), std::string::npos) << f->message;
+  // `facectl run` refuses it as it loads.
+  ConfigOverrides strict;
+  strict.rig_path = kSource + "/tests/firmware-host/verify/rigs/bus_overcommitted.yaml";
+  EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
+}
+
+// A CiA 402 drive counts in its bus's units, not in the actuator's (default,
+// int16) `encoding`: a neck that turns ±340° is no encoding failure there,
+// but is one on a custom CAN bus, whose int16 field carries ±327.67°.
+TEST(Verify, ChecksEncodingsOnlyWhereTheDriverUsesThem) {
+  std::ifstream in(kSource + "/config/rigs/default.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string rig = text.str();
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = rig.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    rig.replace(at, from.size(), to);
+  };
+  replace("address: 4\n      position_deg: { min: -65, max: 65 }",
+          "address: 4\n      position_deg: { min: -340, max: 340 }");
+  const testing::TempFile custom(rig, ".yaml");
+  ConfigOverrides o;
+  o.rig_path = custom.path();
+  o.keep_problems = true;
+  EXPECT_THROW(load_config(default_config_path(), o), ConfigError);  // the loader refuses it
+
+  replace("protocol: custom\n      values: int16", "protocol: cia402");
+  const testing::TempFile cia402(rig, ".yaml");
+  const auto cfg = load_rig(cia402.path());
+  const auto proof = verify::prove(cfg);
+  const auto* f = find_failure(proof.findings, "encoding");
+  EXPECT_EQ(f, nullptr) << f->subject << ": " << f->message;
+}
+
+TEST(Verify, ChecksCiA402EncodingsInTheDrivesInt32Counts) {
+  std::ifstream in(kSource + "/config/rigs/default.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string rig = text.str();
+  const std::string from = "protocol: custom\n      values: int16";
+  ASSERT_NE(rig.find(from), std::string::npos);
+  rig.replace(rig.find(from), from.size(), "protocol: cia402");
+  const testing::TempFile cia402(rig, ".yaml");
+  auto cfg = load_rig(cia402.path());
+  EXPECT_EQ(find_failure(verify::prove(cfg).findings, "encoding"), nullptr);  // the bus's counts
+  // neck_pan's own encoding: 65 deg at 5e7 counts per deg is beyond int32.
+  for (ActuatorModel& a : cfg.built.model.actuators) {
+    if (a.name == "neck_pan") a.encoding = {ActuatorEncoding::Raw::kInt32, 5e7, 0.0};
+  }
+  const auto* f = find_failure(verify::prove(cfg).findings, "encoding");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->subject, "neck_pan");
+  EXPECT_NE(f->message.find("does not fit raw int32: position -65 encodes to -3250000000"),
+            std::string::npos)
+      << f->message;
+}
+
+// Soundness: millions of admissible faces (random points of the box, made
+// admissible by the tick's own projection, plus the box's extremes) never map
+// outside the range the proof reported.
+void expect_sound(const std::string& rig, int samples) {
+  const auto cfg = load_rig(rig);
+  const ControllerModel& m = cfg.built.model;
+  const auto proof = verify::prove(cfg);
+  const verify::Polytope set = verify::admissible_face_set(m);
+  MappingWorkspace w = make_mapping_workspace(m.mapping);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::array<double, kMaxFaceSignals> face{};
+  std::array<double, kMaxActuators> out{};
+  for (int s = 0; s < samples; ++s) {
+    const bool corner = s % 4 == 0;
+    for (std::size_t j = 0; j < set.size(); ++j) {
+      const double t = corner ? static_cast<double>(rng() % 2) : u(rng);
+      face[j] = set.lo[j] + t * (set.hi[j] - set.lo[j]);
+    }
+    m.face_constraints.project(face.data());
+    map_to_actuators(m.mapping, w, face, out);
+    for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+      const auto& r = proof.actuators[i];
+      const double scale = r.unit == "deg" ? 180.0 / M_PI : 1e3;
+      const double x = out[i] * scale;
+      const double eps = 1e-9 * (1.0 + std::fabs(x));
+      ASSERT_GE(x, r.lo - eps) << r.name << " at sample " << s;
+      ASSERT_LE(x, r.hi + eps) << r.name << " at sample " << s;
+    }
+  }
+}
+
+TEST(Verify, TheStaticProofIsSoundOnTheDefaultRig) {
+  expect_sound(kSource + "/config/rigs/default.yaml", 2'000'000);
+}
+
+TEST(Verify, TheStaticProofIsSoundOnTheHobbyRig) {
+  expect_sound(kSource + "/config/rigs/hobby.yaml", 1'000'000);
+}
+
+}  // namespace
+}  // namespace facectl
