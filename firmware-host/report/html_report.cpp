@@ -2,26 +2,10 @@
 
 #include <cstdio>
 
+#include "firmware-host/report/markup_escape.hpp"
+
 namespace facectl {
 namespace {
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '&') {
-      out += "&amp;";
-    } else if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else if (c == '"') {
-      out += "&quot;";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
 
 std::string number(const SummaryJson& v) {
   if (v.is_null()) return "&ndash;";
@@ -48,15 +32,16 @@ img.frame { width: 400px; margin: 2px; }
 std::string html_report(const SummaryJson& s, const std::vector<std::string>& plots,
                         const std::vector<std::string>& frames) {
   std::string o = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
-  o += "<title>facectl simulate: " + escape(s["input"]["name"].get<std::string>()) + "</title>\n";
+  o += "<title>facectl simulate: " + escape_markup(s["input"]["name"].get<std::string>()) +
+       "</title>\n";
   o += kStyle;
   o += "</head>\n<body>\n";
-  o += "<h1>facectl simulate: " + escape(s["input"]["kind"].get<std::string>()) + " " +
-       escape(s["input"]["name"].get<std::string>()) + "</h1>\n";
-  o += "<p>Rig " + escape(s["rig"].get<std::string>()) + ", head " +
-       escape(s["head"].get<std::string>()) + ": " + number(s["simulated_s"]) + " s simulated at " +
-       number(s["rate_hz"]) + " Hz after enabling in " + number(s["enable_s"]) +
-       " s. Files: <a href=\"telemetry.csv\">telemetry.csv</a>, " +
+  o += "<h1>facectl simulate: " + escape_markup(s["input"]["kind"].get<std::string>()) + " " +
+       escape_markup(s["input"]["name"].get<std::string>()) + "</h1>\n";
+  o += "<p>Rig " + escape_markup(s["rig"].get<std::string>()) + ", head " +
+       escape_markup(s["head"].get<std::string>()) + ": " + number(s["simulated_s"]) +
+       " s simulated at " + number(s["rate_hz"]) + " Hz after enabling in " +
+       number(s["enable_s"]) + " s. Files: <a href=\"telemetry.csv\">telemetry.csv</a>, " +
        "<a href=\"summary.json\">summary.json</a>, <a href=\"summary.txt\">summary.txt</a>.</p>\n";
 
   o += "<h2>Problems</h2>\n";
@@ -64,10 +49,12 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
     o += "<p class=\"ok\">None.</p>\n";
   } else {
     o += "<ul class=\"problems\">\n";
-    for (const auto& p : s["problems"]) o += "<li>" + escape(p.get<std::string>()) + "</li>\n";
+    for (const auto& p : s["problems"])
+      o += "<li>" + escape_markup(p.get<std::string>()) + "</li>\n";
     o += "</ul>\n";
   }
-  for (const auto& n : s["notes"]) o += "<p>Note: " + escape(n.get<std::string>()) + "</p>\n";
+  for (const auto& n : s["notes"])
+    o += "<p>Note: " + escape_markup(n.get<std::string>()) + "</p>\n";
 
   o += "<h2>Actuators</h2>\n<table>\n<tr><th>actuator</th><th>bus</th><th>unit</th>"
        "<th>tracking RMS</th><th>tracking max</th><th>thermal peak</th><th>duty peak</th>"
@@ -75,7 +62,7 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
   for (const auto& a : s["actuators"]) {
     std::string limits;
     for (const auto& [name, t] : a["limits"].items()) {
-      limits += (limits.empty() ? "" : ", ") + escape(name) + " " +
+      limits += (limits.empty() ? "" : ", ") + escape_markup(name) + " " +
                 std::to_string(t["count"].get<unsigned long long>()) + " / " + number(t["time_s"]);
     }
     const std::string name = a["name"].get<std::string>();
@@ -83,12 +70,12 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
     for (const auto& p : s["problems"])
       problem = problem || p.get<std::string>().rfind(name + ":", 0) == 0;
     o += std::string("<tr") + (problem ? " class=\"problem\"" : "") + "><td><a href=\"#" +
-         escape(name) + "\">" + escape(name) + "</a></td><td>" +
-         escape(a["bus"].get<std::string>()) + "</td><td>" + escape(a["unit"].get<std::string>()) +
-         "</td><td>" + number(a["tracking_rms"]) + "</td><td>" + number(a["tracking_max"]) +
-         "</td><td>" + number(a["plant"]["thermal_peak"]) + "</td><td>" +
-         number(a["plant"]["duty_peak"]) + "</td><td>" + (limits.empty() ? "&ndash;" : limits) +
-         "</td></tr>\n";
+         escape_markup(name) + "\">" + escape_markup(name) + "</a></td><td>" +
+         escape_markup(a["bus"].get<std::string>()) + "</td><td>" +
+         escape_markup(a["unit"].get<std::string>()) + "</td><td>" + number(a["tracking_rms"]) +
+         "</td><td>" + number(a["tracking_max"]) + "</td><td>" +
+         number(a["plant"]["thermal_peak"]) + "</td><td>" + number(a["plant"]["duty_peak"]) +
+         "</td><td>" + (limits.empty() ? "&ndash;" : limits) + "</td></tr>\n";
   }
   o += "</table>\n";
 
@@ -96,7 +83,7 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
        "<th>time (s)</th></tr>\n";
   auto row = [&](const std::string& name, const SummaryJson& t) {
     const bool hit = t["count"].get<unsigned long long>() > 0;
-    o += std::string("<tr") + (hit ? " class=\"problem\"" : "") + "><td>" + escape(name) +
+    o += std::string("<tr") + (hit ? " class=\"problem\"" : "") + "><td>" + escape_markup(name) +
          "</td><td>" + std::to_string(t["count"].get<unsigned long long>()) + "</td><td>" +
          number(t["time_s"]) + "</td></tr>\n";
   };
@@ -111,18 +98,19 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
   for (const auto& b : s["buses"]) {
     const bool over = !b["load"].is_null() && b["load"].get<double>() > 1.0;
     o += std::string("<tr") + (over ? " class=\"problem\"" : "") + "><td>" +
-         escape(b["name"].get<std::string>()) + "</td><td>" + escape(b["type"].get<std::string>()) +
-         "</td><td>" + (b.contains("budget_load") ? number(b["budget_load"]) : "&ndash;") +
-         "</td><td>" + number(b["load"]) + "</td><td>" + number(b["cycle_time_s"]) + "</td></tr>\n";
+         escape_markup(b["name"].get<std::string>()) + "</td><td>" +
+         escape_markup(b["type"].get<std::string>()) + "</td><td>" +
+         (b.contains("budget_load") ? number(b["budget_load"]) : "&ndash;") + "</td><td>" +
+         number(b["load"]) + "</td><td>" + number(b["cycle_time_s"]) + "</td></tr>\n";
   }
   o += "</table>\n";
 
   o += "<h2>Actuator plots</h2>\n";
   for (const std::string& p : plots) {
     const std::string name = p.substr(0, p.rfind('.'));
-    o += "<h3 id=\"" + escape(name) + "\">" + escape(name) +
-         "</h3>\n<img class=\"plot\" src=\"plots/" + escape(p) + "\" alt=\"" + escape(name) +
-         "\">\n";
+    o += "<h3 id=\"" + escape_markup(name) + "\">" + escape_markup(name) +
+         "</h3>\n<img class=\"plot\" src=\"plots/" + escape_markup(p) + "\" alt=\"" +
+         escape_markup(name) + "\">\n";
   }
   if (!frames.empty()) {
     // A long show has thousands of frames: the page shows at most kShown of
@@ -135,8 +123,8 @@ std::string html_report(const SummaryJson& s, const std::vector<std::string>& pl
          (step > 1 ? ", every " + std::to_string(step) + "th shown" : std::string()) +
          ".</p>\n<div>\n";
     for (std::size_t k = 0; k < frames.size(); k += step) {
-      o += "<img class=\"frame\" loading=\"lazy\" src=\"" + escape(frames[k]) + "\" alt=\"" +
-           escape(frames[k]) + "\">\n";
+      o += "<img class=\"frame\" loading=\"lazy\" src=\"" + escape_markup(frames[k]) + "\" alt=\"" +
+           escape_markup(frames[k]) + "\">\n";
     }
     o += "</div>\n";
   }

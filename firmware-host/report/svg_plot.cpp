@@ -8,31 +8,10 @@
 #include <sstream>
 #include <system_error>
 
+#include "firmware-host/report/markup_escape.hpp"
+
 namespace facectl {
 namespace {
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 // Two decimals, the same bytes as printf's "%.2f" (std::to_chars is specified
 // so), several times faster: a plot writes tens of thousands of coordinates.
@@ -126,7 +105,7 @@ std::string render_svg(const Plot& plot, int width, int height) {
     << "\" font-family=\"DejaVu Sans, Arial, sans-serif\" font-size=\"12\">\n";
   o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   o << "<text x=\"" << left << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">"
-    << escape(plot.title) << "</text>\n";
+    << escape_markup(plot.title) << "</text>\n";
   for (const auto& s : plot.spans) {
     o << "<rect x=\"" << num(px(s.x0)) << "\" y=\"" << top << "\" width=\""
       << num(std::max(0.5, px(s.x1) - px(s.x0))) << "\" height=\"" << h << "\" fill=\"" << s.color
@@ -167,12 +146,13 @@ std::string render_svg(const Plot& plot, int width, int height) {
   }
   for (std::size_t r = 0; r < plot.mark_rows.size(); ++r) {
     o << "<text x=\"" << left - 6 << "\" y=\"" << top + h + 31 + 10 * static_cast<double>(r)
-      << "\" text-anchor=\"end\" font-size=\"9\">" << escape(plot.mark_rows[r]) << "</text>\n";
+      << "\" text-anchor=\"end\" font-size=\"9\">" << escape_markup(plot.mark_rows[r])
+      << "</text>\n";
   }
   o << "<text x=\"" << left + w / 2 << "\" y=\"" << height - 6 << "\" text-anchor=\"middle\">"
-    << escape(plot.x_label) << "</text>\n";
+    << escape_markup(plot.x_label) << "</text>\n";
   o << "<text transform=\"translate(16," << top + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
-    << escape(plot.y_label) << "</text>\n";
+    << escape_markup(plot.y_label) << "</text>\n";
   double ly = top + 8;
   auto legend = [&](const std::string& color, const std::string& label, bool dashed, bool box) {
     const double lx = left + w + 14;
@@ -184,7 +164,8 @@ std::string render_svg(const Plot& plot, int width, int height) {
         << "\" stroke=\"" << color << "\" stroke-width=\"2\""
         << (dashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
     }
-    o << "<text x=\"" << lx + 28 << "\" y=\"" << ly + 4 << "\">" << escape(label) << "</text>\n";
+    o << "<text x=\"" << lx + 28 << "\" y=\"" << ly + 4 << "\">" << escape_markup(label)
+      << "</text>\n";
     ly += 18;
   };
   for (const auto& s : plot.series) legend(s.color, s.label, false, false);
