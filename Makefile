@@ -4,16 +4,20 @@ CMAKE_FLAGS ?=
 # The benchmarks' build: profile-guided as well (cmake/pgo.cmake), without tests.
 BENCH_BUILD ?= build-bench
 
-.PHONY: setup build run test bench clean
+.PHONY: setup configure build run test bench clean
 
 setup:
 	bash scripts/setup.sh
 
-build: setup
+configure: setup
 	cmake -S . -B $(BUILD) -G Ninja $(CMAKE_FLAGS)
+
+build: configure
 	cmake --build $(BUILD)
 
-run: build
+# Builds only the program, not the tests: the quickest way to a running head.
+run: configure
+	cmake --build $(BUILD) --target facectl
 	./$(BUILD)/firmware-host/facectl run
 
 test: build
