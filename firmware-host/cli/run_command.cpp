@@ -8,7 +8,11 @@
 #include <csignal>
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "control/controller.hpp"
 #include "control/realtime/loop_timer.hpp"
@@ -43,10 +47,36 @@ void print_event(const TransitionEvent& ev) {
                ev.detail[0] != '\0' ? " — " : "", ev.detail);
 }
 
-}  // namespace
+// Everything one run owns, declared in the order the stages build it: members
+// are destroyed in reverse, so each input thread's mailbox, each writer's ring
+// and each bus outlives its user.
+struct RunSession {
+  std::vector<Injection> injections;
+  std::unique_ptr<LoadedConfig> cfg;
+  RealtimeReport rt;
+  std::unique_ptr<SimHardware> sim;
+  std::unique_ptr<RealHardware> real;
+  LatestValueMailbox<FaceCommand> mailbox;
+  SpscRing<TransitionEvent> events{256};
+  std::unique_ptr<SpscRing<TelemetryRecord>> telemetry;
+  std::unique_ptr<TelemetryWriter> writer;
+  std::unique_ptr<Controller> controller;
+  std::unique_ptr<ShowPlayer> player;
+  std::unique_ptr<HidGamepad> pad;
+  std::unique_ptr<ShowRecorder> recorder;
+  std::unique_ptr<GamepadPuppeteer> puppeteer;
+  double end_s = 1e300;
+  LoopStats stats;
+  std::unique_ptr<RealtimeLoop> loop;
+  std::atomic<bool> stop{false};
+  std::thread rt_thread;
 
-int run_command(const RunOptions& options) {
-  // 1. Everything is loaded and validated before anything is enabled.
+  const ControllerModel& model() const { return cfg->built.model; }
+};
+
+// Stage 1. Everything is loaded and validated before anything is enabled.
+// Throws ConfigError (or another exception) naming what is wrong.
+void load(const RunOptions& options, RunSession& s) {
   ConfigOverrides overrides;
   overrides.show_path = options.show;
   overrides.rate_hz = options.rate_hz;
@@ -56,129 +86,144 @@ int run_command(const RunOptions& options) {
     } else if (*options.hardware == "real") {
       overrides.hardware = HardwareMode::kReal;
     } else {
-      std::fprintf(stderr, "facectl run: --hardware: expected sim or real, found '%s'\n",
-                   options.hardware->c_str());
-      return 2;
+      throw ConfigError("--hardware: expected sim or real, found '" + *options.hardware + "'");
     }
   }
-  std::vector<Injection> injections;
-  std::unique_ptr<LoadedConfig> cfg;
-  try {
-    for (const auto& text : options.inject) injections.push_back(parse_injection(text));
-    const std::string path = options.config.empty() ? default_config_path() : options.config;
-    cfg = std::make_unique<LoadedConfig>(load_config(path, overrides));
-    for (const auto& inj : injections) {
-      if (inj.kind == Injection::Kind::kBusFault &&
-          cfg->rig.buses.end() ==
-              std::find_if(cfg->rig.buses.begin(), cfg->rig.buses.end(),
-                           [&](const BusConfig& b) { return b.name == inj.bus; })) {
-        throw ConfigError("--inject bus_fault:" + inj.bus + ": expected a bus of rig '" +
-                          cfg->rig.name + "', found no such bus");
-      }
+  for (const auto& text : options.inject) s.injections.push_back(parse_injection(text));
+  const std::string path = options.config.empty() ? default_config_path() : options.config;
+  s.cfg = std::make_unique<LoadedConfig>(load_config(path, overrides));
+  const LoadedConfig& cfg = *s.cfg;
+  for (const auto& inj : s.injections) {
+    if (inj.kind == Injection::Kind::kBusFault &&
+        cfg.rig.buses.end() ==
+            std::find_if(cfg.rig.buses.begin(), cfg.rig.buses.end(),
+                         [&](const BusConfig& b) { return b.name == inj.bus; })) {
+      throw ConfigError("--inject bus_fault:" + inj.bus + ": expected a bus of rig '" +
+                        cfg.rig.name + "', found no such bus");
     }
-    if (cfg->runtime.hardware == HardwareMode::kReal && !injections.empty()) {
-      throw ConfigError(
-          "--inject: expected simulated hardware (fault rehearsal), found "
-          "hardware: real");
-    }
-    if (options.gamepad && !cfg->runtime.gamepad) {
-      throw ConfigError("--gamepad: expected a gamepad block in " + cfg->runtime.file +
-                        ", found none");
-    }
-    if (options.record_show && !options.gamepad) {
-      throw ConfigError("--record-show: expected --gamepad (it records the puppeteering)");
-    }
-    if (options.duration_s && !(*options.duration_s > 0.0)) {
-      throw ConfigError("--duration: expected a number of seconds > 0");
-    }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "facectl run: %s\n", e.what());
-    return 2;
   }
-  const ControllerModel& model = cfg->built.model;
-  for (const auto& w : cfg->built.warnings) std::fprintf(stderr, "%s\n", w.c_str());
+  if (cfg.runtime.hardware == HardwareMode::kReal && !s.injections.empty()) {
+    throw ConfigError(
+        "--inject: expected simulated hardware (fault rehearsal), found "
+        "hardware: real");
+  }
+  if (options.gamepad && !cfg.runtime.gamepad) {
+    throw ConfigError("--gamepad: expected a gamepad block in " + cfg.runtime.file +
+                      ", found none");
+  }
+  if (options.record_show && !options.gamepad) {
+    throw ConfigError("--record-show: expected --gamepad (it records the puppeteering)");
+  }
+  if (options.duration_s && !(*options.duration_s > 0.0)) {
+    throw ConfigError("--duration: expected a number of seconds > 0");
+  }
+}
 
-  // Threads started from here on stay off the loop's CPU.
-  RealtimeReport rt;
-  keep_off_realtime_cpu(cfg->runtime.realtime, rt);
-
-  // 2. Hardware (simulated twins, or the real buses and GPIO), channels and the controller.
-  std::unique_ptr<SimHardware> sim;
-  std::unique_ptr<RealHardware> real;
-  if (cfg->runtime.hardware == HardwareMode::kReal) {
+// Stage 2. The simulated twins, or the real buses and GPIO; the telemetry
+// recording; the controller over them. Throws when something cannot be opened.
+void open_hardware(const RunOptions& options, RunSession& s) {
+  const ControllerModel& model = s.model();
+  if (s.cfg->runtime.hardware == HardwareMode::kReal) {
     try {
-      real = make_real_hardware(model, *cfg);
+      s.real = make_real_hardware(model, *s.cfg);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "facectl run: real hardware: %s\n", e.what());
-      return 2;
+      throw std::runtime_error(std::string("real hardware: ") + e.what());
     }
-    for (const auto& note : real->notes) std::fprintf(stderr, "%s\n", note.c_str());
+    for (const auto& note : s.real->notes) std::fprintf(stderr, "%s\n", note.c_str());
   } else {
-    sim = make_sim_hardware(model, cfg->rig);
+    s.sim = make_sim_hardware(model, s.cfg->rig);
   }
-  const std::vector<ActuatorBus*>& seams = real ? real->seams : sim->seams;
-  SafetyIo& io = real ? real->io() : static_cast<SafetyIo&>(sim->io);
-  LatestValueMailbox<FaceCommand> mailbox;
-  SpscRing<TransitionEvent> events(256);
-  std::unique_ptr<SpscRing<TelemetryRecord>> telemetry;
-  std::unique_ptr<TelemetryWriter> writer;
-  try {
-    if (options.record) {
-      telemetry = std::make_unique<SpscRing<TelemetryRecord>>(cfg->runtime.telemetry_ring);
-      writer = std::make_unique<TelemetryWriter>(model, *telemetry, *options.record);
-    }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "facectl run: %s\n", e.what());
-    return 2;
+  const std::vector<ActuatorBus*>& seams = s.real ? s.real->seams : s.sim->seams;
+  SafetyIo& io = s.real ? s.real->io() : static_cast<SafetyIo&>(s.sim->io);
+  if (options.record) {
+    s.telemetry = std::make_unique<SpscRing<TelemetryRecord>>(s.cfg->runtime.telemetry_ring);
+    s.writer = std::make_unique<TelemetryWriter>(model, *s.telemetry, *options.record);
   }
-  Controller controller(model, seams, io, {&mailbox, telemetry.get(), &events});
+  s.controller = std::make_unique<Controller>(
+      model, seams, io, ControllerChannels{&s.mailbox, s.telemetry.get(), &s.events});
+}
 
-  // 3. Input: the gamepad (puppeteering), or the show, looping when a duration is given.
-  std::unique_ptr<ShowPlayer> player;
-  std::unique_ptr<HidGamepad> pad;
-  std::unique_ptr<ShowRecorder> recorder;
-  std::unique_ptr<GamepadPuppeteer> puppeteer;
+// Stage 3. Input: the gamepad (puppeteering), or the show, looping when a
+// duration is given. Throws when the gamepad cannot be opened.
+void open_input(const RunOptions& options, RunSession& s) {
+  const ControllerModel& model = s.model();
   if (options.gamepad) {
-    const GamepadConfig& g = *cfg->runtime.gamepad;
+    const GamepadConfig& g = *s.cfg->runtime.gamepad;
     try {
-      pad = std::make_unique<HidGamepad>(g.selector, g.layout);
+      s.pad = std::make_unique<HidGamepad>(g.selector, g.layout);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "facectl run: gamepad: %s\n", e.what());
-      return 2;
+      throw std::runtime_error(std::string("gamepad: ") + e.what());
     }
-    if (options.record_show) recorder = std::make_unique<ShowRecorder>(model.layout, model.neutral);
-    puppeteer = std::make_unique<GamepadPuppeteer>(
-        [p = pad.get()](GamepadState& s) { return p->latest(s); }, GamepadMapping(g.terms),
-        model.neutral, mailbox, g.rate_hz, recorder.get());
+    if (options.record_show) {
+      s.recorder = std::make_unique<ShowRecorder>(model.layout, model.neutral);
+    }
+    s.puppeteer = std::make_unique<GamepadPuppeteer>(
+        [p = s.pad.get()](GamepadState& st) { return p->latest(st); }, GamepadMapping(g.terms),
+        model.neutral, s.mailbox, g.rate_hz, s.recorder.get());
     std::fprintf(
         stderr, "facectl run: puppeteering from gamepad %s; Ctrl-C ends the run\n",
         g.selector.path.empty()
             ? (std::to_string(g.selector.vendor) + ":" + std::to_string(g.selector.product)).c_str()
             : g.selector.path.c_str());
-  } else if (cfg->show) {
-    player = std::make_unique<ShowPlayer>(*cfg->show, mailbox, cfg->runtime.show_rate_hz,
-                                          options.duration_s.has_value());
+  } else if (s.cfg->show) {
+    s.player = std::make_unique<ShowPlayer>(*s.cfg->show, s.mailbox, s.cfg->runtime.show_rate_hz,
+                                            options.duration_s.has_value());
   }
-  const double end_s = options.duration_s ? *options.duration_s
-                       : (player)         ? cfg->show->duration()
-                                          : 1e300;
+  s.end_s = options.duration_s ? *options.duration_s : (s.player) ? s.cfg->show->duration() : 1e300;
+}
 
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+// Stage 4. Start: logger, input, then the real-time loop, and ask to enable.
+void start(RunSession& s) {
+  if (s.writer) s.writer->start();
+  if (s.player) s.player->start();
+  if (s.puppeteer) s.puppeteer->start();
+  s.loop = std::make_unique<RealtimeLoop>(*s.controller, s.model().rate_hz, s.stats);
+  s.rt_thread = start_realtime_thread(
+      s.cfg->runtime.realtime, [&s] { s.loop->run(s.stop); }, s.rt);
+  for (const auto& w : s.rt.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  s.controller->request_enable();
+}
 
-  // 4. Start: logger, input, then the real-time loop.
-  if (writer) writer->start();
-  if (player) player->start();
-  if (puppeteer) puppeteer->start();
-  LoopStats stats;
-  RealtimeLoop loop(controller, model.rate_hz, stats);
-  std::atomic<bool> stop{false};
-  std::thread rt_thread = start_realtime_thread(
-      cfg->runtime.realtime, [&] { loop.run(stop); }, rt);
-  for (const auto& w : rt.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  controller.request_enable();
+// Prints the state machine's transitions; remembers the last FAULT or ESTOP
+// for the status line.
+void drain_events(RunSession& s, bool tty, const char*& fault_text) {
+  while (const TransitionEvent* ev = s.events.front()) {
+    if (tty) std::fputs("\r\033[K", stdout), std::fflush(stdout);
+    print_event(*ev);
+    if (ev->to == SafetyState::kFault || ev->to == SafetyState::kEstop) {
+      fault_text = ev->to == SafetyState::kFault ? "FAULT" : "ESTOP";
+    }
+    s.events.pop();
+  }
+}
 
-  const bool tty = !options.quiet && isatty(STDOUT_FILENO) != 0;
+// Fault rehearsal: each injection fires once, at its time, on the simulated hardware.
+void inject_due_faults(RunSession& s, double t) {
+  for (auto& inj : s.injections) {
+    if (inj.done || t < inj.at_s) continue;
+    inj.done = true;
+    switch (inj.kind) {
+      case Injection::Kind::kEstop:
+        s.sim->io.press_estop();
+        break;
+      case Injection::Kind::kBusFault:
+        s.sim->find(inj.bus)->inject_fault("injected bus fault");
+        break;
+      case Injection::Kind::kInputLoss:
+        if (s.player) s.player->go_silent();
+        break;
+      case Injection::Kind::kOverrunStorm:
+        s.loop->stall_until(monotonic_ns() + static_cast<std::int64_t>(inj.stall_ms * 1e6));
+        break;
+    }
+  }
+}
+
+// Stage 5. Watches the running loop from this (non-real-time) thread until
+// the run ends: the show or duration is over or a signal asked to stop, and
+// the head has eased to rest; or a FAULT or ESTOP has lingered and nothing
+// holds any more.
+void supervise(const RunOptions& options, RunSession& s, bool tty) {
   const std::int64_t t0 = monotonic_ns();
   bool shutdown = false;
   std::optional<double> fault_at;
@@ -187,37 +232,13 @@ int run_command(const RunOptions& options) {
   while (true) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     const double t = static_cast<double>(monotonic_ns() - t0) * 1e-9;
-    while (const TransitionEvent* ev = events.front()) {
-      if (tty) std::fputs("\r\033[K", stdout), std::fflush(stdout);
-      print_event(*ev);
-      if (ev->to == SafetyState::kFault || ev->to == SafetyState::kEstop) {
-        fault_text = ev->to == SafetyState::kFault ? "FAULT" : "ESTOP";
-      }
-      events.pop();
-    }
-    for (auto& inj : injections) {
-      if (inj.done || t < inj.at_s) continue;
-      inj.done = true;
-      switch (inj.kind) {
-        case Injection::Kind::kEstop:
-          sim->io.press_estop();
-          break;
-        case Injection::Kind::kBusFault:
-          sim->find(inj.bus)->inject_fault("injected bus fault");
-          break;
-        case Injection::Kind::kInputLoss:
-          if (player) player->go_silent();
-          break;
-        case Injection::Kind::kOverrunStorm:
-          loop.stall_until(monotonic_ns() + static_cast<std::int64_t>(inj.stall_ms * 1e6));
-          break;
-      }
-    }
-    const SafetyState state = controller.state();
-    if (!shutdown && (g_signal.load() != 0 || t >= end_s ||
-                      (!options.duration_s && player && player->finished()))) {
+    drain_events(s, tty, fault_text);
+    inject_due_faults(s, t);
+    const SafetyState state = s.controller->state();
+    if (!shutdown && (g_signal.load() != 0 || t >= s.end_s ||
+                      (!options.duration_s && s.player && s.player->finished()))) {
       shutdown = true;
-      controller.request_shutdown();
+      s.controller->request_shutdown();
       if (g_signal.load() != 0) {
         std::fprintf(stderr, "\nfacectl run: signal %d: easing to rest\n", g_signal.load());
       }
@@ -225,46 +246,83 @@ int run_command(const RunOptions& options) {
     if ((state == SafetyState::kFault || state == SafetyState::kEstop) && !fault_at) fault_at = t;
     // While FAULT holds or rests actuators the loop keeps commanding them,
     // until the run ends (duration, signal).
-    if (fault_at && t - *fault_at >= kFaultLingerSeconds && !controller.fault_holding()) break;
+    if (fault_at && t - *fault_at >= kFaultLingerSeconds && !s.controller->fault_holding()) break;
     if (shutdown && (state == SafetyState::kIdle || state == SafetyState::kFault)) break;
     if (tty && monotonic_ns() - last_status > 100'000'000) {
       last_status = monotonic_ns();
-      std::printf("\r\033[K%s", format_status(stats, state, t, fault_text).c_str());
+      std::printf("\r\033[K%s", format_status(s.stats, state, t, fault_text).c_str());
       std::fflush(stdout);
     }
   }
-  stop.store(true);
-  rt_thread.join();
-  controller.release_outputs();  // nothing holds once the loop has stopped
-  if (player) player->stop();
-  if (puppeteer) puppeteer->stop();
-  if (writer) writer->finish();
-  while (const TransitionEvent* ev = events.front()) {
+}
+
+// Stage 6. Stops the loop, then releases the outputs, stops the inputs and
+// flushes the logger.
+void stop(RunSession& s, bool tty) {
+  s.stop.store(true);
+  s.rt_thread.join();
+  s.controller->release_outputs();  // nothing holds once the loop has stopped
+  if (s.player) s.player->stop();
+  if (s.puppeteer) s.puppeteer->stop();
+  if (s.writer) s.writer->finish();
+  while (const TransitionEvent* ev = s.events.front()) {
     print_event(*ev);
-    events.pop();
+    s.events.pop();
   }
   if (tty) std::fputs("\r\033[K", stdout);
+}
 
-  RunSummaryInput in{model,          controller,    stats,          rt,
-                     writer.get(),   cfg->rig.name, cfg->head.name, events.dropped(),
-                     real != nullptr};
-  int rc = print_run_summary(in);
-  if (recorder) {
-    if (recorder->keyframes() == 0) {
-      std::fprintf(stderr,
-                   "facectl run: --record-show: the gamepad sent nothing; no show written\n");
-      rc = std::max(rc, 1);
-    } else {
-      try {
-        recorder->write(*options.record_show, "recorded");
-        std::printf("  recorded %zu keyframes to %s\n", recorder->keyframes(),
-                    options.record_show->c_str());
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "facectl run: --record-show: %s\n", e.what());
-        rc = std::max(rc, 1);
-      }
-    }
+// Writes what was puppeteered as a show file; 1 when there is none to write.
+int write_recorded_show(const RunOptions& options, const ShowRecorder& recorder) {
+  if (recorder.keyframes() == 0) {
+    std::fprintf(stderr, "facectl run: --record-show: the gamepad sent nothing; no show written\n");
+    return 1;
   }
+  try {
+    recorder.write(*options.record_show, "recorded");
+    std::printf("  recorded %zu keyframes to %s\n", recorder.keyframes(),
+                options.record_show->c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "facectl run: --record-show: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_command(const RunOptions& options) {
+  RunSession s;
+  try {
+    load(options, s);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "facectl run: %s\n", e.what());
+    return 2;
+  }
+  for (const auto& w : s.cfg->built.warnings) std::fprintf(stderr, "%s\n", w.c_str());
+
+  // Threads started from here on stay off the loop's CPU.
+  keep_off_realtime_cpu(s.cfg->runtime.realtime, s.rt);
+  try {
+    open_hardware(options, s);
+    open_input(options, s);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "facectl run: %s\n", e.what());
+    return 2;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  start(s);
+  const bool tty = !options.quiet && isatty(STDOUT_FILENO) != 0;
+  supervise(options, s, tty);
+  stop(s, tty);
+
+  RunSummaryInput in{s.model(),        *s.controller,   s.stats,          s.rt,
+                     s.writer.get(),   s.cfg->rig.name, s.cfg->head.name, s.events.dropped(),
+                     s.real != nullptr};
+  int rc = print_run_summary(in);
+  if (s.recorder) rc = std::max(rc, write_recorded_show(options, *s.recorder));
   return rc;
 }
 

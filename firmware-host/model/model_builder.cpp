@@ -66,17 +66,10 @@ std::shared_ptr<const face::ReducedFaceModel> load_reduced(const HeadConfig& hea
   }
 }
 
-}  // namespace
-
-BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const RuntimeConfig& runtime) {
-  BuiltModel out;
-  ControllerModel& m = out.model;
+// The face signals: layout, neutral pose and admissible ranges from the head.
+void set_face_signals(const HeadConfig& head, ControllerModel& m) {
   m.layout = head.layout;
   m.neutral = head.neutral;
-  m.rate_hz = runtime.rate_hz;
-  m.safety = runtime.safety;
-  m.shaping = runtime.shaping;
-
   for (std::size_t i = 0; i < m.layout.size(); ++i) {
     const SignalInfo& info = m.layout.signal(i);
     m.admissible[i] = {info.domain_min, info.domain_max};
@@ -84,11 +77,14 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
       m.admissible[i] = it->second;
     }
   }
+}
 
-  // Envelope, axis by axis: the design default, then the head's, then the
-  // rig's. A stated axis narrows (intersects) unless its block carries
-  // `widen_override`, in which case it replaces. Anything wider than the
-  // design default, or than the head's own envelope, is announced loudly.
+// Envelope, axis by axis: the design default, then the head's, then the
+// rig's. A stated axis narrows (intersects) unless its block carries
+// `widen_override`, in which case it replaces. Anything wider than the
+// design default, or than the head's own envelope, is announced loudly.
+void set_envelope(const HeadConfig& head, const RigConfig& rig, BuiltModel& out) {
+  ControllerModel& m = out.model;
   const MandibleEnvelope design = MandibleEnvelope::design_default();
   auto apply = [](Range& axis, const std::optional<Range>& stated, bool override_widen) {
     if (stated) axis = override_widen ? *stated : intersect(axis, *stated);
@@ -127,27 +123,41 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
                            rig.envelope->where + ": " + describe(env) +
                            " (head: " + describe(head_env) + ")");
   }
+}
 
-  // Coupled face limits: the neutral pose must satisfy them (it is where the
-  // face goes on stale input, and the projection's fallback).
+// Each face signal's range as the tick admits it: the envelope for the jaw,
+// the admissible range for the rest.
+struct FaceBounds {
   std::array<double, kMaxFaceSignals> lo{};
   std::array<double, kMaxFaceSignals> hi{};
+};
+
+FaceBounds face_bounds(const ControllerModel& m) {
+  FaceBounds b;
   for (std::size_t i = 0; i < m.layout.size(); ++i) {
     Range r = m.admissible[i];
-    if (i == m.layout.jaw_pitch()) r = env.pitch;
-    if (i == m.layout.jaw_yaw()) r = env.yaw;
-    if (i == m.layout.jaw_protrusion()) r = env.protrusion;
-    lo[i] = r.min;
-    hi[i] = r.max;
+    if (i == m.layout.jaw_pitch()) r = m.envelope.pitch;
+    if (i == m.layout.jaw_yaw()) r = m.envelope.yaw;
+    if (i == m.layout.jaw_protrusion()) r = m.envelope.protrusion;
+    b.lo[i] = r.min;
+    b.hi[i] = r.max;
   }
+  return b;
+}
+
+// Coupled face limits: the neutral pose must satisfy them (it is where the
+// face goes on stale input, and the projection's fallback), and lie inside
+// the bounds.
+void set_face_constraints(const HeadConfig& head, const RigConfig& rig, const FaceBounds& b,
+                          ControllerModel& m) {
   for (std::size_t i = 0; i < m.layout.size(); ++i) {
-    if (m.neutral[i] < lo[i] || m.neutral[i] > hi[i]) {
+    if (m.neutral[i] < b.lo[i] || m.neutral[i] > b.hi[i]) {
       throw ConfigError(head.file +
                         ": head.neutral: expected a pose inside the envelope and the "
                         "admissible ranges, found " +
                         m.layout.signal(i).name + " = " + std::to_string(m.neutral[i]) +
-                        " (SI) outside [" + std::to_string(lo[i]) + ", " + std::to_string(hi[i]) +
-                        "]");
+                        " (SI) outside [" + std::to_string(b.lo[i]) + ", " +
+                        std::to_string(b.hi[i]) + "]");
     }
   }
   for (const CoupledLimitConfig& c : rig.coupled_limits) {
@@ -159,27 +169,130 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
     }
   }
   try {
-    m.face_constraints.finalize(m.layout.size(), lo.data(), hi.data(), m.neutral.data());
+    m.face_constraints.finalize(m.layout.size(), b.lo.data(), b.hi.data(), m.neutral.data());
   } catch (const std::invalid_argument& e) {
     throw ConfigError(rig.file +
                       ": rig.coupled_limits: expected limits that the head's neutral "
                       "pose satisfies, found " +
                       std::string(e.what()));
   }
+}
 
-  // Actuators grouped by bus, in bus order then file order.
-  std::vector<std::size_t> ordered;  // file index of each controller actuator
+// Actuators grouped by bus, in bus order then file order. Returns the file
+// index of each controller actuator; out.file_order is its inverse.
+std::vector<std::size_t> group_by_bus(const RigConfig& rig, BuiltModel& out) {
+  std::vector<std::size_t> ordered;
   for (const BusConfig& bus : rig.buses) {
     BusModel bm{bus.name, bus.type, ordered.size(), 0};
     for (std::size_t k = 0; k < rig.actuators.size(); ++k) {
       if (rig.actuators[k].model.bus == bus.name) ordered.push_back(k);
     }
     bm.count = ordered.size() - bm.first;
-    m.buses.push_back(bm);
+    out.model.buses.push_back(bm);
   }
   out.file_order.assign(rig.actuators.size(), 0);
   for (std::size_t i = 0; i < ordered.size(); ++i) out.file_order[ordered[i]] = i;
+  return ordered;
+}
 
+// The reduced face model, when some actuator reads control points; its
+// muscles must be the head's, in the head's order.
+void load_reduced_if_read(const HeadConfig& head, const RigConfig& rig, ControllerModel& m) {
+  const bool reads_points =
+      std::any_of(rig.actuators.begin(), rig.actuators.end(),
+                  [](const ActuatorConfig& a) { return !a.map.points.empty(); });
+  if (!reads_points) return;
+  RigMapping& map = m.mapping;
+  map.reduced = load_reduced(head);
+  if (map.reduced->muscles.size() != m.layout.muscle_count() ||
+      map.reduced->control_points.size() > kMaxControlPoints) {
+    throw ConfigError(head.file +
+                      ": the reduced face model's muscles differ from head.muscles "
+                      "(rebuild it with `facectl face reduce`)");
+  }
+  for (std::size_t k = 0; k < m.layout.muscle_count(); ++k) {
+    if (map.reduced->muscles[k] != m.layout.signal(k).name) {
+      throw ConfigError(head.file + ": the reduced face model's muscle " + std::to_string(k) +
+                        " is '" + map.reduced->muscles[k] + "', head.muscles has '" +
+                        m.layout.signal(k).name + "' (rebuild it with `facectl face reduce`)");
+    }
+  }
+}
+
+// Actuator i's terms over the reduced model's control points, by name.
+void add_point_terms(std::size_t i, const ActuatorConfig& a, const std::string& who,
+                     RigMapping& map) {
+  for (const PointTermConfig& p : a.map.points) {
+    const auto& names = map.reduced->control_points;
+    const auto it = std::find(names.begin(), names.end(), p.point);
+    if (it == names.end()) {
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      throw ConfigError(p.where + ": " + who +
+                        ": map.points.point: expected a control point of "
+                        "the head (" +
+                        list + "), found '" + p.point + "'");
+    }
+    map.points.push_back({i, static_cast<std::size_t>(it - names.begin()), p.axis, p.gain_si});
+  }
+}
+
+// What makes actuator i's mapping unusable although it parsed: a refused
+// calibration, a linkage of the other unit, nothing driving it.
+void check_mapping(std::size_t i, const ActuatorConfig& a, const std::string& who,
+                   BuiltModel& out) {
+  RigMapping& map = out.model.mapping;
+  if (!a.map.calibration_problem.empty()) {
+    out.problems.push_back(a.map.calibration_problem + " (" + who + ")");
+    map.transforms[i].kind = ChannelTransform::Kind::kNone;  // never run: a problem refuses it
+  }
+  if (a.map.transform.kind == ChannelTransform::Kind::kLinkage) {
+    const Linkage::Kind k = a.map.transform.linkage.kind;
+    const bool wants_linear = k == Linkage::Kind::kSliderCrank;
+    if (wants_linear != (a.model.kind == ActuatorKind::kLinear)) {
+      out.problems.push_back(
+          a.map.transform_where + ": " + who + ": a " + std::string(to_string(k)) +
+          " linkage drives a " + (wants_linear ? "linear (mm)" : "rotary (deg)") +
+          " actuator, but this one is " + unit_name(a.model.kind) + " (inconsistent units)");
+    }
+  }
+  if (!map.drives(i)) {
+    out.problems.push_back(a.map.where + ": " + who +
+                           ": nothing drives it (no non-zero term or point in `map`, and no "
+                           "strut of the mandible mechanism)");
+  }
+}
+
+// Bounds every actuator must respect whatever the input: a finite mapping
+// and a latency the simulated twin can hold.
+void check_actuator_bounds(const ActuatorConfig& a, const FaceBounds& b,
+                           const RuntimeConfig& runtime) {
+  // The mapping must stay finite over every admissible input (an overflow
+  // would be a NaN command); `facectl verify` proves the tighter ranges.
+  double reach = std::fabs(a.map.offset_si);
+  for (const MappingTerm& t : a.map.terms) {
+    reach += std::fabs(t.gain_si) * std::max(std::fabs(b.lo[t.signal]), std::fabs(b.hi[t.signal]));
+  }
+  if (!std::isfinite(reach) || reach > 1e3) {
+    throw ConfigError(a.map.where + ": rig.actuators '" + a.model.name +
+                      "'.map: expected gains and offset that keep the command finite and "
+                      "physical (|command| <= 1000 SI units), found a reach of " +
+                      std::to_string(reach));
+  }
+  // The simulated twin's delay line holds 64 commands.
+  if (a.plant.latency_s * runtime.rate_hz >= 60.0) {
+    throw ConfigError(a.plant_where + ": rig.actuators '" + a.model.name +
+                      "'.plant.latency_ms: expected less than 60 ticks of latency at " +
+                      std::to_string(runtime.rate_hz) + " Hz, found " +
+                      std::to_string(a.plant.latency_s * 1e3) + " ms");
+  }
+}
+
+// The rig mapping: the mandible mechanism, then each actuator in controller
+// order (its model, linear terms, control-point terms and transform).
+void set_mapping(const HeadConfig& head, const RigConfig& rig, const RuntimeConfig& runtime,
+                 const std::vector<std::size_t>& ordered, const FaceBounds& b, BuiltModel& out) {
+  ControllerModel& m = out.model;
   RigMapping& map = m.mapping;
   map.linear = LinearMapping(rig.actuators.size(), m.layout.size());
   map.transforms.resize(rig.actuators.size());
@@ -188,88 +301,25 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
   map.jaw_yaw = m.layout.jaw_yaw();
   map.jaw_protrusion = m.layout.jaw_protrusion();
   build_mechanism(head, rig, out.file_order, m, out.problems);
-  const bool reads_points =
-      std::any_of(rig.actuators.begin(), rig.actuators.end(),
-                  [](const ActuatorConfig& a) { return !a.map.points.empty(); });
-  if (reads_points) {
-    map.reduced = load_reduced(head);
-    if (map.reduced->muscles.size() != m.layout.muscle_count() ||
-        map.reduced->control_points.size() > kMaxControlPoints) {
-      throw ConfigError(head.file +
-                        ": the reduced face model's muscles differ from head.muscles "
-                        "(rebuild it with `facectl face reduce`)");
-    }
-    for (std::size_t k = 0; k < m.layout.muscle_count(); ++k) {
-      if (map.reduced->muscles[k] != m.layout.signal(k).name) {
-        throw ConfigError(head.file + ": the reduced face model's muscle " + std::to_string(k) +
-                          " is '" + map.reduced->muscles[k] + "', head.muscles has '" +
-                          m.layout.signal(k).name + "' (rebuild it with `facectl face reduce`)");
-      }
-    }
-  }
+  load_reduced_if_read(head, rig, m);
   for (std::size_t i = 0; i < ordered.size(); ++i) {
     const ActuatorConfig& a = rig.actuators[ordered[i]];
     const std::string who = "actuator '" + a.model.name + "'";
     m.actuators.push_back(a.model);
     map.linear.set_offset(i, a.map.offset_si);
     for (const MappingTerm& t : a.map.terms) map.linear.set_gain(i, t.signal, t.gain_si);
-    for (const PointTermConfig& p : a.map.points) {
-      const auto& names = map.reduced->control_points;
-      const auto it = std::find(names.begin(), names.end(), p.point);
-      if (it == names.end()) {
-        std::string list;
-        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-        throw ConfigError(p.where + ": " + who +
-                          ": map.points.point: expected a control point of "
-                          "the head (" +
-                          list + "), found '" + p.point + "'");
-      }
-      map.points.push_back({i, static_cast<std::size_t>(it - names.begin()), p.axis, p.gain_si});
-    }
+    add_point_terms(i, a, who, map);
     map.transforms[i] = a.map.transform;
-    if (!a.map.calibration_problem.empty()) {
-      out.problems.push_back(a.map.calibration_problem + " (" + who + ")");
-      map.transforms[i].kind = ChannelTransform::Kind::kNone;  // never run: a problem refuses it
-    }
-    if (a.map.transform.kind == ChannelTransform::Kind::kLinkage) {
-      const Linkage::Kind k = a.map.transform.linkage.kind;
-      const bool wants_linear = k == Linkage::Kind::kSliderCrank;
-      if (wants_linear != (a.model.kind == ActuatorKind::kLinear)) {
-        out.problems.push_back(
-            a.map.transform_where + ": " + who + ": a " + std::string(to_string(k)) +
-            " linkage drives a " + (wants_linear ? "linear (mm)" : "rotary (deg)") +
-            " actuator, but this one is " + unit_name(a.model.kind) + " (inconsistent units)");
-      }
-    }
-    if (!map.drives(i)) {
-      out.problems.push_back(a.map.where + ": " + who +
-                             ": nothing drives it (no non-zero term or point in `map`, and no "
-                             "strut of the mandible mechanism)");
-    }
-    // The mapping must stay finite over every admissible input (an overflow
-    // would be a NaN command); `facectl verify` proves the tighter ranges.
-    double reach = std::fabs(a.map.offset_si);
-    for (const MappingTerm& t : a.map.terms) {
-      reach += std::fabs(t.gain_si) * std::max(std::fabs(lo[t.signal]), std::fabs(hi[t.signal]));
-    }
-    if (!std::isfinite(reach) || reach > 1e3) {
-      throw ConfigError(a.map.where + ": rig.actuators '" + a.model.name +
-                        "'.map: expected gains and offset that keep the command finite and "
-                        "physical (|command| <= 1000 SI units), found a reach of " +
-                        std::to_string(reach));
-    }
-    // The simulated twin's delay line holds 64 commands.
-    if (a.plant.latency_s * runtime.rate_hz >= 60.0) {
-      throw ConfigError(a.plant_where + ": rig.actuators '" + a.model.name +
-                        "'.plant.latency_ms: expected less than 60 ticks of latency at " +
-                        std::to_string(runtime.rate_hz) + " Hz, found " +
-                        std::to_string(a.plant.latency_s * 1e3) + " ms");
-    }
+    check_mapping(i, a, who, out);
+    check_actuator_bounds(a, b, runtime);
   }
   finish_points(map);
+}
 
-  // Actuator coupled limits, over controller order; rest must satisfy them
-  // (it is where STOPPING goes, and the projection's fallback).
+// Actuator coupled limits, over controller order; rest must satisfy them
+// (it is where STOPPING goes, and the projection's fallback).
+void set_actuator_constraints(const RigConfig& rig, BuiltModel& out) {
+  ControllerModel& m = out.model;
   std::array<double, kMaxActuators> act_lo{}, act_hi{}, rest{};
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
     act_lo[i] = m.actuators[i].limits.soft_min;
@@ -294,6 +344,23 @@ BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const Runti
                       "rest position satisfies, found " +
                       std::string(e.what()));
   }
+}
+
+}  // namespace
+
+BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const RuntimeConfig& runtime) {
+  BuiltModel out;
+  ControllerModel& m = out.model;
+  set_face_signals(head, m);
+  m.rate_hz = runtime.rate_hz;
+  m.safety = runtime.safety;
+  m.shaping = runtime.shaping;
+  set_envelope(head, rig, out);
+  const FaceBounds bounds = face_bounds(m);
+  set_face_constraints(head, rig, bounds, m);
+  const std::vector<std::size_t> ordered = group_by_bus(rig, out);
+  set_mapping(head, rig, runtime, ordered, bounds, out);
+  set_actuator_constraints(rig, out);
   return out;
 }
 

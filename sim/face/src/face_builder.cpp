@@ -92,14 +92,21 @@ Vec3 landmark_position(const FaceModel& m, const Points& skin, int l) {
   return s / static_cast<double>(m.landmark_vertices[l].size()) + m.landmark_offset[l];
 }
 
-FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
-  FaceModel m;
-  m.spec = spec;
-  const TriMesh base = cut_openings(read_obj(spec.skin_file, spec.skin_scale), spec);
-  const int nbase = static_cast<int>(base.v.size());
-  Points base_n;
-  vertex_normals(base.v, base.tris, base_n);
+namespace {
 
+// A landmark's rest position on the base skin, by name; a missing one is an error.
+struct Landmarks {
+  const FaceModel& m;
+  const Points& base;
+  const HeadSpec& spec;
+  Vec3 operator()(const std::string& name) const {
+    int i = m.landmark_index(name);
+    if (i < 0) throw InputError(spec.dir + "/landmarks.yaml: missing landmark '" + name + "'");
+    return landmark_position(m, base, i);
+  }
+};
+
+void bind_landmarks(const HeadSpec& spec, int nbase, FaceModel& m) {
   for (const LandmarkSpec& l : spec.landmarks) {
     for (int v : l.vertices)
       if (v < 0 || v >= nbase)
@@ -110,25 +117,27 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     m.landmark_vertices.push_back(l.vertices);
     m.landmark_offset.push_back(l.offset);
   }
-  auto L = [&](const std::string& name) {
-    int i = m.landmark_index(name);
-    if (i < 0) throw InputError(spec.dir + "/landmarks.yaml: missing landmark '" + name + "'");
-    return landmark_position(m, base.v, i);
-  };
+}
 
-  // Skull: the skin pushed inward by the soft-tissue depth; same topology.
+// Skull: the skin pushed inward by the soft-tissue depth; same topology. Mandible:
+// skull below the plane through the condyles and the stomion. Returns the stomion.
+Vec3 build_skull(const HeadSpec& spec, const TriMesh& base, const Points& base_n,
+                 const Landmarks& L, FaceModel& m) {
+  const int nbase = static_cast<int>(base.v.size());
   m.skull = base;
   for (int i = 0; i < nbase; ++i)
     m.skull.v.set(i, base.v.get(i) - spec.tissue_depth * base_n.get(i));
   m.axes = mandible_axes(L("fdp_2_13"), L("fdp_2_14"), L("fdp_11_4"), L("fdp_7_1"), L("fdp_2_10"));
-  // Mandible: skull below the plane through the condyles and the stomion.
   const Vec3 stomion = 0.5 * (L("fdp_2_2") + L("fdp_2_3"));
   Vec3 split_n = m.axes.pitch_axis.cross(stomion - m.axes.yaw_point).normalized();
   if (split_n.y() < 0) split_n = -split_n;
   for (int i = 0; i < nbase; ++i)
     if (split_n.dot(m.skull.v.get(i) - m.axes.yaw_point) < 0) m.mandible_vertices.push_back(i);
+  return stomion;
+}
 
-  // Teeth: two parabolic arches behind the stomion, split by the occlusal plane.
+// Teeth: two parabolic arches behind the stomion, split by the occlusal plane.
+void build_teeth(const HeadSpec& spec, const Vec3& stomion, FaceModel& m) {
   std::vector<Vec3> up, lo;
   const Vec3 front = stomion - Vec3(0, 0, spec.teeth_inset);
   for (int j = 0; j <= 8; ++j) {
@@ -141,14 +150,15 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
   }
   m.upper_teeth = convex_hull(up);
   m.lower_teeth = convex_hull(lo);
+}
 
-  // Skin (possibly refined; base vertex indices are preserved).
-  m.skin = skin_vertices > base.v.size() ? refine_to_vertex_count(base, skin_vertices).mesh : base;
-  const int ns = static_cast<int>(m.skin.v.size());
-  Points skin_n;
-  vertex_normals(m.skin.v, m.skin.tris, skin_n);
+void group_muscle_layers(const std::vector<std::vector<Tri>>& tops, FaceModel& m);
 
-  // Muscles, deepest first, each resting on the skull and on the layers already built.
+// Muscles, deepest first, each resting on the skull and on the layers already built;
+// then their constraints grouped by layer. Returns the top triangles of each muscle.
+std::vector<std::vector<Tri>> build_muscles(const HeadSpec& spec, const TriMesh& base,
+                                            const Points& base_n, const Landmarks& L,
+                                            FaceModel& m) {
   std::vector<MuscleSpec> order = spec.muscles;
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& a, const auto& b) { return a.layer < b.layer; });
@@ -211,6 +221,13 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
                                                             : 2);
     m.muscles.push_back(std::move(mu));
   }
+  group_muscle_layers(tops, m);
+  return tops;
+}
+
+// The muscles' constraints grouped by layer (a layer is projected as one sweep), and
+// the top surface the skin binds to.
+void group_muscle_layers(const std::vector<std::vector<Tri>>& tops, FaceModel& m) {
   m.muscle_w.assign(m.muscle_rest.size(), 1.0);
   for (std::size_t k = 0; k < m.muscles.size(); ++k) {
     if (k == 0 || m.muscles[k].layer != m.muscles[k - 1].layer)
@@ -226,14 +243,19 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
   }
   for (const auto& t : tops) m.muscle_tops.insert(m.muscle_tops.end(), t.begin(), t.end());
   vertex_normals(m.muscle_rest, m.muscle_tops, m.muscle_rest_normals);
+}
 
-  // Skin binding (L2581–L2602): along the vertex normal line, the nearest muscle top
-  // (outward hits allowed: fitted muscles may poke out), else the skull, else the nearest
-  // skull vertex. The anchor is carried in the support triangle's frame.
+// Skin binding: along the vertex normal line, the nearest muscle top (outward hits
+// allowed: fitted muscles may poke out), else the skull, else the nearest skull vertex.
+// The anchor is carried in the support triangle's frame. Returns the vertices bound to
+// muscles or the jaw (where the influence map is 1).
+std::vector<int> bind_skin(const HeadSpec& spec, const Points& skin_n, int nbase,
+                           const std::vector<std::vector<Tri>>& tops, FaceModel& m) {
+  const int ns = static_cast<int>(m.skin.v.size());
   std::vector<Support> muscle_tops;
   for (std::size_t k = 0; k < m.muscles.size(); ++k)
     muscle_tops.push_back({Layer::kMuscle, &m.muscle_rest, tops[k]});
-  std::vector<Support> skull_only{supports[0]};
+  std::vector<Support> skull_only{{Layer::kSkull, &m.skull.v, m.skull.tris}};
   std::vector<char> on_jaw(nbase, 0);
   for (int v : m.mandible_vertices) on_jaw[v] = 1;
   std::vector<int> seeds;
@@ -244,7 +266,7 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     const Vec3 p = m.skin.v.get(i), n = skin_n.get(i);
     SurfacePoint sp;
     const double reach = spec.tissue_depth;
-    // Muscles are tested from the most superficial layer down (L2597), then the skull.
+    // Muscles are tested from the most superficial layer down, then the skull.
     bool hit = false;
     for (int layer = max_layer; layer >= 0 && !hit; --layer) {
       std::vector<Support> in_layer;
@@ -268,14 +290,13 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
         .push_back(i);
     if (sp.layer == Layer::kMuscle || jaw) seeds.push_back(i);
   }
-  // Influence map (L2604–L2611): 1 on vertices bound to muscles or the jaw, easing to 0
-  // over `influence_falloff` of edge-geodesic distance.
-  const Adjacency adj = vertex_adjacency(ns, m.skin.tris);
-  const std::vector<double> geo = edge_geodesic(m.skin.v, adj, seeds);
-  m.influence.resize(ns);
-  for (int i = 0; i < ns; ++i) m.influence[i] = 1 - smoothstep01(geo[i] / spec.influence_falloff);
+  return seeds;
+}
 
-  // Skin constraints (Table: k_stretching, k_bending, k_area, k_volume).
+// Skin constraints (k_stretching, k_bending, k_area, k_volume), with each area's sign
+// from its anchor's support and the upright constraints indexed by vertex.
+void build_skin_constraints(const HeadSpec& spec, FaceModel& m) {
+  const int ns = static_cast<int>(m.skin.v.size());
   m.skin_w.assign(ns, 1.0);
   add_edge_distances(m.skin_stretch, m.skin.v, m.skin.tris, spec.skin.stretch);
   add_bending(m.skin_bending, m.skin.v, m.skin.tris, spec.skin.bending);
@@ -294,22 +315,23 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
     m.skin_area_sign.push_back(std::abs(cosine) < 0.5 ? 0.0 : (cosine < 0 ? -1.0 : 1.0));
   }
   add_orientations(m.skin_upright, m.skin.v, m.skin.tris, spec.skin.min_projected_area, 1.0);
-  {
-    Adjacency& ua = m.upright_of_vertex;
-    ua.start.assign(ns + 1, 0);
-    const OrientationConstraints& o = m.skin_upright;
-    for (const auto* v : {&o.a, &o.b, &o.c})
-      for (int i : *v) ++ua.start[i + 1];
-    for (int i = 0; i < ns; ++i) ua.start[i + 1] += ua.start[i];
-    ua.nbr.resize(ua.start[ns]);
-    std::vector<int> fill(ua.start.begin(), ua.start.end() - 1);
-    for (std::size_t c = 0; c < o.size(); ++c)
-      for (int v : {o.a[c], o.b[c], o.c[c]}) ua.nbr[fill[v]++] = static_cast<int>(c);
-  }
+  Adjacency& ua = m.upright_of_vertex;
+  ua.start.assign(ns + 1, 0);
+  const OrientationConstraints& o = m.skin_upright;
+  for (const auto* v : {&o.a, &o.b, &o.c})
+    for (int i : *v) ++ua.start[i + 1];
+  for (int i = 0; i < ns; ++i) ua.start[i + 1] += ua.start[i];
+  ua.nbr.resize(ua.start[ns]);
+  std::vector<int> fill(ua.start.begin(), ua.start.end() - 1);
+  for (std::size_t c = 0; c < o.size(); ++c)
+    for (int v : {o.a[c], o.b[c], o.c[c]}) ua.nbr[fill[v]++] = static_cast<int>(c);
   m.skin_volume = make_volume(m.skin.v, m.skin.tris, m.axes.yaw_point, spec.skin.volume);
+}
 
-  // Eyelids (§5.5.1): vertices near each eye opening's border, rotated rigidly about an
-  // axis parallel to the eye corners through the eyeball centre.
+// Eyelids (thesis §5.5.1): vertices near each eye opening's border, rotated rigidly
+// about an axis parallel to the eye corners through the eyeball centre.
+void build_eyelids(const HeadSpec& spec, const Landmarks& L, const Adjacency& adj, FaceModel& m) {
+  const int ns = static_cast<int>(m.skin.v.size());
   const auto loops = boundary_loops(m.skin.tris);
   const char* upper_lm[2] = {"fdp_3_1", "fdp_3_2"};
   const char* lower_lm[2] = {"fdp_3_3", "fdp_3_4"};
@@ -351,6 +373,41 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
         m.lid_profile.push_back(std::sin(std::numbers::pi * along));
       }
   }
+}
+
+}  // namespace
+
+FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
+  FaceModel m;
+  m.spec = spec;
+  const TriMesh base = cut_openings(read_obj(spec.skin_file, spec.skin_scale), spec);
+  const int nbase = static_cast<int>(base.v.size());
+  Points base_n;
+  vertex_normals(base.v, base.tris, base_n);
+  bind_landmarks(spec, nbase, m);
+  const Landmarks L{m, base.v, spec};
+
+  const Vec3 stomion = build_skull(spec, base, base_n, L, m);
+  build_teeth(spec, stomion, m);
+
+  // Skin (possibly refined; base vertex indices are preserved).
+  m.skin = skin_vertices > base.v.size() ? refine_to_vertex_count(base, skin_vertices).mesh : base;
+  const int ns = static_cast<int>(m.skin.v.size());
+  Points skin_n;
+  vertex_normals(m.skin.v, m.skin.tris, skin_n);
+
+  const std::vector<std::vector<Tri>> tops = build_muscles(spec, base, base_n, L, m);
+  const std::vector<int> seeds = bind_skin(spec, skin_n, nbase, tops, m);
+
+  // Influence map: 1 on vertices bound to muscles or the jaw, easing to 0 over
+  // `influence_falloff` of edge-geodesic distance.
+  const Adjacency adj = vertex_adjacency(ns, m.skin.tris);
+  const std::vector<double> geo = edge_geodesic(m.skin.v, adj, seeds);
+  m.influence.resize(ns);
+  for (int i = 0; i < ns; ++i) m.influence[i] = 1 - smoothstep01(geo[i] / spec.influence_falloff);
+
+  build_skin_constraints(spec, m);
+  build_eyelids(spec, L, adj, m);
   return m;
 }
 
