@@ -55,8 +55,9 @@ struct ControllerCounters {
       limit_hits{};  // per LimitFlag bit
 };
 
-// The real-time core: one call of tick() runs the steps of DESIGN.md "One
-// tick" over the const model and this object's preallocated state. tick()
+// The real-time core: one call of tick() runs the tick's steps (sanitise,
+// shape, envelope, reduced face model, mapping, limits, safety, buses,
+// telemetry; README "Layout") over the const model and this object's preallocated state. tick()
 // allocates nothing, takes no lock and makes no blocking call; whatever the
 // backends do in read/write must honour the same rules.
 class Controller {

@@ -10,7 +10,7 @@ enum class SafetyState : std::uint8_t {
   kEnabling,  // bumpless ramp from measured positions to the live target
   kRunning,
   kStopping,  // easing to the rest pose before disabling (shutdown)
-  kFault,     // outputs disabled at once; leaves to IDLE on reset
+  kFault,     // each actuator by its fault reaction (relax, hold, rest); IDLE on reset
   kEstop,     // nothing transmitted, power-enable off; leaves to IDLE on release + reset
 };
 

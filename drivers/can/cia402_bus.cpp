@@ -47,7 +47,7 @@ Cia402Bus::Cia402Bus(std::string name, CanTransport& transport,
     const std::int32_t hi = d->counts.encode(a.limits.position_max);
     const cia402::DriveCounts speed{std::fabs(d->counts.per_si), 0.0};  // counts/s, no offset
     // The drive enforces its own limits too, and stops on its own when our
-    // heartbeat stops (reference/field-survey.md, part D item 4).
+    // heartbeat stops (its heartbeat consumer, CiA 301 object 0x1016).
     d->sdos = {
         {0x607D, 1, u32(std::min(lo, hi)), 4},  // a negative scale swaps the ends
         {0x607D, 2, u32(std::max(lo, hi)), 4},

@@ -63,7 +63,7 @@ void HidGamepad::run() {
       mailbox_.publish(state);
     }
     // Wait up to 20 ms for a report, then drain whatever else is queued, so a
-    // backlog never builds up (reference/field-survey.md, part D item 10).
+    // backlog of stale reports never builds up.
     int n = hid_read_timeout(dev, buf, sizeof buf, 20);
     bool fresh = false;
     while (n > 0) {

@@ -10,8 +10,8 @@
 namespace facectl {
 
 // The load a cyclic CAN schedule puts on the bus, with 135 bits as the worst
-// case for a classic 8-byte frame (stuffing and interframe space included;
-// reference/field-survey.md, part C). Every classic frame is budgeted at the
+// case for a classic 8-byte frame (111 bits nominal; stuffing and interframe
+// space included). Every classic frame is budgeted at the
 // worst case, whatever its length; a CAN FD frame at its own worst case
 // (can_fd_frame_bits), its data phase counted at the data bitrate.
 struct CanBusBudget {

@@ -1,4 +1,4 @@
-// One frame of the layered solver, in the order of thesis §5.7 (L2764–L2788).
+// One frame of the layered solver, in the order of thesis §5.7.
 #include <algorithm>
 #include <cmath>
 #include <utility>

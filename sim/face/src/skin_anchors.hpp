@@ -1,5 +1,5 @@
 // The skin anchors' targets (internal header): where each skin vertex's anchor particle q
-// sits this frame, in the frame of its support on a muscle or on the skull (L2593).
+// sits this frame, in the frame of its support on a muscle or on the skull.
 #pragma once
 
 #include "facectl/face/face_model.hpp"

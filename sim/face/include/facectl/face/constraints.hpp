@@ -1,8 +1,8 @@
 // PBD constraint sets in structure-of-arrays form and their Gauss-Seidel projections
-// (thesis §3.2, with the errata of reference/face-model-pbd.md §11 applied: λ = −s,
+// (thesis §3.2, with two errata corrected: λ = −s, and
 // C_stretch = |p1−p2| − d). Each projection walks its set in index order and moves the
 // particles at once, so a fixed set order gives bit-identical results. Stiffness k
-// scales each correction (thesis L1165); w are inverse masses.
+// scales each correction (thesis); w are inverse masses.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Convex hull of a small point set (the teeth, thesis L2686–L2692) as triangles plus
+// Convex hull of a small point set (the teeth, thesis) as triangles plus
 // outward face planes, found by brute force over point triples: O(n⁴) but exact and
 // tiny for the few dozen points of a dental arch. Queries: inside test and the exit
 // point of a ray from an inside point.

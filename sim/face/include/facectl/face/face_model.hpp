@@ -35,7 +35,7 @@ struct FaceModel {
   OrientationConstraints skin_upright;  // no-inversion (SkinStiffness::min_projected_area)
   Adjacency upright_of_vertex;          // vertex → its skin_upright constraints (CSR)
   VolumeConstraint skin_volume;
-  // Skin anchors (L2593): vertex i follows the point carried in the frame of its support.
+  // Skin anchors: vertex i follows the point carried in the frame of its support.
   std::vector<SurfacePoint> anchor_support;
   Points anchor_local;  // rest offset of vertex i in the support triangle's frame
   Attachments anchors;

@@ -4,7 +4,7 @@
 //
 // Sheet muscle: every column c has its own fibre action line from origin to insertion
 // (A0 is column 0, A2 column cols−1, the rest are the thesis's extra internal lines for
-// wide muscles, L1917). Row r of the bottom grid follows the sample at arc length
+// wide muscles). Row r of the bottom grid follows the sample at arc length
 // r·step·(1 − c_contraction) measured from the origin end on every fibre (eq. 4.11 with
 // errata 4 and 8: step = L/(rows−1)).
 //
@@ -60,7 +60,7 @@ struct MuscleScratch {
 // lines, top grid `thickness` along normal_at(p)), sets m.first, builds its constraints.
 void place_muscle(Muscle& m, double thickness, const std::function<Vec3(const Vec3&)>& normal_at,
                   const Points& skull, Points& pos, const MuscleStiffness& k);
-// One PBD iteration of one muscle at contraction c (thesis L2776): attachment goals from
+// One PBD iteration of one muscle at contraction c (thesis): attachment goals from
 // the current supports, then distances, bending, volume and attachments in that order.
 void step_muscle(const Muscle& m, double c, const Points& skull, Points& pos,
                  const std::vector<double>& w, MuscleScratch& s, Points& grad);

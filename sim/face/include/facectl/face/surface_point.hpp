@@ -1,4 +1,4 @@
-// Surface point (thesis L1579–L1628): a triangle of some particle array plus constant
+// Surface point (thesis): a triangle of some particle array plus constant
 // barycentric coordinates, so it rides on the triangle while the triangle deforms.
 // `layer` says which array: the skull (rigid bones) or the muscle particles.
 #pragma once
