@@ -1,8 +1,8 @@
 // Acceptance tests of the expression library on the simulated skin (steady state after
 // 300 frames). Thresholds in mm; their justification from Faigin's descriptions
-// of the expressions is in docs/FACE_MODEL.md, "Expression acceptance". 1.5–2 mm is used as "visibly moves" on
-// a face this size (the smallest motion the descriptions name is a lid "slightly"
-// lowered); "as high as possible" and "dropped open" get the larger thresholds.
+// of the expressions is in docs/FACE_MODEL.md, "Expression acceptance". 1.5–2 mm is used as
+// "visibly moves" on a face this size (the smallest motion the descriptions name is a lid
+// "slightly" lowered); "as high as possible" and "dropped open" get the larger thresholds.
 #include <gtest/gtest.h>
 
 #include <map>
