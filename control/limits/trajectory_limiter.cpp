@@ -10,6 +10,7 @@ namespace {
 // Relative tolerance for deciding that a bound "fired", so that floating
 // rounding on an exactly tracked trajectory is not reported as a limit.
 constexpr double kFireTolerance = 1e-12;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -18,6 +19,30 @@ double braking_speed(double distance, double max_acceleration, double dt) {
   // Positive root of v²/(2A) + v·dt = d.
   const double a = max_acceleration;
   return a * (std::sqrt(dt * dt + 2.0 * distance / a) - dt);
+}
+
+double jerk_stopping_distance(double v, double a, double max_acceleration, double max_jerk) {
+  const double amax = max_acceleration, j = max_jerk;
+  if (!(v > 0.0) && !(a > 0.0)) return 0.0;  // standing still or already turning back
+  double x = 0.0;
+  const auto phase = [&](double jerk, double t) {
+    t = std::max(t, 0.0);
+    x += v * t + a * t * t / 2.0 + jerk * t * t * t / 6.0;
+    v += a * t + jerk * t * t / 2.0;
+    a += jerk * t;
+  };
+  if (a < 0.0 && a * a / (2.0 * j) >= v) {
+    // Braking harder than needed: the speed reaches 0 while a ramps back up.
+    phase(j, (-a - std::sqrt(std::max(a * a - 2.0 * j * v, 0.0))) / j);
+    return x;
+  }
+  // Ramp to the deepest deceleration needed (at most A), hold it, ramp back to 0.
+  const double deepest = -std::min(amax, std::sqrt(j * v + a * a / 2.0));
+  if (a > deepest) phase(-j, (a - deepest) / j);
+  const double hold = std::min(a, deepest);
+  phase(0.0, (v - hold * hold / (2.0 * j)) / -hold);
+  phase(j, -hold / j);
+  return x;
 }
 
 namespace {
@@ -94,11 +119,36 @@ LimitFlags step(const ActuatorLimits& limits, LimiterState& state, double target
     const double dv = v_goal - v;
     const double a_want = std::copysign(
         std::min({a_max, std::sqrt(2.0 * j_max * std::fabs(dv)), std::fabs(dv) / dt}), dv);
-    const double a_jerk =
+    double a_jerk =
         std::clamp(a_want, state.acceleration - j_max * dt, state.acceleration + j_max * dt);
-    const double v_jerk = v + a_jerk * dt;
-    if (v_jerk <= v_hi && v_jerk >= v_lo && std::fabs(v_jerk) <= std::max(v_max, std::fabs(v)) &&
-        std::fabs(a_jerk) <= a_max) {
+    double v_jerk = v + a_jerk * dt;
+    // Tracking the goal lags it; once the brake that the jerk limit allows
+    // from the next state would no longer stop short of what lies ahead
+    // (the target, or the range's end), brake now at the jerk limit. The
+    // margin of one more step covers the discrete integration.
+    if (v_jerk != 0.0) {
+      const double ahead = v_jerk > 0.0 ? 1.0 : -1.0;
+      const double room =
+          std::min(ahead > 0.0 ? hi - x : x - lo, ahead * error > 0.0 ? distance : kInfinity);
+      const double speed = ahead * v_jerk;
+      if (jerk_stopping_distance(speed, ahead * a_jerk, a_max, j_max) + 2.0 * speed * dt > room) {
+        a_jerk = ahead * std::max(ahead * state.acceleration - j_max * dt, -a_max);
+        v_jerk = v + a_jerk * dt;
+      }
+    }
+    const double side = error >= 0.0 ? 1.0 : -1.0;
+    // The ramp in the goal only plans the approach; a jerk-shaped step that
+    // lags it must still be able to stop on the target at full braking, as
+    // the plain step always can, or it would pass the target and ring.
+    const double toward = side * v_jerk;
+    const bool stops_on_target =
+        toward > 0.0 ? toward * toward + 2.0 * a_max * toward * dt <= 2.0 * a_max * distance
+                     : error != 0.0 || v_jerk == 0.0;  // on the target: stay
+    // Nor may the acceleration left over from a braking step push the
+    // motion back past standing still when the goal is still ahead.
+    const bool turns_back = v_jerk * v_goal < 0.0 && v * v_goal >= 0.0;
+    if (stops_on_target && !turns_back && v_jerk <= v_hi && v_jerk >= v_lo &&
+        std::fabs(v_jerk) <= std::max(v_max, std::fabs(v)) && std::fabs(a_jerk) <= a_max) {
       if (a_jerk != a_want) flags |= kLimitJerk;
       v_new = v_jerk;
     } else {

@@ -46,6 +46,11 @@ double committed_extreme(const ActuatorLimits& limits, const LimiterState& state
 // Highest speed v' that can still stop within `distance` after moving v'·dt.
 double braking_speed(double distance, double max_acceleration, double dt);
 
+// How far a jerk-limited brake travels from speed v >= 0 and acceleration a
+// (positive: speeding up) before it stands still: deceleration ramps in at
+// the jerk limit J to at most A, holds, and ramps out (continuous time).
+double jerk_stopping_distance(double v, double a, double max_acceleration, double max_jerk);
+
 // How far the limiter may still travel at speed v before it stands still: its
 // own approach plan (docs/SAFETY.md), v²/2A + v·(dt + A/2J).
 double stopping_distance(const ActuatorLimits& limits, double v, double dt);

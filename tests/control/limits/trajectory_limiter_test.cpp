@@ -123,6 +123,60 @@ TEST(TrajectoryLimiter, JerkLimitedMotionSettlesFromAnyMovingState) {
   }
 }
 
+// A position target is reached without passing it, from any moving state
+// that can stop before it within the acceleration limit (a state already too
+// fast to stop is excluded: no limiter can avoid passing then). The jerk limit
+// yields near the end rather than overshoot: a jaw must not ring on a stop.
+TEST(TrajectoryLimiter, ReachesATargetWithoutPassingItFromAnyMovingState) {
+  for (const double jerk : {0.0, 2600.0, 500.0}) {
+    ActuatorLimits l = jaw_like();
+    l.max_jerk = jerk;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int tried = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+      LimiterState s{l.soft_min + (l.soft_max - l.soft_min) * u(rng),
+                     l.max_velocity * (2 * u(rng) - 1), l.max_acceleration * (2 * u(rng) - 1)};
+      const double target = l.soft_min + (l.soft_max - l.soft_min) * u(rng);
+      const double side = s.position < target ? -1.0 : 1.0;  // where it starts, from the target
+      const double toward = -side * s.velocity;
+      if (toward > 0.0 &&
+          toward * toward / (2 * l.max_acceleration) > std::fabs(target - s.position)) {
+        continue;  // cannot stop before the target even at full braking
+      }
+      ++tried;
+      const double dt = trial % 4 == 0 ? 0.004 : 0.001;
+      for (int i = 0; i < 3000; ++i) {
+        limit_step(l, s, target, dt);
+        ASSERT_GE(side * (s.position - target), -1e-12)
+            << "jerk " << jerk << " trial " << trial << " tick " << i;
+      }
+      ASSERT_NEAR(s.position, target, 1e-9) << "jerk " << jerk << " trial " << trial;
+    }
+    EXPECT_GT(tried, 1000);
+  }
+}
+
+// A stop from cruising speed passes nothing either, and the jerk limit holds on
+// the way (it may yield on the last few ticks only).
+TEST(TrajectoryLimiter, AJerkLimitedStopFromFullSpeedDoesNotOvershoot) {
+  ActuatorLimits l = jaw_like();
+  l.max_jerk = 2600.0;
+  LimiterState s{l.soft_min, 0.0, 0.0};
+  for (int i = 0; i < 80; ++i) limit_step(l, s, l.soft_max, 0.001);  // get moving
+  ASSERT_GT(s.velocity, 2.0);
+  // Room to stop at full braking, and a little more.
+  const double target = s.position + 1.2 * s.velocity * s.velocity / (2 * l.max_acceleration);
+  ASSERT_LT(target, l.soft_max);
+  int yielded = 0;
+  for (int i = 0; i < 2000; ++i) {
+    if (limit_step(l, s, target, 0.001) & kLimitJerkYielded) ++yielded;
+    ASSERT_LE(s.position, target + 1e-12) << i;
+  }
+  EXPECT_NEAR(s.position, target, 1e-9);
+  EXPECT_LE(yielded, 10);
+}
+
 TEST(BrakingSpeed, StopsWithinTheDistanceUnderDiscreteBraking) {
   const double a = 50.0;
   const double dt = 0.001;
