@@ -311,8 +311,7 @@ bool Controller::at_rest(double dt) {
   return settled_time_ >= model_.rest_dwell_s;
 }
 
-void Controller::enter_state(SafetyState state, SafetyState from, TransitionReason reason,
-                             double dt) {
+void Controller::enter_state(SafetyState state, SafetyState from, TransitionReason reason) {
   const bool outputs = state == SafetyState::kEnabling || state == SafetyState::kRunning ||
                        state == SafetyState::kStopping;
   if (state == SafetyState::kEnabling) {
@@ -329,7 +328,7 @@ void Controller::enter_state(SafetyState state, SafetyState from, TransitionReas
     if (model_.mapping.mechanism) start_mechanism();
     settled_time_ = 0.0;
   }
-  fault_driving_ = state == SafetyState::kFault && start_fault_reactions(from, reason, dt);
+  fault_driving_ = state == SafetyState::kFault && start_fault_reactions(from, reason);
   if (!outputs && !fault_driving_) {
     for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
     io_.set_power_enable(false);
@@ -487,12 +486,13 @@ void Controller::tick(const TickTiming& timing) {
   const TransitionReason transition = safety_.step(in, dt);
   const TickTime time{timing.now_ns, dt};
   if (transition != TransitionReason::kNone) {
-    enter_state(safety_.state(), before, transition, dt);
+    enter_state(safety_.state(), before, transition);
     log_transition(timing, before, transition);
   } else if (fault_driving_) {
     relax_uncommandable(in.io_fault);
   }
   fault_holding_.store(fault_driving_, std::memory_order_relaxed);
+  fault_moving_.store(fault_driving_ && fault_reaction_moving(), std::memory_order_relaxed);
   // Telemetry shows where the hardware is while nothing is commanded.
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     if (!driving() || relaxed(i)) command_[i] = measured_[i];

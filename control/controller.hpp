@@ -82,6 +82,9 @@ class Controller {
   bool stop_timed_out() const { return stop_timed_out_.load(std::memory_order_relaxed); }
   // True while FAULT keeps some actuator commanded (hold or rest).
   bool fault_holding() const { return fault_holding_.load(std::memory_order_relaxed); }
+  // True while a held or resting actuator (or the jaw's pose) is still
+  // moving: releasing the outputs now would drop it mid-motion.
+  bool fault_moving() const { return fault_moving_.load(std::memory_order_relaxed); }
   // Only once the loop has stopped ticking: disables every bus and drops
   // power-enable, since a FAULT hold cannot outlive the loop commanding it.
   void release_outputs();
@@ -121,16 +124,17 @@ class Controller {
   bool measured_in_range(std::size_t i) const;  // inside its hardware range
   bool feedback_out_of_range();
   bool at_rest(double dt);
-  void enter_state(SafetyState state, SafetyState from, TransitionReason reason, double dt);
+  void enter_state(SafetyState state, SafetyState from, TransitionReason reason);
   // FAULT with per-actuator reactions (controller_fault_reaction.cpp,
   // docs/SAFETY.md "Fault reaction"): true while some actuator holds or rests.
-  bool start_fault_reactions(SafetyState from, TransitionReason reason, double dt);
+  bool start_fault_reactions(SafetyState from, TransitionReason reason);
   // A faulted bus, the safety I/O, or feedback out of range: relax.
   void relax_uncommandable(bool io_fault);
   bool relax_split_mechanism();  // true if it relaxed struts
   bool apply_fault_enables();    // false once every actuator relaxed
   bool driving() const { return safety_.outputs_enabled() || fault_driving_; }
   bool relaxed(std::size_t i) const { return fault_driving_ && fault_driven_[i] == 0; }
+  bool fault_reaction_moving() const;
   void write_outputs(const TickTime& time);
   void publish_telemetry(const TickTiming& timing, TransitionReason transition,
                          std::uint32_t rejected, std::uint8_t envelope_flags,
@@ -187,6 +191,7 @@ class Controller {
   std::atomic<std::uint64_t> faults_seen_{0};
   std::atomic<bool> stop_timed_out_{false};
   std::atomic<bool> fault_holding_{false};
+  std::atomic<bool> fault_moving_{false};
   double settled_time_ = 0.0;
   std::array<double, kMaxActuators> settling_{};  // low-passed measured positions in STOPPING
   const char* bus_fault_reason_ = "";

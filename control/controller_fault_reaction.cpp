@@ -12,16 +12,16 @@ namespace facectl {
 namespace {
 
 // Where a limiter moving at its velocity comes to a stop if it brakes now,
-// kept inside the soft range.
-double stop_point(const ActuatorLimits& l, const LimiterState& s, double dt) {
-  const double v = std::fabs(s.velocity);
-  const double stop = s.position + std::copysign(stopping_distance(l, v, dt), s.velocity);
-  return std::clamp(v > 0.0 ? stop : s.position, l.soft_min, l.soft_max);
+// kept inside the soft range. No tick length enters it: the tick that found
+// the fault may have been a long stall, and its dt in the distance would put
+// the "stop" far ahead, for the limiter to speed toward (issue 19.1).
+double stop_point(const ActuatorLimits& l, const LimiterState& s) {
+  return std::clamp(committed_extreme(l, s, s.velocity), l.soft_min, l.soft_max);
 }
 
 }  // namespace
 
-bool Controller::start_fault_reactions(SafetyState from, TransitionReason reason, double dt) {
+bool Controller::start_fault_reactions(SafetyState from, TransitionReason reason) {
   // Nothing was commanded before (IDLE) or the safety I/O itself failed:
   // everything is cut, as on e-stop.
   const bool live = from == SafetyState::kEnabling || from == SafetyState::kRunning ||
@@ -34,7 +34,7 @@ bool Controller::start_fault_reactions(SafetyState from, TransitionReason reason
     const bool breached = (flags_[i] & kLimitBreach) != 0;
     fault_driven_[i] = a.fault_reaction == FaultReaction::kRelax || breached ? 0 : 1;
     fault_target_[i] =
-        a.fault_reaction == FaultReaction::kRest ? a.rest : stop_point(a.limits, limiter_[i], dt);
+        a.fault_reaction == FaultReaction::kRest ? a.rest : stop_point(a.limits, limiter_[i]);
   }
   if (model_.mapping.mechanism) {
     // All struts share one reaction (checked when the model is built): the
@@ -44,9 +44,9 @@ bool Controller::start_fault_reactions(SafetyState from, TransitionReason reason
         model_.actuators[mech.strut[0].actuator].fault_reaction == FaultReaction::kRest;
     fault_pose_ = model_.mandible_rest;
     if (!rest) {
-      fault_pose_ = {stop_point(model_.mandible_limits[0], pose_limiter_[0], dt),
-                     stop_point(model_.mandible_limits[1], pose_limiter_[1], dt),
-                     stop_point(model_.mandible_limits[2], pose_limiter_[2], dt)};
+      fault_pose_ = {stop_point(model_.mandible_limits[0], pose_limiter_[0]),
+                     stop_point(model_.mandible_limits[1], pose_limiter_[1]),
+                     stop_point(model_.mandible_limits[2], pose_limiter_[2])};
     }
   }
   relax_uncommandable(false);
@@ -127,11 +127,30 @@ bool Controller::apply_fault_enables() {
   return any;
 }
 
+bool Controller::fault_reaction_moving() const {
+  // Standing still means no commanded velocity at all: the limiter settles
+  // exactly on its target (rounding aside, far below this tolerance).
+  const auto moving = [](const ActuatorLimits& l, const LimiterState& s) {
+    return std::fabs(s.velocity) > 1e-9 * l.max_velocity;
+  };
+  for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
+    if (fault_driven_[i] != 0 && moving(model_.actuators[i].limits, limiter_[i])) return true;
+  }
+  // The struts follow the pose's limiters while they are driven.
+  const MandibleMechanism* mech = model_.mapping.mechanism ? &*model_.mapping.mechanism : nullptr;
+  if (mech == nullptr || fault_driven_[mech->strut[0].actuator] == 0) return false;
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (moving(model_.mandible_limits[k], pose_limiter_[k])) return true;
+  }
+  return false;
+}
+
 void Controller::release_outputs() {
   for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
   io_.set_power_enable(false);
   fault_driving_ = false;
   fault_holding_.store(false, std::memory_order_relaxed);
+  fault_moving_.store(false, std::memory_order_relaxed);
 }
 
 }  // namespace facectl

@@ -270,6 +270,40 @@ TEST_F(FaultReaction, TheHoldBusFaultingLaterRelaxesItThen) {
   EXPECT_EQ(head_->hardware().find("can0")->writes_while_disabled(), 0u);
 }
 
+// A FAULT found after a stall: the stalled tick's long dt must not enter the
+// held jaw's stopping distance, or "hold" becomes a sprint to a point far
+// ahead (issue 19.1: 8 to 13 deg at up to 100 deg/s). A held axis brakes.
+TEST_F(FaultReaction, AHeldJawBrakesAfterAStallWhateverTheStallsDt) {
+  start(default_rig_text());
+  const ControllerModel& m = head_->model();
+  const double dt = head_->period();
+  pose_[m.layout.jaw_pitch()] = 0.30;
+  run_sending(0.02);
+  head_->send(pose_);
+  head_->step(0.2, 200);  // the stall, and the overruns it caused
+  ASSERT_EQ(head_->controller().state(), SafetyState::kFault);
+  face::MandiblePose before = jaw_pose();
+  head_->step(dt);
+  double speed = std::fabs(jaw_pose().pitch_rad - before.pitch_rad) / dt;
+  ASSERT_GT(speed, 0.2) << "the jaw should still be moving when the fault is found";
+  const double entry_speed = speed, entry_pitch = before.pitch_rad;
+  double peak = 0.0;
+  for (int i = 0; i < 500; ++i) {
+    before = jaw_pose();
+    head_->step(dt);
+    speed = std::fabs(jaw_pose().pitch_rad - before.pitch_rad) / dt;
+    peak = std::max(peak, speed);
+  }
+  EXPECT_LE(peak, entry_speed * 1.001) << "the held jaw sped up";
+  EXPECT_LT(speed, 1e-9) << "the held jaw should have stopped";
+  // Braking from the entry speed within the pose limits stops it within
+  // v²/2A plus the jerk ramp: nowhere near v·0.2 s further on.
+  const ActuatorLimits& l = m.mandible_limits[0];
+  const double reach = stopping_distance(l, entry_speed, 2 * dt);
+  EXPECT_LE(std::fabs(jaw_pose().pitch_rad - entry_pitch), reach)
+      << "stopped " << (jaw_pose().pitch_rad - entry_pitch) / kDeg << " deg on";
+}
+
 TEST_F(FaultReaction, EstopCutsEverythingWhateverTheReactions) {
   start(mixed_rig_text());
   head_->hardware().io.press_estop();
