@@ -60,6 +60,8 @@ void add_bench_commands(CLI::App& app, CliOptions& o) {
   bench_loop->add_option("--duration", o.bench.duration_s, "Seconds per variant (default 10)");
   bench_loop->add_option("--chunk", o.bench.chunk_s, "Interleave chunk in seconds (default 1)");
   bench_loop->add_option("--rate", o.bench.rate_hz, "Loop rate in Hz");
+  bench_loop->add_option("--inject", o.bench.inject,
+                         "Rehearse a fault, as run --inject (KIND@SECONDS of pipeline time)");
   bench_loop->callback([&o] { o.exit_code = facectl::bench_loop_command(o.bench); });
   CLI::App* bench_simulate = bench_cmd->add_subcommand(
       "simulate", "Offline simulation speed (no render) as a multiple of real time");

@@ -24,6 +24,7 @@
 #include "firmware-host/run/fault_injection.hpp"
 #include "firmware-host/run/real_hardware.hpp"
 #include "firmware-host/run/realtime_loop.hpp"
+#include "firmware-host/run/realtime_readiness.hpp"
 #include "firmware-host/run/realtime_thread.hpp"
 #include "firmware-host/run/run_summary.hpp"
 #include "firmware-host/run/status_line.hpp"
@@ -33,19 +34,14 @@ namespace facectl {
 namespace {
 
 std::atomic<int> g_signal{0};
+std::atomic<int> g_signal_count{0};
 extern "C" void on_signal(int sig) {
   g_signal.store(sig);
+  g_signal_count.fetch_add(1);
 }
 
 // How long the loop keeps ticking (and recording) after FAULT or ESTOP.
 constexpr double kFaultLingerSeconds = 0.5;
-
-void print_event(const TransitionEvent& ev) {
-  std::fprintf(stderr, "[%9.3f s, tick %llu] %s -> %s: %s%s%s\n", ev.time_s,
-               static_cast<unsigned long long>(ev.tick), std::string(to_string(ev.from)).c_str(),
-               std::string(to_string(ev.to)).c_str(), std::string(to_string(ev.reason)).c_str(),
-               ev.detail[0] != '\0' ? " — " : "", ev.detail);
-}
 
 // Everything one run owns, declared in the order the stages build it: members
 // are destroyed in reverse, so each input thread's mailbox, each writer's ring
@@ -93,15 +89,7 @@ void load(const RunOptions& options, RunSession& s) {
   const std::string path = options.config.empty() ? default_config_path() : options.config;
   s.cfg = std::make_unique<LoadedConfig>(load_config(path, overrides));
   const LoadedConfig& cfg = *s.cfg;
-  for (const auto& inj : s.injections) {
-    if (inj.kind == Injection::Kind::kBusFault &&
-        cfg.rig.buses.end() ==
-            std::find_if(cfg.rig.buses.begin(), cfg.rig.buses.end(),
-                         [&](const BusConfig& b) { return b.name == inj.bus; })) {
-      throw ConfigError("--inject bus_fault:" + inj.bus + ": expected a bus of rig '" +
-                        cfg.rig.name + "', found no such bus");
-    }
-  }
+  check_injection_buses(s.injections, cfg.rig);
   if (cfg.runtime.hardware == HardwareMode::kReal && !s.injections.empty()) {
     throw ConfigError(
         "--inject: expected simulated hardware (fault rehearsal), found "
@@ -172,8 +160,20 @@ void open_input(const RunOptions& options, RunSession& s) {
   s.end_s = options.duration_s ? *options.duration_s : (s.player) ? s.cfg->show->duration() : 1e300;
 }
 
+void warn_if_not_realtime_ready(const RuntimeConfig& runtime) {
+  const std::vector<std::string> gaps = realtime_gaps(runtime.realtime);
+  if (gaps.empty()) return;
+  std::fprintf(stderr,
+               "warning: this machine is not set up for a hard real-time loop "
+               "(docs/REALTIME.md). Under load expect stalls of tens of ms, and a FAULT when one "
+               "outlasts %d periods (runtime.overrun_fault_count):\n",
+               runtime.safety.overrun_fault_count);
+  for (const std::string& gap : gaps) std::fprintf(stderr, "  - %s\n", gap.c_str());
+}
+
 // Stage 4. Start: logger, input, then the real-time loop, and ask to enable.
 void start(RunSession& s) {
+  warn_if_not_realtime_ready(s.cfg->runtime);
   if (s.writer) s.writer->start();
   if (s.player) s.player->start();
   if (s.puppeteer) s.puppeteer->start();
@@ -189,33 +189,11 @@ void start(RunSession& s) {
 void drain_events(RunSession& s, bool tty, const char*& fault_text) {
   while (const TransitionEvent* ev = s.events.front()) {
     if (tty) std::fputs("\r\033[K", stdout), std::fflush(stdout);
-    print_event(*ev);
+    print_transition(*ev);
     if (ev->to == SafetyState::kFault || ev->to == SafetyState::kEstop) {
       fault_text = ev->to == SafetyState::kFault ? "FAULT" : "ESTOP";
     }
     s.events.pop();
-  }
-}
-
-// Fault rehearsal: each injection fires once, at its time, on the simulated hardware.
-void inject_due_faults(RunSession& s, double t) {
-  for (auto& inj : s.injections) {
-    if (inj.done || t < inj.at_s) continue;
-    inj.done = true;
-    switch (inj.kind) {
-      case Injection::Kind::kEstop:
-        s.sim->io.press_estop();
-        break;
-      case Injection::Kind::kBusFault:
-        s.sim->find(inj.bus)->inject_fault("injected bus fault");
-        break;
-      case Injection::Kind::kInputLoss:
-        if (s.player) s.player->go_silent();
-        break;
-      case Injection::Kind::kOverrunStorm:
-        s.loop->stall_until(monotonic_ns() + static_cast<std::int64_t>(inj.stall_ms * 1e6));
-        break;
-    }
   }
 }
 
@@ -233,7 +211,7 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     const double t = static_cast<double>(monotonic_ns() - t0) * 1e-9;
     drain_events(s, tty, fault_text);
-    inject_due_faults(s, t);
+    fire_due_injections(s.injections, t, s.sim.get(), s.player.get(), s.loop.get());
     const SafetyState state = s.controller->state();
     if (!shutdown && (g_signal.load() != 0 || t >= s.end_s ||
                       (!options.duration_s && s.player && s.player->finished()))) {
@@ -245,9 +223,18 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
     }
     if ((state == SafetyState::kFault || state == SafetyState::kEstop) && !fault_at) fault_at = t;
     // While FAULT holds or rests actuators the loop keeps commanding them,
-    // until the run ends (duration, signal).
+    // until the run ends (duration, signal); even then it lets a moving one
+    // come to a stop before the outputs are released (a second signal
+    // releases at once).
     if (fault_at && t - *fault_at >= kFaultLingerSeconds && !s.controller->fault_holding()) break;
-    if (shutdown && (state == SafetyState::kIdle || state == SafetyState::kFault)) break;
+    if (shutdown && state == SafetyState::kIdle) break;
+    if (shutdown && state == SafetyState::kFault &&
+        (!s.controller->fault_moving() || g_signal_count.load() > 1)) {
+      if (s.controller->fault_moving()) {
+        std::fprintf(stderr, "\nfacectl run: second signal: releasing a moving held actuator\n");
+      }
+      break;
+    }
     if (tty && monotonic_ns() - last_status > 100'000'000) {
       last_status = monotonic_ns();
       std::printf("\r\033[K%s", format_status(s.stats, state, t, fault_text).c_str());
@@ -264,9 +251,15 @@ void stop(RunSession& s, bool tty) {
   s.controller->release_outputs();  // nothing holds once the loop has stopped
   if (s.player) s.player->stop();
   if (s.puppeteer) s.puppeteer->stop();
-  if (s.writer) s.writer->finish();
+  if (s.writer) {
+    // A slow file must not hold the exit: the drain has a budget, and a
+    // signal from here on cuts it short (the rows left are counted lost).
+    const int signals = g_signal_count.load();
+    s.writer->finish(TelemetryWriter::kDrainBudgetSeconds,
+                     [signals] { return g_signal_count.load() > signals; });
+  }
   while (const TransitionEvent* ev = s.events.front()) {
-    print_event(*ev);
+    print_transition(*ev);
     s.events.pop();
   }
   if (tty) std::fputs("\r\033[K", stdout);
@@ -312,6 +305,9 @@ int run_command(const RunOptions& options) {
   }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  // A telemetry reader that goes away must fail the file, not kill the
+  // process while it drives the head.
+  std::signal(SIGPIPE, SIG_IGN);
 
   start(s);
   const bool tty = !options.quiet && isatty(STDOUT_FILENO) != 0;

@@ -1,7 +1,15 @@
 #include "firmware-host/run/fault_injection.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "control/clock.hpp"
+#include "firmware-host/config/config_node.hpp"
+#include "firmware-host/config/rig_config.hpp"
+#include "firmware-host/inputs/show_player.hpp"
+#include "firmware-host/run/realtime_loop.hpp"
+#include "sim/devices/sim_hardware.hpp"
 
 namespace facectl {
 namespace {
@@ -50,6 +58,43 @@ Injection parse_injection(const std::string& text) {
                                 kind + "'");
   }
   return inj;
+}
+
+void check_injection_buses(const std::vector<Injection>& injections, const RigConfig& rig) {
+  for (const auto& inj : injections) {
+    if (inj.kind == Injection::Kind::kBusFault &&
+        std::none_of(rig.buses.begin(), rig.buses.end(),
+                     [&](const BusConfig& b) { return b.name == inj.bus; })) {
+      throw ConfigError("--inject bus_fault:" + inj.bus + ": expected a bus of rig '" + rig.name +
+                        "', found no such bus");
+    }
+  }
+}
+
+void fire_due_injections(std::vector<Injection>& injections, double t, SimHardware* sim,
+                         ShowPlayer* player, RealtimeLoop* loop) {
+  for (auto& inj : injections) {
+    if (inj.done || t < inj.at_s) continue;
+    inj.done = true;
+    switch (inj.kind) {
+      case Injection::Kind::kEstop:
+        if (sim != nullptr) sim->io.press_estop();
+        break;
+      case Injection::Kind::kBusFault:
+        if (SimActuatorBus* bus = sim != nullptr ? sim->find(inj.bus) : nullptr) {
+          bus->inject_fault("injected bus fault");
+        }
+        break;
+      case Injection::Kind::kInputLoss:
+        if (player != nullptr) player->go_silent();
+        break;
+      case Injection::Kind::kOverrunStorm:
+        if (loop != nullptr) {
+          loop->stall_until(monotonic_ns() + static_cast<std::int64_t>(inj.stall_ms * 1e6));
+        }
+        break;
+    }
+  }
 }
 
 }  // namespace facectl

@@ -19,4 +19,18 @@ struct Injection {
 // Throws std::invalid_argument with a message naming the text and what was expected.
 Injection parse_injection(const std::string& text);
 
+struct RigConfig;
+struct SimHardware;
+class ShowPlayer;
+class RealtimeLoop;
+
+// Throws ConfigError when a bus_fault names no bus of the rig.
+void check_injection_buses(const std::vector<Injection>& injections, const RigConfig& rig);
+
+// Fires, once each, the injections due at `t` seconds on the simulated
+// hardware (estop, bus_fault), the show player (input_loss) and the loop
+// (overrun_storm); a null target skips its kinds.
+void fire_due_injections(std::vector<Injection>& injections, double t, SimHardware* sim,
+                         ShowPlayer* player, RealtimeLoop* loop);
+
 }  // namespace facectl

@@ -22,6 +22,9 @@ double LoopStats::measured_rate_hz() const {
 }
 
 void RealtimeLoop::run(const std::atomic<bool>& stop) {
+  // The stats add up over runs (`bench loop` runs the loop in chunks).
+  const std::uint64_t overruns_before = stats_.overruns.load(std::memory_order_relaxed);
+  const std::uint64_t skipped_before = stats_.skipped.load(std::memory_order_relaxed);
   LoopTimer timer(rate_hz_);
   const std::int64_t t0 = monotonic_ns();
   timer.start(t0);
@@ -45,19 +48,22 @@ void RealtimeLoop::run(const std::atomic<bool>& stop) {
     }
     compute = timer.finish();
     stats_.compute.record(compute);
-    stats_.overruns.store(timer.overruns(), std::memory_order_relaxed);
-    stats_.skipped.store(timer.skipped_deadlines(), std::memory_order_relaxed);
+    stats_.overruns.store(overruns_before + timer.overruns(), std::memory_order_relaxed);
+    stats_.skipped.store(skipped_before + timer.skipped_deadlines(), std::memory_order_relaxed);
   }
 }
 
 void run_bare_loop(double rate_hz, const std::atomic<bool>& stop, LoopStats& stats) {
+  const std::uint64_t overruns_before = stats.overruns.load(std::memory_order_relaxed);
+  const std::uint64_t skipped_before = stats.skipped.load(std::memory_order_relaxed);
   LoopTimer timer(rate_hz);
   timer.start(monotonic_ns());
   while (!stop.load(std::memory_order_relaxed)) {
     const LoopTimer::Wake w = timer.wait();
     record_wake(stats, w);
     stats.compute.record(timer.finish());
-    stats.overruns.store(timer.overruns(), std::memory_order_relaxed);
+    stats.overruns.store(overruns_before + timer.overruns(), std::memory_order_relaxed);
+    stats.skipped.store(skipped_before + timer.skipped_deadlines(), std::memory_order_relaxed);
   }
 }
 

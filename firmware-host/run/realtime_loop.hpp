@@ -9,7 +9,8 @@
 
 namespace facectl {
 
-// What the loop measured; readable from other threads while it runs.
+// What the loop measured; readable from other threads while it runs. The
+// counts add up when the same stats serve several runs.
 struct LoopStats {
   LatencyHistogram wake_latency;
   LatencyHistogram compute;

@@ -60,14 +60,20 @@ int print_run_summary(const RunSummaryInput& in) {
 
   bool lost = false;
   if (in.writer != nullptr) {
-    lost = in.writer->dropped() > 0 || in.writer->write_failed();
-    if (in.writer->write_failed()) {
-      std::printf("  TELEMETRY WRITE FAILED: %s is incomplete (disk full or I/O error)\n",
-                  in.writer->path().c_str());
+    const TelemetryWriter& w = *in.writer;
+    lost = w.dropped() > 0 || w.lost() > 0 || w.write_failed();
+    if (w.write_failed()) {
+      std::printf("  TELEMETRY WRITE FAILED: %s is incomplete: %s\n", w.path().c_str(),
+                  w.error().c_str());
     }
-    std::printf("  telemetry: %llu rows written to %s, %llu dropped\n",
-                static_cast<unsigned long long>(in.writer->written()), in.writer->path().c_str(),
-                static_cast<unsigned long long>(in.writer->dropped()));
+    if (w.drain_cut_short()) {
+      std::printf("  TELEMETRY DRAIN CUT SHORT: %s did not take the last rows in time\n",
+                  w.path().c_str());
+    }
+    std::printf("  telemetry: %llu rows written to %s, %llu lost, %llu dropped\n",
+                static_cast<unsigned long long>(w.written()), w.path().c_str(),
+                static_cast<unsigned long long>(w.lost()),
+                static_cast<unsigned long long>(w.dropped()));
   }
   if (in.events_dropped > 0) {
     std::printf("  %llu STATE TRANSITIONS NOT LOGGED (event ring full)\n",

@@ -18,3 +18,14 @@ std::string format_status(const LoopStats& stats, SafetyState state, double elap
 }
 
 }  // namespace facectl
+
+namespace facectl {
+
+void print_transition(const TransitionEvent& ev) {
+  std::fprintf(stderr, "[%9.3f s, tick %llu] %s -> %s: %s%s%s\n", ev.time_s,
+               static_cast<unsigned long long>(ev.tick), std::string(to_string(ev.from)).c_str(),
+               std::string(to_string(ev.to)).c_str(), std::string(to_string(ev.reason)).c_str(),
+               ev.detail[0] != '\0' ? " — " : "", ev.detail);
+}
+
+}  // namespace facectl
