@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 
@@ -30,6 +31,35 @@ const verify::Finding* find_failure(const std::vector<verify::Finding>& findings
     if (f.severity == verify::Finding::Severity::kFail && f.check == check) return &f;
   }
   return nullptr;
+}
+
+// One `facectl verify` run: its exit code, its JSON report and what it printed.
+struct VerifyRun {
+  int code = -1;
+  nlohmann::json report;
+  std::string out;
+};
+
+VerifyRun run_verify(const std::string& rig, std::vector<std::string> shows, std::uint64_t ticks) {
+  const testing::TempFile json("", ".json");
+  VerifyOptions o;
+  o.rig = rig;
+  o.shows = std::move(shows);
+  o.ticks = ticks;
+  o.json = json.path();
+  VerifyRun r;
+  ::testing::internal::CaptureStdout();
+  r.code = verify_command(o);
+  r.out = ::testing::internal::GetCapturedStdout();
+  std::ifstream in(json.path());
+  if (in.peek() != std::ifstream::traits_type::eof()) in >> r.report;
+  return r;
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
 }
 
 TEST(Verify, PassesBothShippedRigs) {
@@ -130,6 +160,33 @@ TEST(Verify, AnOvercommittedBusFailsWithItsNumbers) {
   ConfigOverrides strict;
   strict.rig_path = kSource + "/tests/firmware-host/verify/rigs/bus_overcommitted.yaml";
   EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
+}
+
+// Issue 19, item 4: a show that holds the neck at an end of travel trips the
+// servo's overload protection; every tick after it is FAULT. The show check
+// fails, naming the first such tick's time and the transition's reason, once.
+TEST(Verify, AShowThatFaultsTheHeadFailsWithItsTimeAndReason) {
+  const VerifyRun r =
+      run_verify(kSource + "/config/rigs/default.yaml",
+                 {kSource + "/tests/firmware-host/verify/shows/neck_held_at_extreme.yaml"}, 1000);
+  EXPECT_EQ(r.code, 1);
+  ASSERT_TRUE(r.report.contains("shows")) << r.out;
+  ASSERT_EQ(r.report["shows"].size(), 1u) << r.out;
+  const auto& show = r.report["shows"][0];
+  EXPECT_FALSE(show.value("passed", true));
+  ASSERT_TRUE(show.contains("fault")) << show.dump(2);
+  const auto& fault = show["fault"];
+  EXPECT_EQ(fault["state"], "FAULT");
+  // 2 s to get there, then the 20 s budget of continuous time at the extreme.
+  EXPECT_GT(fault["at_s"].get<double>(), 20.0);
+  EXPECT_LT(fault["at_s"].get<double>(), 24.0);
+  EXPECT_NE(fault["reason"].get<std::string>().find(
+                "thermal: neck_pan held at an end of travel longer than its 20 s budget"),
+            std::string::npos)
+      << fault["reason"];
+  EXPECT_GT(fault["ticks"].get<std::uint64_t>(), 6000u);  // the rest of the show, and settling
+  // Said once, not once per tick.
+  EXPECT_EQ(count(r.out, "neck_pan held at an end of travel"), 1u) << r.out;
 }
 
 // A CiA 402 drive counts in its bus's units, not in the actuator's (default,
