@@ -62,6 +62,17 @@ std::size_t count(const std::string& text, const std::string& what) {
   return n;
 }
 
+// The FAIL findings of one section of the JSON report ("static", "adversarial").
+std::vector<nlohmann::json> failures(const VerifyRun& r, const std::string& section,
+                                     const std::string& check) {
+  std::vector<nlohmann::json> out;
+  if (!r.report.contains(section)) return out;
+  for (const auto& f : r.report[section]["findings"]) {
+    if (f["severity"] == "FAIL" && f["check"] == check) out.push_back(f);
+  }
+  return out;
+}
+
 TEST(Verify, PassesBothShippedRigs) {
   VerifyOptions o;
   o.ticks = 100'000;
@@ -187,6 +198,26 @@ TEST(Verify, AShowThatFaultsTheHeadFailsWithItsTimeAndReason) {
   EXPECT_GT(fault["ticks"].get<std::uint64_t>(), 6000u);  // the rest of the show, and settling
   // Said once, not once per tick.
   EXPECT_EQ(count(r.out, "neck_pan held at an end of travel"), 1u) << r.out;
+}
+
+// The card's joint limits (-4..18 deg pitch) are the product's hard limit: an
+// envelope widened beyond them fails verify with the values, even with
+// `widen_override`, and `facectl run` refuses the rig.
+TEST(Verify, AnEnvelopeWidenedBeyondTheCardFails) {
+  const std::string rig = kSource + "/tests/firmware-host/verify/rigs/envelope_beyond_card.yaml";
+  const VerifyRun r = run_verify(rig, {}, 1000);
+  EXPECT_EQ(r.code, 1) << r.out;
+  const auto found = failures(r, "static", "rig");
+  ASSERT_EQ(found.size(), 1u) << r.out;
+  const std::string message = found[0]["message"];
+  EXPECT_NE(message.find("envelope_beyond_card.yaml:"), std::string::npos) << message;
+  EXPECT_NE(message.find("mandible_envelope.pitch_deg: 0..20 deg, beyond the mandible's joint "
+                         "limits -4..18 deg"),
+            std::string::npos)
+      << message;
+  ConfigOverrides strict;
+  strict.rig_path = rig;
+  EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
 }
 
 // A CiA 402 drive counts in its bus's units, not in the actuator's (default,
