@@ -206,6 +206,31 @@ std::optional<EffectorRange> point_effector_range(const ControllerModel& m, cons
   return EffectorRange{b.lower + outside.lo, b.upper + outside.hi, lo_at, hi_at};
 }
 
+// The rig's limits against what the actuator's servo can do (its `plant:`
+// block, the only servo spec the rig carries; docs/CONFIG.md "Plant"): the
+// limiter would command motion the servo cannot follow.
+void check_capability(const LoadedConfig& cfg, std::vector<Finding>& findings) {
+  for (const ActuatorConfig& ac : cfg.rig.actuators) {
+    const ActuatorLimits& l = ac.model.limits;
+    const sim::ServoPlantParams& servo = ac.plant;
+    const bool rotary = ac.model.kind == ActuatorKind::kRotary;
+    const double scale = to_yaml(ac.model.kind);
+    const std::string u = rotary ? "deg" : "mm";
+    auto check = [&](double rig, double can, const std::string& key, const std::string& unit) {
+      if (can <= 0.0 || rig <= can * (1.0 + 1e-12)) return;  // 0: the servo has no such limit
+      findings.push_back({Severity::kFail, "capability", ac.model.name,
+                          key + " " + fmt("%.6g", rig * scale) + " " + unit + " > the servo's " +
+                              fmt("%.6g", can * scale) + " " + unit + " (plant " + key + ", " +
+                              ac.plant_where +
+                              "): the limiter would command what the servo "
+                              "cannot follow; lower the rig's limit or fit a faster servo",
+                          ""});
+    };
+    check(l.max_velocity, servo.max_velocity, "max_velocity_" + u + "_s", u + "/s");
+    check(l.max_acceleration, servo.max_acceleration, "max_acceleration_" + u + "_s2", u + "/s^2");
+  }
+}
+
 }  // namespace
 
 Polytope admissible_face_set(const ControllerModel& m) {
@@ -370,6 +395,7 @@ StaticProof prove(const LoadedConfig& cfg) {
                                           : "the mapping never asks beyond it",
                             excess > 1e-9 ? describe_face(m, tidy(m, set, obj, worst->at)) : ""});
   }
+  check_capability(cfg, out.findings);
   // Bus schedules against their frame budgets (the drivers' budget model).
   for (const BusBudgetResult& b : cfg.budgets) {
     using V = BusBudgetResult::Verdict;

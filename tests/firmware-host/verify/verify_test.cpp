@@ -200,6 +200,57 @@ TEST(Verify, AShowThatFaultsTheHeadFailsWithItsTimeAndReason) {
   EXPECT_EQ(count(r.out, "neck_pan held at an end of travel"), 1u) << r.out;
 }
 
+// Issue 19, item 5: a rig limit above what the actuator's servo can do fails,
+// naming the actuator, the quantity and both values with their units.
+TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
+  const VerifyRun r = run_verify(
+      kSource + "/tests/firmware-host/verify/rigs/brow_acceleration_beyond_servo.yaml", {}, 1000);
+  EXPECT_EQ(r.code, 1);
+  const auto found = failures(r, "static", "capability");
+  ASSERT_EQ(found.size(), 1u) << r.out;
+  EXPECT_EQ(found[0]["subject"], "brow_l");
+  EXPECT_NE(found[0]["message"].get<std::string>().find(
+                "max_acceleration_deg_s2 4000 deg/s^2 > the servo's 400 deg/s^2"),
+            std::string::npos)
+      << found[0]["message"];
+  // The shipped rigs' servos can do what their limits ask.
+  for (const char* rig : {"/config/rigs/default.yaml", "/config/rigs/hobby.yaml"}) {
+    const auto proof = verify::prove(load_rig(kSource + rig));
+    const auto* f = find_failure(proof.findings, "capability");
+    EXPECT_EQ(f, nullptr) << rig << ": " << f->subject << ": " << f->message;
+  }
+}
+
+// A neck servo slower than the rig's limit cannot follow: the static check
+// names it, and the adversarial search's faults come as one finding with
+// their subject and reason, not one line per fault.
+TEST(Verify, AServoSlowerThanItsLimitIsNamedAndItsFaultsSaidOnce) {
+  const VerifyRun r = run_verify(
+      kSource + "/tests/firmware-host/verify/rigs/neck_velocity_beyond_servo.yaml", {}, 20'000);
+  EXPECT_EQ(r.code, 1);
+  const auto capability = failures(r, "static", "capability");
+  ASSERT_EQ(capability.size(), 1u) << r.out;
+  EXPECT_EQ(capability[0]["subject"], "neck_pan");
+  EXPECT_NE(capability[0]["message"].get<std::string>().find(
+                "max_velocity_deg_s 120 deg/s > the servo's 60 deg/s"),
+            std::string::npos)
+      << capability[0]["message"];
+  ASSERT_TRUE(r.report.contains("adversarial")) << r.out;
+  for (const auto& f : r.report["adversarial"]["findings"]) {
+    EXPECT_NE(f["subject"], "") << f.dump();
+  }
+  const auto faults = failures(r, "adversarial", "fault");
+  ASSERT_EQ(faults.size(), 1u) << r.out;
+  EXPECT_EQ(faults[0]["subject"], "neck_pan");
+  const std::string message = faults[0]["message"];
+  EXPECT_NE(message.find("the controller entered FAULT (actuator measured outside its hardware "
+                         "range) "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find(" time(s), first at t = "), std::string::npos) << message;
+  EXPECT_LE(count(r.out, "entered FAULT"), 1u) << r.out;
+}
+
 // The card's joint limits (-4..18 deg pitch) are the product's hard limit: an
 // envelope widened beyond them fails verify with the values, even with
 // `widen_override`, and `facectl run` refuses the rig.
