@@ -251,6 +251,21 @@ TEST(Verify, AServoSlowerThanItsLimitIsNamedAndItsFaultsSaidOnce) {
   EXPECT_LE(count(r.out, "entered FAULT"), 1u) << r.out;
 }
 
+// A mapping wired the wrong way round on a symmetric range stays inside every
+// range; the direction the rig expects for a named face signal catches it.
+TEST(Verify, AFlippedMappingFailsItsExpectedDirection) {
+  const VerifyRun r =
+      run_verify(kSource + "/tests/firmware-host/verify/rigs/flipped_direction.yaml", {}, 1000);
+  EXPECT_EQ(r.code, 1) << r.out;
+  const auto found = failures(r, "static", "direction");
+  ASSERT_EQ(found.size(), 1u) << r.out;
+  EXPECT_EQ(found[0]["subject"], "neck_pan");
+  EXPECT_NE(found[0]["message"].get<std::string>().find(
+                "expected to rise with neck_pan_deg (expect_direction +1), but it falls"),
+            std::string::npos)
+      << found[0]["message"];
+}
+
 // The card's joint limits (-4..18 deg pitch) are the product's hard limit: an
 // envelope widened beyond them fails verify with the values, even with
 // `widen_override`, and `facectl run` refuses the rig.
