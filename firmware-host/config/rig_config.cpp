@@ -48,7 +48,7 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   node.expect_keys({"name", "kind", "bus", "address", "position" + s, "soft_position" + s,
                     "max_velocity" + s + "_s", "max_acceleration" + s + "_s2",
                     "max_jerk" + s + "_s3", "rest" + s, "plant", "map", "fault_reaction",
-                    "encoding", "max_current_a"});
+                    "encoding", "max_current_a", "expect_direction"});
 
   m.bus = node["bus"].string();
   if (bus_names.count(m.bus) == 0) node["bus"].fail("the name of a bus of this rig");
@@ -125,6 +125,16 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
     if (auto n = e->get("offset")) m.encoding.offset = n->number();
   }
   if (auto c = node.get("max_current_a")) m.max_current_a = c->positive();
+  if (auto e = node.get("expect_direction")) {
+    for (const auto& [key, value] : e->entries()) {
+      const std::size_t index = face_signal(layout, key, value);
+      const double sign = value.number();
+      if (sign != 1.0 && sign != -1.0) {
+        value.fail("+1 (the position rises as the signal rises) or -1 (it falls)");
+      }
+      cfg.expect_direction.push_back({index, sign > 0 ? 1 : -1, key, value.where()});
+    }
+  }
   return cfg;
 }
 

@@ -16,6 +16,16 @@
 
 namespace facectl {
 
+// An `expect_direction` entry: the actuator's position rises (sign +1) or
+// falls (sign -1) as the named face signal rises. `facectl verify` checks the
+// mapping against it (docs/VERIFY.md, "Direction").
+struct DirectionExpectation {
+  std::size_t signal = 0;  // face layout index
+  int sign = 1;
+  std::string key;  // the signal as written (jaw_pitch_deg)
+  std::string where;
+};
+
 struct ActuatorConfig {
   ActuatorModel model;
   MappingConfig map;  // empty (where = the actuator) for a strut of the mandible mechanism
@@ -26,6 +36,7 @@ struct ActuatorConfig {
   std::string encoding_where;        // position of its `encoding` block, or of the actuator
   bool has_encoding = false;         // an `encoding` block was written
   std::string fault_reaction_where;  // position of its `fault_reaction`, or of the actuator
+  std::vector<DirectionExpectation> expect_direction;
 };
 
 // A coupled limit as written: Σ coeff · signal (YAML units) <= max, over

@@ -110,6 +110,16 @@ double unit_to_si(const std::string& unit) {
   return 1.0;
 }
 
+std::size_t face_signal(const FaceLayout& layout, const std::string& key, const ConfigNode& at) {
+  // A face signal is named with its YAML unit: zygomaticus_major_l, jaw_pitch_deg, ...
+  const std::optional<std::size_t> index = layout.find_yaml_key(key);
+  if (!index) {
+    at.fail("a face signal of the head (muscle name, jaw_pitch_deg, jaw_protrusion_mm, ...)",
+            "unknown signal '" + key + "'");
+  }
+  return *index;
+}
+
 MappingConfig parse_mapping(const ConfigNode& map, const FaceLayout& layout,
                             const std::string& actuator_unit) {
   MappingConfig cfg;
@@ -135,14 +145,9 @@ MappingConfig parse_mapping(const ConfigNode& map, const FaceLayout& layout,
   if (auto n = map.get(offset_key)) cfg.offset_si = n->number() * to_si;
   if (auto terms = map.get("terms")) {
     for (const auto& [signal_key, gain] : terms->entries()) {
-      // Terms name the signal with its YAML unit: zygomaticus_major_l, jaw_pitch_deg, ...
-      const std::optional<std::size_t> index = layout.find_yaml_key(signal_key);
-      if (!index) {
-        gain.fail("a face signal of the head (muscle name, jaw_pitch_deg, jaw_protrusion_mm, ...)",
-                  "unknown signal '" + signal_key + "'");
-      }
+      const std::size_t index = face_signal(layout, signal_key, gain);
       // Gain is in effector YAML units per signal YAML unit.
-      cfg.terms.push_back({*index, gain.number() * to_si / yaml_to_si(layout.signal(*index).kind)});
+      cfg.terms.push_back({index, gain.number() * to_si / yaml_to_si(layout.signal(index).kind)});
     }
   }
   if (auto points = map.get("points")) {

@@ -38,6 +38,10 @@ struct MappingConfig {
   std::string transform_where;      // its calibration or linkage block
 };
 
+// The layout index of the face signal `key` (its YAML key: a muscle name,
+// jaw_pitch_deg, ...); fails at `at` if the head has no such signal.
+std::size_t face_signal(const FaceLayout& layout, const std::string& key, const ConfigNode& at);
+
 // Parses `map:` for an actuator whose position unit is `actuator_unit`
 // ("deg" or "mm"). Throws ConfigError naming file:line:col and the key.
 MappingConfig parse_mapping(const ConfigNode& map, const FaceLayout& layout,

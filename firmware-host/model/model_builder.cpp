@@ -54,6 +54,35 @@ void check_unmarked_widening(const EnvelopeSpec& spec, const MandibleEnvelope& b
   check(spec.protrusion, before.protrusion, "protrusion_mm", 1e-3, "mm");
 }
 
+// The card's joint limits are the product's hard limit: `widen_override` may
+// undo a head's narrowing, never go beyond them. `facectl run` refuses such a
+// rig; `facectl verify` fails it.
+void check_within_joint_limits(const HeadConfig& head, const RigConfig& rig,
+                               const MandibleEnvelope& env, const MandibleEnvelope& design,
+                               std::vector<std::string>& problems) {
+  auto check = [&](const Range& axis, const Range& limit,
+                   std::optional<Range> EnvelopeSpec::*stated, const char* name, double unit,
+                   const char* suffix) {
+    if (limit.contains(axis)) return;
+    // The last block that widened this axis.
+    const bool by_rig =
+        rig.envelope && rig.envelope->widen_override && ((*rig.envelope).*stated).has_value();
+    const std::string where = by_rig          ? rig.envelope->where
+                              : head.envelope ? head.envelope->where
+                                              : rig.file;
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "%s: mandible_envelope.%s: %g..%g %s, beyond the mandible's joint limits "
+                  "%g..%g %s (the product's hard limit: `widen_override` cannot exceed them)",
+                  where.c_str(), name, axis.min / unit, axis.max / unit, suffix, limit.min / unit,
+                  limit.max / unit, suffix);
+    problems.emplace_back(buf);
+  };
+  check(env.pitch, design.pitch, &EnvelopeSpec::pitch, "pitch_deg", kDeg, "deg");
+  check(env.yaw, design.yaw, &EnvelopeSpec::yaw, "yaw_deg", kDeg, "deg");
+  check(env.protrusion, design.protrusion, &EnvelopeSpec::protrusion, "protrusion_mm", 1e-3, "mm");
+}
+
 // The reduced face model of the head, for rigs that read control points.
 std::shared_ptr<const face::ReducedFaceModel> load_reduced(const HeadConfig& head) {
   const std::string dir = head.file.substr(0, head.file.find_last_of('/') + 1);
@@ -110,6 +139,7 @@ void set_envelope(const HeadConfig& head, const RigConfig& rig, BuiltModel& out)
                         "head's, found an empty intersection");
     }
   }
+  check_within_joint_limits(head, rig, env, design, out.problems);
   m.envelope = env;
   m.envelope_widened = !env.within(design) || !env.within(head_env);
   if (!env.within(design)) {

@@ -79,6 +79,14 @@ class Search {
                std::to_string(jerk_yields_[i]) + " ticks: by design (docs/SAFETY.md, jerk yielded)",
            ""});
     }
+    for (const FaultGroup& g : faults_) {
+      char first[48];
+      std::snprintf(first, sizeof first, ", first at t = %.4f s", g.first_s);
+      result_.findings.push_back({Severity::kFail, "fault", g.subject,
+                                  "the controller entered " + g.state + " (" + g.reason + ") " +
+                                      std::to_string(g.count) + " time(s)" + first + g.first_detail,
+                                  ""});
+    }
     if (result_.violations > kMaxReported) {
       result_.findings.push_back({Severity::kFail, "adversarial", "",
                                   std::to_string(result_.violations) + " violations in all; " +
@@ -120,17 +128,90 @@ class Search {
     result_.findings.push_back({Severity::kFail, check, subject, what + at, ""});
   }
 
+  // A fault, once per kind: the reason the state machine gave and the subject
+  // it concerns, counted, with the first time and what was measured then. The
+  // search re-enables after each, so one cause can fault many times.
+  struct FaultGroup {
+    std::string state, subject, reason, first_detail;
+    std::uint64_t count = 0;
+    double first_s = 0.0;
+  };
+
+  // Who a fault is about, and what the controller saw of it.
+  std::pair<std::string, std::string> fault_subject(TransitionReason reason) {
+    const Controller& c = head_.controller();
+    std::string subject, detail;
+    auto add = [&](const ActuatorModel& a, const std::string& what) {
+      subject += (subject.empty() ? "" : ", ") + a.name;
+      if (detail.empty()) detail = " (" + a.name + " " + what + ")";
+    };
+    for (std::size_t i = 0; i < m_.actuators.size(); ++i) {
+      const ActuatorModel& a = m_.actuators[i];
+      const double s = to_yaml(a.kind), x = c.measured()[i];
+      const char* u = a.kind == ActuatorKind::kRotary ? " deg" : " mm";
+      char buf[160];
+      if (reason == TransitionReason::kFeedbackOutOfRange &&
+          !(a.limits.position_min <= x && x <= a.limits.position_max)) {
+        std::snprintf(buf, sizeof buf,
+                      "measured at %.4g%s, outside its hardware range %.4g..%.4g%s", x * s, u,
+                      a.limits.position_min * s, a.limits.position_max * s, u);
+        add(a, buf);
+      }
+      if (reason == TransitionReason::kLimitBreach && (c.limit_flags()[i] & kLimitBreach) != 0) {
+        add(a, "commanded outside its hardware range");
+      }
+      if (reason == TransitionReason::kBusFault && last_detail_.find(a.name) != std::string::npos &&
+          subject.empty()) {
+        subject = a.name;
+      }
+    }
+    if (!subject.empty()) return {subject, detail};
+    switch (reason) {
+      case TransitionReason::kFeedbackOutOfRange:
+        return {"jaw struts", " (the measured strut lengths put the jaw outside the envelope)"};
+      case TransitionReason::kBusFault:
+        return {"bus", ""};
+      case TransitionReason::kOverrunStorm:
+        return {"loop", ""};
+      default:
+        return {"safety I/O", ""};
+    }
+  }
+
+  void fault(SafetyState state) {
+    ++result_.violations;
+    const auto [subject, detail] = fault_subject(last_reason_);
+    std::string reason(to_string(last_reason_));
+    if (!last_detail_.empty()) reason += ": " + last_detail_;
+    const std::string name(to_string(state));
+    for (FaultGroup& g : faults_) {
+      if (g.state == name && g.subject == subject && g.reason == reason) {
+        ++g.count;
+        return;
+      }
+    }
+    faults_.push_back({name, subject, reason, detail, 1, head_.time() - 1.0});
+  }
+
   void measure(double dt) {
     Controller& c = head_.controller();
+    while (const TransitionEvent* ev = head_.events().front()) {
+      if (ev->to == SafetyState::kFault || ev->to == SafetyState::kEstop) {
+        last_reason_ = ev->reason;
+        last_detail_ = ev->detail;
+      }
+      head_.events().pop();
+    }
     const SafetyState state = c.state();
     if (state == SafetyState::kFault || state == SafetyState::kEstop) {
-      violation("adversarial", "",
-                std::string("the controller entered ") + std::string(to_string(state)));
+      if (!in_fault_) fault(state);  // once per entry, not per tick until the reset
+      in_fault_ = true;
       c.request_reset();
       c.request_enable();
       live_ = false;
       return;
     }
+    in_fault_ = false;
     const bool live = state == SafetyState::kEnabling || state == SafetyState::kRunning ||
                       state == SafetyState::kStopping;
     if (state == SafetyState::kIdle) c.request_enable();
@@ -237,6 +318,10 @@ class Search {
   SearchOptions options_;
   SearchResult result_;
   bool live_ = false;
+  bool in_fault_ = false;
+  TransitionReason last_reason_ = TransitionReason::kNone;  // of the last fault's transition
+  std::string last_detail_;
+  std::vector<FaultGroup> faults_;
   face::MandiblePose mechanism_pose_;  // last forward-kinematics pose: the next guess
   std::array<double, kMaxActuators> prev_cmd_{}, prev_vel_{}, prev_acc_{};
   std::array<std::uint64_t, kMaxActuators> jerk_yields_{};

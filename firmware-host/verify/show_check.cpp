@@ -49,7 +49,42 @@ class Collector {
   std::vector<Engagement> done_;
 };
 
+// The states a show may pass through: anything else (FAULT, ESTOP) fails it.
+bool live(SafetyState s) {
+  return s == SafetyState::kIdle || s == SafetyState::kEnabling || s == SafetyState::kRunning ||
+         s == SafetyState::kStopping;
+}
+
+// Watches the controller's state on every tick, and its transitions (the
+// events ring) for the reason it left the live states.
+class FaultWatch {
+ public:
+  explicit FaultWatch(OfflineHead& head) : head_(head) {}
+
+  void see(double t, std::optional<ShowFault>& fault) {
+    while (const TransitionEvent* ev = head_.events().front()) {
+      if (!live(ev->to)) {
+        reason_ = std::string(to_string(ev->reason));
+        if (ev->detail[0] != '\0') reason_ += std::string(" — ") + ev->detail;
+      }
+      head_.events().pop();
+    }
+    const SafetyState s = head_.controller().state();
+    if (live(s)) return;
+    if (!fault) fault = ShowFault{std::string(to_string(s)), std::max(0.0, t), reason_, 0};
+    ++fault->ticks;
+  }
+
+ private:
+  OfflineHead& head_;
+  std::string reason_ = "no transition recorded";
+};
+
 }  // namespace
+
+bool ShowCheck::passed() const {
+  return clean() && !fault;
+}
 
 bool ShowCheck::clean() const {
   return std::none_of(engagements.begin(), engagements.end(), [](const Engagement& e) {
@@ -69,11 +104,13 @@ ShowCheck check_show(const LoadedConfig& base, const std::string& show_path,
 
   OfflineHead head(cfg, 1024, true);
   const ControllerModel& m = head.model();
+  FaultWatch watch(head);
   // Enable on the neutral pose first: the show starts once RUNNING.
   head.send(m.neutral);
   head.controller().request_enable();
   while (head.controller().state() != SafetyState::kRunning && head.time() < 30.0) {
     head.step(head.period());
+    watch.see(0.0, out.fault);
     while (head.telemetry()->front()) head.telemetry()->pop();
   }
   std::FILE* csv = nullptr;
@@ -100,6 +137,7 @@ ShowCheck check_show(const LoadedConfig& base, const std::string& show_path,
     }
     head.step(head.period());
     ++tick;
+    watch.see(t, out.fault);
     const Controller& c = head.controller();
     if (c.envelope_excess() > 0.0) seen.see(tick, t, "envelope", "face", c.envelope_excess(), "SI");
     for (std::size_t k = 0; k < m.face_constraints.size(); ++k) {

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,11 +19,22 @@ struct Engagement {
   std::string unit;
 };
 
+// The ticks the controller spent outside IDLE, ENABLING, RUNNING and STOPPING
+// (in FAULT or ESTOP): any one fails the show.
+struct ShowFault {
+  std::string state;        // of the first such tick: FAULT or ESTOP
+  double at_s = 0.0;        // its show time (0 if the head faulted before the show began)
+  std::string reason;       // the transition's reason and detail
+  std::uint64_t ticks = 0;  // such ticks in all
+};
+
 struct ShowCheck {
   std::string show;
   double duration_s = 0.0;
   std::vector<Engagement> engagements;
+  std::optional<ShowFault> fault;
   bool clean() const;         // nothing clamped or projected (limiter rate limits are listed too)
+  bool passed() const;        // clean, and the head never left the live states
   std::string telemetry_csv;  // written when an output folder is given
   int plots = 0;
 };

@@ -206,6 +206,93 @@ std::optional<EffectorRange> point_effector_range(const ControllerModel& m, cons
   return EffectorRange{b.lower + outside.lo, b.upper + outside.hi, lo_at, hi_at};
 }
 
+// The rig's limits against what the actuator's servo can do (its `plant:`
+// block, the only servo spec the rig carries; docs/CONFIG.md "Plant"): the
+// limiter would command motion the servo cannot follow.
+void check_capability(const LoadedConfig& cfg, std::vector<Finding>& findings) {
+  for (const ActuatorConfig& ac : cfg.rig.actuators) {
+    const ActuatorLimits& l = ac.model.limits;
+    const sim::ServoPlantParams& servo = ac.plant;
+    const bool rotary = ac.model.kind == ActuatorKind::kRotary;
+    const double scale = to_yaml(ac.model.kind);
+    const std::string u = rotary ? "deg" : "mm";
+    auto check = [&](double rig, double can, const std::string& key, const std::string& unit) {
+      if (can <= 0.0 || rig <= can * (1.0 + 1e-12)) return;  // 0: the servo has no such limit
+      findings.push_back({Severity::kFail, "capability", ac.model.name,
+                          key + " " + fmt("%.6g", rig * scale) + " " + unit + " > the servo's " +
+                              fmt("%.6g", can * scale) + " " + unit + " (plant " + key + ", " +
+                              ac.plant_where +
+                              "): the limiter would command what the servo "
+                              "cannot follow; lower the rig's limit or fit a faster servo",
+                          ""});
+    };
+    check(l.max_velocity, servo.max_velocity, "max_velocity_" + u + "_s", u + "/s");
+    check(l.max_acceleration, servo.max_acceleration, "max_acceleration_" + u + "_s2", u + "/s^2");
+  }
+}
+
+// Each `expect_direction`: with the other signals at neutral, the mapped
+// command must move the expected way on every step across the signal's
+// admissible range, and move at all.
+void check_directions(const LoadedConfig& cfg, const Polytope& set,
+                      std::vector<Finding>& findings) {
+  const ControllerModel& m = cfg.built.model;
+  MappingWorkspace w = make_mapping_workspace(m.mapping);
+  std::array<double, kMaxFaceSignals> face{};
+  std::array<double, kMaxActuators> out{};
+  for (std::size_t k = 0; k < cfg.rig.actuators.size(); ++k) {
+    const ActuatorConfig& ac = cfg.rig.actuators[k];
+    const std::size_t i = cfg.built.file_order[k];
+    const double scale = to_yaml(ac.model.kind);
+    const std::string unit = ac.model.kind == ActuatorKind::kRotary ? "deg" : "mm";
+    for (const DirectionExpectation& e : ac.expect_direction) {
+      for (std::size_t j = 0; j < set.size(); ++j) {
+        face[j] = std::clamp(m.neutral[j], set.lo[j], set.hi[j]);
+      }
+      const double lo = set.lo[e.signal], hi = set.hi[e.signal];
+      const double to_file = 1.0 / yaml_to_si(m.layout.signal(e.signal).kind);
+      constexpr int kSteps = 64;
+      double prev = 0.0, moved = 0.0;
+      std::optional<std::pair<double, double>> wrong;  // signal values, SI
+      double wrong_from = 0.0, wrong_to = 0.0;
+      for (int s = 0; s <= kSteps; ++s) {
+        face[e.signal] = lo + (hi - lo) * s / kSteps;
+        map_to_actuators(m.mapping, w, face, out);
+        if (s > 0) {
+          const double d = (out[i] - prev) * e.sign;
+          const double tol = 1e-9 * (1.0 + std::fabs(out[i]) + std::fabs(prev));
+          if (d < -tol && !wrong) {
+            wrong = std::pair{face[e.signal] - (hi - lo) / kSteps, face[e.signal]};
+            wrong_from = prev;
+            wrong_to = out[i];
+          }
+          if (d > tol) moved = 1.0;
+        }
+        prev = out[i];
+      }
+      const std::string expected =
+          std::string(e.sign > 0 ? "expected to rise" : "expected to fall") + " with " + e.key +
+          " (expect_direction " + (e.sign > 0 ? "+1" : "-1") + ")";
+      if (wrong) {
+        findings.push_back({Severity::kFail, "direction", ac.model.name,
+                            expected + ", but it " + (e.sign > 0 ? "falls" : "rises") + ": " +
+                                fmt("%.4g", wrong_from * scale) + " -> " +
+                                fmt("%.4g", wrong_to * scale) + " " + unit + " as " + e.key +
+                                " goes " + fmt("%.4g", wrong->first * to_file) + " -> " +
+                                fmt("%.4g", wrong->second * to_file) +
+                                ", the other signals at neutral (" + e.where + ")",
+                            ""});
+      } else if (moved == 0.0) {
+        findings.push_back({Severity::kFail, "direction", ac.model.name,
+                            expected + ", but it does not move with it over " +
+                                fmt("%.4g", lo * to_file) + ".." + fmt("%.4g", hi * to_file) +
+                                ", the other signals at neutral (" + e.where + ")",
+                            ""});
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Polytope admissible_face_set(const ControllerModel& m) {
@@ -370,6 +457,8 @@ StaticProof prove(const LoadedConfig& cfg) {
                                           : "the mapping never asks beyond it",
                             excess > 1e-9 ? describe_face(m, tidy(m, set, obj, worst->at)) : ""});
   }
+  check_capability(cfg, out.findings);
+  check_directions(cfg, set, out.findings);
   // Bus schedules against their frame budgets (the drivers' budget model).
   for (const BusBudgetResult& b : cfg.budgets) {
     using V = BusBudgetResult::Verdict;

@@ -137,7 +137,16 @@ int verify_command(const VerifyOptions& o) {
           o.plots.empty() ? "" : o.plots + (o.shows.size() > 1 ? "/show" + std::to_string(k) : "");
       const verify::ShowCheck sc = verify::check_show(cfg, o.shows[k], dir);
       std::printf("\nShow check %s (%.2f s): %s\n", sc.show.c_str(), sc.duration_s,
-                  sc.clean() ? "no clamp, no projection" : "NEEDS CLAMPING: fix the show");
+                  sc.fault      ? "THE HEAD FAULTED: fix the show or the rig"
+                  : !sc.clean() ? "NEEDS CLAMPING: fix the show"
+                                : "no clamp, no projection");
+      if (sc.fault) {
+        std::printf(
+            "  FAIL %s at %.3f s: %s; %llu tick(s) outside IDLE, ENABLING, RUNNING and "
+            "STOPPING\n",
+            sc.fault->state.c_str(), sc.fault->at_s, sc.fault->reason.c_str(),
+            static_cast<unsigned long long>(sc.fault->ticks));
+      }
       Json list = Json::array();
       for (const auto& e : sc.engagements) {
         std::printf("  %8.3f..%8.3f s  %-22s %-20s size %.4g %s\n", e.start_s, e.end_s,
@@ -153,11 +162,19 @@ int verify_command(const VerifyOptions& o) {
         std::printf("  telemetry %s, %d plot(s) in %s\n", sc.telemetry_csv.c_str(), sc.plots,
                     dir.c_str());
       }
-      failed = failed || !sc.clean();
-      shows.push_back({{"show", sc.show},
-                       {"duration_s", sc.duration_s},
-                       {"clean", sc.clean()},
-                       {"engagements", list}});
+      failed = failed || !sc.passed();
+      Json show = {{"show", sc.show},
+                   {"duration_s", sc.duration_s},
+                   {"clean", sc.clean()},
+                   {"passed", sc.passed()},
+                   {"engagements", list}};
+      if (sc.fault) {
+        show["fault"] = {{"state", sc.fault->state},
+                         {"at_s", sc.fault->at_s},
+                         {"reason", sc.fault->reason},
+                         {"ticks", sc.fault->ticks}};
+      }
+      shows.push_back(show);
     }
     report["shows"] = shows;
   } catch (const std::exception& e) {

@@ -113,6 +113,18 @@ TEST_F(EnvelopeMerge, ARigNarrowsTheHeadAndAnOverrideWidensLoudly) {
   ASSERT_EQ(b.warnings.size(), 2u);
   EXPECT_NE(b.warnings[0].find("WIDENED beyond the design default by here:1:1"), std::string::npos);
   EXPECT_NE(b.warnings[1].find("the rig WIDENS the head's mandible envelope"), std::string::npos);
+  // Beyond the joint limits (18 deg): a problem, which `facectl run` refuses.
+  ASSERT_EQ(b.problems.size(), 1u);
+  EXPECT_NE(b.problems[0].find("here:1:1: mandible_envelope.pitch_deg: -4..20 deg, beyond the "
+                               "mandible's joint limits -4..18 deg"),
+            std::string::npos)
+      << b.problems[0];
+
+  // Up to them, the override undoes the head's narrowing without a problem.
+  cfg_.rig.envelope = spec(Range{-4 * kDeg, 18 * kDeg}, true);
+  b = build_model(cfg_.head, cfg_.rig, cfg_.runtime);
+  EXPECT_DOUBLE_EQ(b.model.envelope.pitch.max, 18 * kDeg);
+  EXPECT_TRUE(b.problems.empty());
 }
 
 }  // namespace

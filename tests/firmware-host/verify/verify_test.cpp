@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 
@@ -30,6 +31,46 @@ const verify::Finding* find_failure(const std::vector<verify::Finding>& findings
     if (f.severity == verify::Finding::Severity::kFail && f.check == check) return &f;
   }
   return nullptr;
+}
+
+// One `facectl verify` run: its exit code, its JSON report and what it printed.
+struct VerifyRun {
+  int code = -1;
+  nlohmann::json report;
+  std::string out;
+};
+
+VerifyRun run_verify(const std::string& rig, std::vector<std::string> shows, std::uint64_t ticks) {
+  const testing::TempFile json("", ".json");
+  VerifyOptions o;
+  o.rig = rig;
+  o.shows = std::move(shows);
+  o.ticks = ticks;
+  o.json = json.path();
+  VerifyRun r;
+  ::testing::internal::CaptureStdout();
+  r.code = verify_command(o);
+  r.out = ::testing::internal::GetCapturedStdout();
+  std::ifstream in(json.path());
+  if (in.peek() != std::ifstream::traits_type::eof()) in >> r.report;
+  return r;
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// The FAIL findings of one section of the JSON report ("static", "adversarial").
+std::vector<nlohmann::json> failures(const VerifyRun& r, const std::string& section,
+                                     const std::string& check) {
+  std::vector<nlohmann::json> out;
+  if (!r.report.contains(section)) return out;
+  for (const auto& f : r.report[section]["findings"]) {
+    if (f["severity"] == "FAIL" && f["check"] == check) out.push_back(f);
+  }
+  return out;
 }
 
 TEST(Verify, PassesBothShippedRigs) {
@@ -129,6 +170,119 @@ TEST(Verify, AnOvercommittedBusFailsWithItsNumbers) {
   // `facectl run` refuses it as it loads.
   ConfigOverrides strict;
   strict.rig_path = kSource + "/tests/firmware-host/verify/rigs/bus_overcommitted.yaml";
+  EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
+}
+
+// Issue 19, item 4: a show that holds the neck at an end of travel trips the
+// servo's overload protection; every tick after it is FAULT. The show check
+// fails, naming the first such tick's time and the transition's reason, once.
+TEST(Verify, AShowThatFaultsTheHeadFailsWithItsTimeAndReason) {
+  const VerifyRun r =
+      run_verify(kSource + "/config/rigs/default.yaml",
+                 {kSource + "/tests/firmware-host/verify/shows/neck_held_at_extreme.yaml"}, 1000);
+  EXPECT_EQ(r.code, 1);
+  ASSERT_TRUE(r.report.contains("shows")) << r.out;
+  ASSERT_EQ(r.report["shows"].size(), 1u) << r.out;
+  const auto& show = r.report["shows"][0];
+  EXPECT_FALSE(show.value("passed", true));
+  ASSERT_TRUE(show.contains("fault")) << show.dump(2);
+  const auto& fault = show["fault"];
+  EXPECT_EQ(fault["state"], "FAULT");
+  // 2 s to get there, then the 20 s budget of continuous time at the extreme.
+  EXPECT_GT(fault["at_s"].get<double>(), 20.0);
+  EXPECT_LT(fault["at_s"].get<double>(), 24.0);
+  EXPECT_NE(fault["reason"].get<std::string>().find(
+                "thermal: neck_pan held at an end of travel longer than its 20 s budget"),
+            std::string::npos)
+      << fault["reason"];
+  EXPECT_GT(fault["ticks"].get<std::uint64_t>(), 6000u);  // the rest of the show, and settling
+  // Said once, not once per tick.
+  EXPECT_EQ(count(r.out, "neck_pan held at an end of travel"), 1u) << r.out;
+}
+
+// Issue 19, item 5: a rig limit above what the actuator's servo can do fails,
+// naming the actuator, the quantity and both values with their units.
+TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
+  const VerifyRun r = run_verify(
+      kSource + "/tests/firmware-host/verify/rigs/brow_acceleration_beyond_servo.yaml", {}, 1000);
+  EXPECT_EQ(r.code, 1);
+  const auto found = failures(r, "static", "capability");
+  ASSERT_EQ(found.size(), 1u) << r.out;
+  EXPECT_EQ(found[0]["subject"], "brow_l");
+  EXPECT_NE(found[0]["message"].get<std::string>().find(
+                "max_acceleration_deg_s2 4000 deg/s^2 > the servo's 400 deg/s^2"),
+            std::string::npos)
+      << found[0]["message"];
+  // The shipped rigs' servos can do what their limits ask.
+  for (const char* rig : {"/config/rigs/default.yaml", "/config/rigs/hobby.yaml"}) {
+    const auto proof = verify::prove(load_rig(kSource + rig));
+    const auto* f = find_failure(proof.findings, "capability");
+    EXPECT_EQ(f, nullptr) << rig << ": " << f->subject << ": " << f->message;
+  }
+}
+
+// A neck servo slower than the rig's limit cannot follow: the static check
+// names it, and the adversarial search's faults come as one finding with
+// their subject and reason, not one line per fault.
+TEST(Verify, AServoSlowerThanItsLimitIsNamedAndItsFaultsSaidOnce) {
+  const VerifyRun r = run_verify(
+      kSource + "/tests/firmware-host/verify/rigs/neck_velocity_beyond_servo.yaml", {}, 20'000);
+  EXPECT_EQ(r.code, 1);
+  const auto capability = failures(r, "static", "capability");
+  ASSERT_EQ(capability.size(), 1u) << r.out;
+  EXPECT_EQ(capability[0]["subject"], "neck_pan");
+  EXPECT_NE(capability[0]["message"].get<std::string>().find(
+                "max_velocity_deg_s 120 deg/s > the servo's 60 deg/s"),
+            std::string::npos)
+      << capability[0]["message"];
+  ASSERT_TRUE(r.report.contains("adversarial")) << r.out;
+  for (const auto& f : r.report["adversarial"]["findings"]) {
+    EXPECT_NE(f["subject"], "") << f.dump();
+  }
+  const auto faults = failures(r, "adversarial", "fault");
+  ASSERT_EQ(faults.size(), 1u) << r.out;
+  EXPECT_EQ(faults[0]["subject"], "neck_pan");
+  const std::string message = faults[0]["message"];
+  EXPECT_NE(message.find("the controller entered FAULT (actuator measured outside its hardware "
+                         "range) "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find(" time(s), first at t = "), std::string::npos) << message;
+  EXPECT_LE(count(r.out, "entered FAULT"), 1u) << r.out;
+}
+
+// A mapping wired the wrong way round on a symmetric range stays inside every
+// range; the direction the rig expects for a named face signal catches it.
+TEST(Verify, AFlippedMappingFailsItsExpectedDirection) {
+  const VerifyRun r =
+      run_verify(kSource + "/tests/firmware-host/verify/rigs/flipped_direction.yaml", {}, 1000);
+  EXPECT_EQ(r.code, 1) << r.out;
+  const auto found = failures(r, "static", "direction");
+  ASSERT_EQ(found.size(), 1u) << r.out;
+  EXPECT_EQ(found[0]["subject"], "neck_pan");
+  EXPECT_NE(found[0]["message"].get<std::string>().find(
+                "expected to rise with neck_pan_deg (expect_direction +1), but it falls"),
+            std::string::npos)
+      << found[0]["message"];
+}
+
+// The card's joint limits (-4..18 deg pitch) are the product's hard limit: an
+// envelope widened beyond them fails verify with the values, even with
+// `widen_override`, and `facectl run` refuses the rig.
+TEST(Verify, AnEnvelopeWidenedBeyondTheCardFails) {
+  const std::string rig = kSource + "/tests/firmware-host/verify/rigs/envelope_beyond_card.yaml";
+  const VerifyRun r = run_verify(rig, {}, 1000);
+  EXPECT_EQ(r.code, 1) << r.out;
+  const auto found = failures(r, "static", "rig");
+  ASSERT_EQ(found.size(), 1u) << r.out;
+  const std::string message = found[0]["message"];
+  EXPECT_NE(message.find("envelope_beyond_card.yaml:"), std::string::npos) << message;
+  EXPECT_NE(message.find("mandible_envelope.pitch_deg: 0..20 deg, beyond the mandible's joint "
+                         "limits -4..18 deg"),
+            std::string::npos)
+      << message;
+  ConfigOverrides strict;
+  strict.rig_path = rig;
   EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
 }
 
