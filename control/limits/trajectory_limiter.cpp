@@ -131,7 +131,14 @@ LimitFlags step(const ActuatorLimits& limits, LimiterState& state, double target
       const double room =
           std::min(ahead > 0.0 ? hi - x : x - lo, ahead * error > 0.0 ? distance : kInfinity);
       const double speed = ahead * v_jerk;
-      if (jerk_stopping_distance(speed, ahead * a_jerk, a_max, j_max) + 2.0 * speed * dt > room) {
+      // A bound on any jerk-limited stop from this speed (the ramp to -A adds
+      // at most A²/2J of speed and lasts at most 2A/J; the ramp out A/J):
+      // beyond it the exact distance is not needed (the common case).
+      const double top = speed + a_max * a_max / (2.0 * j_max);
+      const bool far = top * top / (2.0 * a_max) + top * 3.0 * a_max / j_max + 2.0 * speed * dt <=
+                       room * (1.0 - 1e-9);
+      if (!far &&
+          jerk_stopping_distance(speed, ahead * a_jerk, a_max, j_max) + 2.0 * speed * dt > room) {
         a_jerk = ahead * std::max(ahead * state.acceleration - j_max * dt, -a_max);
         v_jerk = v + a_jerk * dt;
       }

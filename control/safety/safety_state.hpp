@@ -40,7 +40,7 @@ struct TransitionEvent {
   SafetyState from = SafetyState::kIdle;
   SafetyState to = SafetyState::kIdle;
   TransitionReason reason = TransitionReason::kNone;
-  char detail[64] = {};  // e.g. the bus and its fault; fixed size for the RT ring
+  char detail[128] = {};  // e.g. the bus and its fault; fixed size for the RT ring
 };
 
 }  // namespace facectl

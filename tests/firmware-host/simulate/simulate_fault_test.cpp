@@ -15,10 +15,10 @@ namespace {
 TEST(SimulateFault, AnOverloadedServoFaultsTheHeadAndExitsOne) {
   testing::TempDir tmp;
   std::string rig = testing::read_text(testing::source_path("config/rigs/default.yaml"));
-  const std::string pan_plant =
-      "noise_deg: 0.05, backlash_deg: 0.05 }\n      map:\n        terms: { neck_pan_deg";
-  const auto at = rig.find(pan_plant);
-  ASSERT_NE(at, std::string::npos) << "the shipped rig's neck_pan plant changed";
+  const auto pan = rig.find("    - name: neck_pan\n");
+  const auto at = rig.find("noise_deg: 0.05, backlash_deg: 0.05 }", pan);
+  ASSERT_NE(pan, std::string::npos) << "the shipped rig has no neck_pan";
+  ASSERT_LT(at, rig.find("    - name: ", pan + 1)) << "the shipped rig's neck_pan plant changed";
   rig.replace(at, std::string("noise_deg: 0.05, backlash_deg: 0.05 }").size(),
               "noise_deg: 0.05, backlash_deg: 0.05, extreme_band_deg: 30, extreme_budget_s: 2 }");
   testing::write_text(tmp / "rig.yaml", rig);

@@ -192,7 +192,8 @@ TEST(Verify, AShowThatFaultsTheHeadFailsWithItsTimeAndReason) {
   EXPECT_GT(fault["at_s"].get<double>(), 20.0);
   EXPECT_LT(fault["at_s"].get<double>(), 24.0);
   EXPECT_NE(fault["reason"].get<std::string>().find(
-                "thermal: neck_pan held at an end of travel longer than its 20 s budget"),
+                "bus fault — thermal: neck_pan held at an end of travel longer than its 20 s "
+                "budget"),
             std::string::npos)
       << fault["reason"];
   EXPECT_GT(fault["ticks"].get<std::uint64_t>(), 6000u);  // the rest of the show, and settling
@@ -222,9 +223,8 @@ TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
 }
 
 // A neck servo slower than the rig's limit cannot follow: the static check
-// names it, and the adversarial search's faults come as one finding with
-// their subject and reason, not one line per fault.
-TEST(Verify, AServoSlowerThanItsLimitIsNamedAndItsFaultsSaidOnce) {
+// names it, and every adversarial finding says whom it is about.
+TEST(Verify, AServoSlowerThanItsLimitIsNamed) {
   const VerifyRun r = run_verify(
       kSource + "/tests/firmware-host/verify/rigs/neck_velocity_beyond_servo.yaml", {}, 20'000);
   EXPECT_EQ(r.code, 1);
@@ -239,16 +239,6 @@ TEST(Verify, AServoSlowerThanItsLimitIsNamedAndItsFaultsSaidOnce) {
   for (const auto& f : r.report["adversarial"]["findings"]) {
     EXPECT_NE(f["subject"], "") << f.dump();
   }
-  const auto faults = failures(r, "adversarial", "fault");
-  ASSERT_EQ(faults.size(), 1u) << r.out;
-  EXPECT_EQ(faults[0]["subject"], "neck_pan");
-  const std::string message = faults[0]["message"];
-  EXPECT_NE(message.find("the controller entered FAULT (actuator measured outside its hardware "
-                         "range) "),
-            std::string::npos)
-      << message;
-  EXPECT_NE(message.find(" time(s), first at t = "), std::string::npos) << message;
-  EXPECT_LE(count(r.out, "entered FAULT"), 1u) << r.out;
 }
 
 // A mapping wired the wrong way round on a symmetric range stays inside every
