@@ -80,6 +80,10 @@ sim_out="$out/telemetry_csv/simulate"
 mkdir -p "$out/telemetry_csv/seeds"
 cp "$sim_out/telemetry.csv" "$out/telemetry_csv/seeds/demo_telemetry.csv"
 head -n 20 "$sim_out/telemetry.csv" >"$out/telemetry_csv/seeds/demo_telemetry_head.csv"
+# The same rows with fb. columns, as `facectl run --record` names the measured
+# position (simulate writes the plant's as pos.): what `facectl plot` draws.
+sed '1s/,pos\./,fb./g' "$out/telemetry_csv/seeds/demo_telemetry_head.csv" \
+  >"$out/telemetry_csv/seeds/demo_telemetry_fb.csv"
 # Modbus: a good reply to each request ModbusBus makes, from the register map
 # of docs/PROTOCOLS.md (unit 1, 8 channels, transaction id 1). The fuzz
 # target reads its settings from the input's last bytes (FuzzedDataProvider):
