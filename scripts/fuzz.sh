@@ -115,9 +115,10 @@ run_one() {  # target
   local t="$1" dir="$out/$1"
   mkdir -p "$dir/corpus"
   local rc=0
-  # -timeout: one input taking 10 s is a hang; -rss_limit_mb: 2 GB is an OOM.
+  # -timeout: one input taking 25 s is a hang (a parse takes milliseconds; the
+  # margin is for a shared, busy machine); -rss_limit_mb: 2 GB is an OOM.
   nice -n "$FUZZ_NICE" "$BUILD_FUZZ/tests/fuzz/${t}_fuzz" "$dir/corpus" "$dir/seeds" \
-    -max_total_time="$FUZZ_SECONDS" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    -max_total_time="$FUZZ_SECONDS" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$dir/" >"$dir/log" 2>&1 || rc=$?
   local execs corpus
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log" | tail -1)
