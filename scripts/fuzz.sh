@@ -7,8 +7,8 @@
 # leak-*. Prints each target's executions.
 #
 # Usage: scripts/fuzz.sh [TARGET...]     (default: every target)
-#   FUZZ_SECONDS  seconds per target (default 60, the CI's budget; the
-#                 longer runs of docs/FUZZING.md used 600)
+#   FUZZ_SECONDS  seconds per target (default 60; .ci/run passes 30 to keep
+#                 the CI under its 45 minutes, see the comment there)
 #   FUZZ_JOBS     targets run at once (default: the number of CPUs)
 #   BUILD_FUZZ    build directory (default build-fuzz); the CI passes
 #                 build-asan, which scripts/sanitize.sh asan has built with
