@@ -15,6 +15,10 @@ packages=(
   qemu-system-x86 linux-image-amd64 busybox-static can-utils iproute2
   # The `facectl simulate` HTML report test takes a headless screenshot (tests/simulate).
   chromium
+  # The sanitizer builds and the libFuzzer targets (scripts/sanitize.sh,
+  # scripts/fuzz.sh): clang 14 with its sanitizer and libFuzzer runtimes, and
+  # python3 for the seeds fuzz.sh writes.
+  clang clang-14 libclang-rt-14-dev python3
 )
 
 missing=()

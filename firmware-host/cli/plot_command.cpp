@@ -1,5 +1,6 @@
 #include "firmware-host/cli/plot_command.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -80,6 +81,12 @@ int write_actuator_plots(const ControllerModel& m, const TelemetryTable& t,
     add_state_spans(plot, t, time);
     const std::vector<double> flags = t.numbers("lim." + a.name);
     for (std::size_t i = 0; i < flags.size(); ++i) {
+      // Converting a double outside LimitFlags' range is undefined: refuse it.
+      if (!(flags[i] >= 0.0 && flags[i] <= 65535.0) || flags[i] != std::floor(flags[i])) {
+        throw ConfigError(t.file + ":" + std::to_string(i + 2) + ": column 'lim." + a.name +
+                          "': expected limit flag bits (an integer 0..65535), found '" +
+                          t.rows[i][static_cast<std::size_t>(t.find("lim." + a.name))] + "'");
+      }
       const auto f = static_cast<LimitFlags>(flags[i]);
       for (int r = 0; r < static_cast<int>(kLimitMarkRows.size()); ++r) {
         const LimitMarkRow& row = kLimitMarkRows[static_cast<std::size_t>(r)];

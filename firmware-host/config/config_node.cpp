@@ -69,7 +69,7 @@ void ConfigNode::expect_keys(std::initializer_list<std::string_view> allowed) co
 void ConfigNode::expect_keys(const std::vector<std::string>& allowed) const {
   if (!node_.IsMap()) fail("a mapping");
   for (const auto& kv : node_) {
-    const std::string key = kv.first.as<std::string>();
+    const std::string key = key_name(kv.first);
     bool known = false;
     for (const auto& a : allowed) known = known || key == a;
     if (known) continue;
@@ -78,6 +78,15 @@ void ConfigNode::expect_keys(const std::vector<std::string>& allowed) const {
     ConfigNode at = child(kv.first, path_.empty() ? key : path_ + "." + key);
     at.fail("one of: " + list, "unknown key '" + key + "'");
   }
+}
+
+std::string ConfigNode::key_name(const YAML::Node& key) const {
+  // YAML lets a key be a sequence or a mapping (`? [a, b]`, `{ [a]: 1 }`);
+  // every key of facectl's files is a name.
+  if (key.IsSequence() || key.IsMap()) {
+    child(key, path_).fail("a name as the key", key.IsMap() ? "a mapping" : "a sequence");
+  }
+  return key.as<std::string>();
 }
 
 std::vector<ConfigNode> ConfigNode::items() const {
@@ -93,7 +102,7 @@ std::vector<std::pair<std::string, ConfigNode>> ConfigNode::entries() const {
   if (!node_.IsMap()) fail("a mapping");
   std::vector<std::pair<std::string, ConfigNode>> out;
   for (const auto& kv : node_) {
-    const std::string key = kv.first.as<std::string>();
+    const std::string key = key_name(kv.first);
     ConfigNode value = child(kv.second, path_.empty() ? key : path_ + "." + key);
     if (kv.second.IsNull()) value.mark_ = kv.first.Mark();
     out.emplace_back(key, value);

@@ -151,7 +151,11 @@ CoupledLimitConfig parse_coupled_limit(const ConfigNode& node, const FaceLayout&
   }
   out.over_actuators = node.has("actuators");
   const ConfigNode terms = out.over_actuators ? node["actuators"] : node["face"];
-  for (const auto& [key, coeff] : terms.entries()) {
+  for (const auto& entry : terms.entries()) {
+    // Named, not a structured binding: clang 14 (the sanitizer builds) does
+    // not let the lambdas below capture one.
+    const std::string& key = entry.first;
+    const ConfigNode& coeff = entry.second;
     std::size_t index = 0;
     double to_si = 1.0;
     if (out.over_actuators) {

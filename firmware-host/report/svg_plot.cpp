@@ -67,7 +67,12 @@ std::vector<double> nice_ticks(double lo, double hi, int target_count) {
     }
   }
   std::vector<double> ticks;
-  for (double t = std::ceil(lo / step) * step; t <= hi + step * 1e-9; t += step) ticks.push_back(t);
+  for (double t = std::ceil(lo / step) * step; t <= hi + step * 1e-9; t += step) {
+    ticks.push_back(t);
+    // A step below the resolution of doubles at t (a range of a few units at
+    // 1e16) would never move t: no further tick could differ from this one.
+    if (t + step == t) break;
+  }
   return ticks;
 }
 

@@ -114,7 +114,7 @@ FACECTL_INLINE inline void area_step(P3& a, P3& b, P3& c, double wa, double wb, 
   const double len = std::sqrt(cx * cx + cy * cy + cz * cz);  // 2·area
   // rest_sign 0 (and the unsigned variant): the sides are not told apart.
   const double cr_ref = cx * rn.x + cy * rn.y + cz * rn.z;
-  const double sign = (rs != 0) & (cr_ref * rs < -0.5 * len) ? -1.0 : 1.0;
+  const double sign = ((rs != 0) & (cr_ref * rs < -0.5 * len)) ? -1.0 : 1.0;
   // With n̂ = (e1×e2)/len: g2 = ½ e2×n̂ and g3 = ½ n̂×e1 (g1 = −g2 − g3), written with
   // (a×b)×c = b(a·c) − a(b·c) as combinations of e1 and e2; |g2| = ½|e2|, |g3| = ½|e1|
   // and |g1| = ½|e2 − e1| because both edges lie in the plane ⟂ n̂.

@@ -54,8 +54,9 @@ void detect_teeth(const FaceModel& m, FaceData& d, const Points& p) {
   const Vec3 lo = m.upper_teeth.box_min.cwiseMin(d.lower_teeth.box_min);
   const Vec3 hi = m.upper_teeth.box_max.cwiseMax(d.lower_teeth.box_max);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if ((p.x[i] < lo.x()) | (p.x[i] > hi.x()) | (p.y[i] < lo.y()) | (p.y[i] > hi.y()) |
-        (p.z[i] < lo.z()) | (p.z[i] > hi.z()))
+    // Bitwise on purpose (no branch per test); int operands say so to clang.
+    if (int{p.x[i] < lo.x()} | int{p.x[i] > hi.x()} | int{p.y[i] < lo.y()} | int{p.y[i] > hi.y()} |
+        int{p.z[i] < lo.z()} | int{p.z[i] > hi.z()})
       continue;
     const Vec3 q = p.get(i);
     Vec3 t;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "firmware-host/config/expression_library.hpp"
 #include "firmware-host/config/head_config.hpp"
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/config/rig_config.hpp"
@@ -95,6 +96,27 @@ TEST(ConfigErrors, ATypoIsAnUnknownKeyNotASilentDefault) {
             std::string::npos)
       << e;
   EXPECT_NE(e.find("found unknown key 'max_velocty_deg_s'"), std::string::npos) << e;
+}
+
+// Found by tests/fuzz (head_config_fuzz, expressions_fuzz): a sequence or a
+// mapping as a key escaped as yaml-cpp's "bad conversion", naming no file.
+TEST(ConfigErrors, ASequenceAsAKeyNamesWhereItIs) {
+  std::string a = kGoodActuator;
+  a.replace(a.find("max: 20 }"), 9, "max: 20, [6, 7] }");
+  EXPECT_EQ(rig_error(rig(a)),
+            "RIG:10:41: rig.actuators[0].position_deg: expected a name as the key, found a "
+            "sequence");
+}
+
+TEST(ConfigErrors, AMappingAsAKeyNamesWhereItIs) {
+  TempFile f("expressions:\n  neutral: {}\n  ? { pitch_deg: 1 }\n  : {}\n");
+  try {
+    ExpressionLibrary::load(f.path(), head().layout);
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              f.path() + ":3:5: expressions: expected a name as the key, found a mapping");
+  }
 }
 
 TEST(ConfigErrors, UnitsMustMatchTheActuatorKind) {

@@ -1,4 +1,7 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
 
 #include "firmware-host/config/config_node.hpp"
 #include "firmware-host/report/svg_plot.hpp"
@@ -14,6 +17,20 @@ TEST(NiceTicks, UseOneTwoFiveStepsCoveringTheRange) {
   EXPECT_DOUBLE_EQ(t.front(), 0.0);  // the first multiple of 5 at or above -4.3
   EXPECT_LE(t.back(), 18.2);
   EXPECT_DOUBLE_EQ(t[1] - t[0], 5.0);
+}
+
+// Found by tests/fuzz/telemetry_csv_fuzz (a timeout): times of a few units
+// at 1e16, where adding a step of 1 leaves a double unchanged, kept the tick
+// loop from ever ending (a hang, growing without bound). Run in a child with
+// an alarm, so that the old behaviour fails the test instead of hanging it.
+TEST(NiceTicks, EndBelowTheResolutionOfDoubles) {
+  EXPECT_EXIT(
+      {
+        alarm(10);
+        const auto t = nice_ticks(1e16, 1e16 + 4, 10);
+        std::exit(t.size() >= 1 && t.size() <= 11 ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
 }
 
 TEST(SvgPlot, DrawsSeriesLimitsAndLegend) {

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The test suite under clang's sanitizers (docs/FUZZING.md, "Sanitizer builds"):
+#
+#   asan  ASan + UBSan (-fno-sanitize-recover: the first finding fails the
+#         test) of the whole suite, run with ctest. The allocation tests are
+#         not built there (tests/CMakeLists.txt says why). The tree is the
+#         fuzz build (FACECTL_FUZZ), so scripts/fuzz.sh can reuse it.
+#   tsan  TSan of the test binaries whose code runs threads, run directly:
+#         the lock-free mailbox and ring (facectl_control_tests), the
+#         real-time loop and its threads through the facectl program
+#         (facectl_process_tests, which runs the instrumented facectl), the
+#         Modbus I/O thread and the gamepad reader (facectl_driver_tests), the
+#         FAP UDP receiver thread (facectl_fap_tests) and the show player
+#         (facectl_host_tests).
+#
+# Usage: scripts/sanitize.sh [asan|tsan|all]   (default all)
+# Build directories: build-asan and build-tsan (BUILD_ASAN, BUILD_TSAN).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+what="${1:-all}"
+BUILD_ASAN="${BUILD_ASAN:-build-asan}"
+BUILD_TSAN="${BUILD_TSAN:-build-tsan}"
+JOBS="${JOBS:-$(nproc)}"
+
+configure() {  # dir cmake-options...
+  local dir="$1"
+  shift
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Sanitize \
+    -DFACECTL_LTO=OFF -DFACECTL_WERROR=ON "$@" >/dev/null
+}
+
+# Every report is fatal and names its stack; a leak is a finding too.
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+tsan_supp="$PWD/tests/sanitizers/tsan.supp"
+
+run_asan() {
+  local t0=$SECONDS
+  # FACECTL_FUZZ is ASan + UBSan (and the fuzzer's coverage) of the whole
+  # tree: the same tree then holds the fuzz targets scripts/fuzz.sh runs, so
+  # the CI compiles the instrumented sources once for both.
+  configure "$BUILD_ASAN" -DFACECTL_FUZZ=ON -DFACECTL_BUILD_TESTS=ON
+  cmake --build "$BUILD_ASAN" -j "$JOBS"
+  ctest --test-dir "$BUILD_ASAN" --output-on-failure -j "$JOBS"
+  echo "sanitize: asan+ubsan suite passed in $((SECONDS - t0)) s"
+}
+
+tsan_binaries=(facectl_control_tests facectl_process_tests facectl_driver_tests facectl_fap_tests
+               facectl_host_tests)
+run_tsan() {
+  local t0=$SECONDS
+  configure "$BUILD_TSAN" -DFACECTL_SANITIZE=thread
+  cmake --build "$BUILD_TSAN" -j "$JOBS" --target facectl "${tsan_binaries[@]}"
+  export TSAN_OPTIONS="${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1:suppressions=$tsan_supp}"
+  local failed=()
+  for b in "${tsan_binaries[@]}"; do
+    echo "sanitize: tsan $b"
+    # ctest's working directory for these binaries.
+    if ! (cd "$BUILD_TSAN/tests" && "./$b" --gtest_brief=1); then failed+=("$b"); fi
+  done
+  if [ ${#failed[@]} -ne 0 ]; then
+    echo "sanitize: tsan failed: ${failed[*]}" >&2
+    return 1
+  fi
+  echo "sanitize: tsan passed in $((SECONDS - t0)) s"
+}
+
+case "$what" in
+  asan) run_asan ;;
+  tsan) run_tsan ;;
+  all) run_asan; run_tsan ;;
+  *) echo "usage: $0 [asan|tsan|all]" >&2; exit 2 ;;
+esac
