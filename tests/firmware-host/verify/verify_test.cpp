@@ -1,22 +1,31 @@
 // facectl verify: passes the shipped rigs, fails each deliberately broken rig
-// under tests/firmware-host/verify/rigs naming the actuator, the limit and a witness, and
-// its static proof is sound (sampling never finds a command outside it).
+// (a shipped rig with one edit, or one under tests/firmware-host/verify/rigs)
+// naming the actuator, the limit and a witness, and its static proof is sound
+// (sampling never finds a command outside it).
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
-#include <sstream>
 
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/verify/static_proof.hpp"
 #include "firmware-host/verify/verify_command.hpp"
+#include "tests/support/edited_rig.hpp"
 #include "tests/support/temp_file.hpp"
 
 namespace facectl {
 namespace {
 
 const std::string kSource = FACECTL_SOURCE_DIR;
+using testing::EditedRig;
+
+EditedRig hobby() {
+  return EditedRig("config/rigs/hobby.yaml");
+}
+EditedRig default_rig() {
+  return EditedRig("config/rigs/default.yaml");
+}
 
 LoadedConfig load_rig(const std::string& rig) {
   ConfigOverrides o;
@@ -95,7 +104,15 @@ TEST(Verify, ARigWithActuatorCoupledLimitsPassesItsAdversarialSearch) {
 }
 
 TEST(Verify, AMappingBeyondAHardwareLimitFailsWithItsWitness) {
-  const auto cfg = load_rig(kSource + "/tests/firmware-host/verify/rigs/beyond_hardware.yaml");
+  // mouth_corner_l's mapping reaches 60 deg, beyond its 50 deg hardware limit.
+  const auto rig = hobby()
+                       .replace(
+                           "terms: { zygomaticus_major_l: 35, levator_anguli_oris_l: 5, "
+                           "depressor_anguli_oris_l: -40 }",
+                           "terms: { zygomaticus_major_l: 55, levator_anguli_oris_l: 5, "
+                           "depressor_anguli_oris_l: -40 }")
+                       .write();
+  const auto cfg = load_rig(rig.path());
   const auto proof = verify::prove(cfg);
   const auto* f = find_failure(proof.findings, "hardware range");
   ASSERT_NE(f, nullptr);
@@ -103,14 +120,23 @@ TEST(Verify, AMappingBeyondAHardwareLimitFailsWithItsWitness) {
   EXPECT_NE(f->message.find("60 deg > hardware max 50 deg"), std::string::npos) << f->message;
   EXPECT_EQ(f->witness, "zygomaticus_major_l=1, levator_anguli_oris_l=1");
   VerifyOptions o;
-  o.rig = kSource + "/tests/firmware-host/verify/rigs/beyond_hardware.yaml";
+  o.rig = rig.path();
   o.ticks = 1000;
   EXPECT_EQ(verify_command(o), 1);
 }
 
 TEST(Verify, ANonMonotoneCalibrationFailsNamingThePoints) {
-  const auto cfg =
-      load_rig(kSource + "/tests/firmware-host/verify/rigs/non_monotone_calibration.yaml");
+  // brow_l's calibration turns back: 30 deg at 4 mm, 25 deg at 8 mm.
+  const auto rig = hobby()
+                       .replace(
+                           "corrugator_supercilii_l: -3 }   # mm of lift\n"
+                           "        calibration: { effector_mm: [-3, 0, 4, 8, 10], "
+                           "position_deg: [0, 5, 30, 60, 72] }",
+                           "corrugator_supercilii_l: -3 }\n"
+                           "        calibration: { effector_mm: [-3, 0, 4, 8, 10], "
+                           "position_deg: [0, 5, 30, 25, 72] }")
+                       .write();
+  const auto cfg = load_rig(rig.path());
   const auto proof = verify::prove(cfg);
   const auto* f = find_failure(proof.findings, "rig");
   ASSERT_NE(f, nullptr);
@@ -120,20 +146,23 @@ TEST(Verify, ANonMonotoneCalibrationFailsNamingThePoints) {
       << f->message;
   // And `facectl run` refuses such a rig outright.
   ConfigOverrides strict;
-  strict.rig_path = kSource + "/tests/firmware-host/verify/rigs/non_monotone_calibration.yaml";
+  strict.rig_path = rig.path();
   EXPECT_THROW(load_config(default_config_path(), strict), ConfigError);
 }
 
 TEST(Verify, AnEnvelopeWidenedWithoutTheOverrideIsRefused) {
+  const auto rig =
+      hobby().replace("pitch_deg: { min: 0, max: 15 }", "pitch_deg: { min: 0, max: 25 }").write();
   VerifyOptions o;
-  o.rig = kSource + "/tests/firmware-host/verify/rigs/widened_envelope.yaml";
+  o.rig = rig.path();
   o.ticks = 1000;
   EXPECT_EQ(verify_command(o), 2);  // the rig is refused as it is read
   try {
     load_rig(o.rig);
     FAIL() << "a widened envelope was accepted";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("widened_envelope.yaml:14:16: rig.mandible_envelope."
+    EXPECT_NE(std::string(e.what()).find(rig.path() +
+                                         ":13:16: rig.mandible_envelope."
                                          "pitch_deg: expected a range inside the design envelope "
                                          "-4..18 deg (widening needs `widen_override: true`), "
                                          "found [0.000000, 25.000000]"),
@@ -143,7 +172,19 @@ TEST(Verify, AnEnvelopeWidenedWithoutTheOverrideIsRefused) {
 }
 
 TEST(Verify, AntagonistsAllowedToCoActivateFail) {
-  const auto cfg = load_rig(kSource + "/tests/firmware-host/verify/rigs/antagonists.yaml");
+  // No coupled limit keeps the lip-corner antagonists apart.
+  const auto rig = hobby()
+                       .replace(
+                           "  coupled_limits:\n"
+                           "    - name: antagonists_lip_corner_l\n"
+                           "      face: { zygomaticus_major_l: 1, depressor_anguli_oris_l: 1 }\n"
+                           "      max: 1.0\n"
+                           "    - name: antagonists_lip_corner_r\n"
+                           "      face: { zygomaticus_major_r: 1, depressor_anguli_oris_r: 1 }\n"
+                           "      max: 1.0\n",
+                           "")
+                       .write();
+  const auto cfg = load_rig(rig.path());
   const auto proof = verify::prove(cfg);
   const auto* f = find_failure(proof.findings, "antagonists");
   ASSERT_NE(f, nullptr);
@@ -153,7 +194,9 @@ TEST(Verify, AntagonistsAllowedToCoActivateFail) {
 }
 
 TEST(Verify, AnActuatorThatNothingDrivesFails) {
-  const auto cfg = load_rig(kSource + "/tests/firmware-host/verify/rigs/undriven.yaml");
+  const auto rig =
+      hobby().replace("terms: { neck_pan_deg: 1.0 }", "terms: { neck_pan_deg: 0 }").write();
+  const auto cfg = load_rig(rig.path());
   const auto proof = verify::prove(cfg);
   const auto* f = find_failure(proof.findings, "rig");
   ASSERT_NE(f, nullptr);
@@ -204,8 +247,14 @@ TEST(Verify, AShowThatFaultsTheHeadFailsWithItsTimeAndReason) {
 // Issue 19, item 5: a rig limit above what the actuator's servo can do fails,
 // naming the actuator, the quantity and both values with their units.
 TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
-  const VerifyRun r = run_verify(
-      kSource + "/tests/firmware-host/verify/rigs/brow_acceleration_beyond_servo.yaml", {}, 1000);
+  // brow_l's rig limit is max_acceleration_deg_s2: 4000, ten times its servo's.
+  const auto rig = hobby()
+                       .replace("backlash_deg: 0.5 }\n      expect_direction: { frontalis_l: +1 }",
+                                "backlash_deg: 0.5,\n"
+                                "               max_acceleration_deg_s2: 400 }\n"
+                                "      expect_direction: { frontalis_l: +1 }")
+                       .write();
+  const VerifyRun r = run_verify(rig.path(), {}, 1000);
   EXPECT_EQ(r.code, 1);
   const auto found = failures(r, "static", "capability");
   ASSERT_EQ(found.size(), 1u) << r.out;
@@ -215,18 +264,25 @@ TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
             std::string::npos)
       << found[0]["message"];
   // The shipped rigs' servos can do what their limits ask.
-  for (const char* rig : {"/config/rigs/default.yaml", "/config/rigs/hobby.yaml"}) {
-    const auto proof = verify::prove(load_rig(kSource + rig));
+  for (const char* shipped : {"/config/rigs/default.yaml", "/config/rigs/hobby.yaml"}) {
+    const auto proof = verify::prove(load_rig(kSource + shipped));
     const auto* f = find_failure(proof.findings, "capability");
-    EXPECT_EQ(f, nullptr) << rig << ": " << f->subject << ": " << f->message;
+    EXPECT_EQ(f, nullptr) << shipped << ": " << f->subject << ": " << f->message;
   }
 }
 
 // A neck servo slower than the rig's limit cannot follow: the static check
 // names it, and every adversarial finding says whom it is about.
 TEST(Verify, AServoSlowerThanItsLimitIsNamed) {
-  const VerifyRun r = run_verify(
-      kSource + "/tests/firmware-host/verify/rigs/neck_velocity_beyond_servo.yaml", {}, 20'000);
+  // neck_pan's rig limit is max_velocity_deg_s: 120, twice its servo's.
+  const auto rig =
+      default_rig()
+          .replace("backlash_deg: 0.05 }\n      expect_direction: { neck_pan_deg: +1 }",
+                   "backlash_deg: 0.05,\n"
+                   "               max_velocity_deg_s: 60 }\n"
+                   "      expect_direction: { neck_pan_deg: +1 }")
+          .write();
+  const VerifyRun r = run_verify(rig.path(), {}, 20'000);
   EXPECT_EQ(r.code, 1);
   const auto capability = failures(r, "static", "capability");
   ASSERT_EQ(capability.size(), 1u) << r.out;
@@ -241,11 +297,57 @@ TEST(Verify, AServoSlowerThanItsLimitIsNamed) {
   }
 }
 
+// A cause that faults the head again after every re-enable is one finding,
+// not one per fault: it names the actuator, the reason, the count, the first
+// time and what was measured then. Here a brow's servo rings (PD, damping
+// 0.1) past a hardware range no wider than its soft range.
+TEST(Verify, TheSearchGroupsRepeatedFaultsByCause) {
+  const auto rig = default_rig()
+                       .replace(
+                           "position_deg: { min: -45, max: 45 }\n"
+                           "      soft_position_deg: { min: -40, max: 40 }\n"
+                           "      max_velocity_deg_s: 300\n"
+                           "      max_acceleration_deg_s2: 4000\n"
+                           "      rest_deg: 0\n"
+                           "      plant: { time_constant_ms: 25, latency_ms: 2, noise_deg: 0.05, "
+                           "deadband_deg: 0.15, backlash_deg: 0.5 }\n"
+                           "      expect_direction: { frontalis_inner_l: +1",
+                           "position_deg: { min: -40.5, max: 40.5 }\n"
+                           "      soft_position_deg: { min: -40, max: 40 }\n"
+                           "      max_velocity_deg_s: 300\n"
+                           "      max_acceleration_deg_s2: 4000\n"
+                           "      rest_deg: 0\n"
+                           "      plant: { model: pd, natural_frequency_hz: 8, damping_ratio: 0.1, "
+                           "latency_ms: 2 }\n"
+                           "      expect_direction: { frontalis_inner_l: +1")
+                       .write();
+  const VerifyRun r = run_verify(rig.path(), {}, 20'000);
+  EXPECT_EQ(r.code, 1) << r.out;
+  const auto faults = failures(r, "adversarial", "fault");
+  ASSERT_EQ(faults.size(), 1u) << r.out;
+  EXPECT_EQ(faults[0]["subject"], "brow_inner_l");
+  const std::string message = faults[0]["message"];
+  const std::string head =
+      "the controller entered FAULT (actuator measured outside its hardware range) ";
+  ASSERT_EQ(message.rfind(head, 0), 0u) << message;
+  const std::uint64_t times = std::stoull(message.substr(head.size()));
+  EXPECT_GT(times, 1u) << message;
+  EXPECT_EQ(times, r.report["adversarial"]["violations"].get<std::uint64_t>()) << message;
+  EXPECT_NE(message.find(" time(s), first at t = "), std::string::npos) << message;
+  EXPECT_NE(message.find("(brow_inner_l measured at "), std::string::npos) << message;
+  EXPECT_NE(message.find(" deg, outside its hardware range -40.5..40.5 deg)"), std::string::npos)
+      << message;
+  // Faults are not limit violations: no "N limit violations in all" line.
+  EXPECT_TRUE(failures(r, "adversarial", "adversarial").empty()) << r.out;
+  EXPECT_EQ(count(r.out, "entered FAULT"), 1u) << r.out;
+}
+
 // A mapping wired the wrong way round on a symmetric range stays inside every
 // range; the direction the rig expects for a named face signal catches it.
 TEST(Verify, AFlippedMappingFailsItsExpectedDirection) {
-  const VerifyRun r =
-      run_verify(kSource + "/tests/firmware-host/verify/rigs/flipped_direction.yaml", {}, 1000);
+  const auto rig =
+      hobby().replace("terms: { neck_pan_deg: 1.0 }", "terms: { neck_pan_deg: -1.0 }").write();
+  const VerifyRun r = run_verify(rig.path(), {}, 1000);
   EXPECT_EQ(r.code, 1) << r.out;
   const auto found = failures(r, "static", "direction");
   ASSERT_EQ(found.size(), 1u) << r.out;
@@ -260,13 +362,17 @@ TEST(Verify, AFlippedMappingFailsItsExpectedDirection) {
 // envelope widened beyond them fails verify with the values, even with
 // `widen_override`, and `facectl run` refuses the rig.
 TEST(Verify, AnEnvelopeWidenedBeyondTheCardFails) {
-  const std::string rig = kSource + "/tests/firmware-host/verify/rigs/envelope_beyond_card.yaml";
+  const auto edited = hobby()
+                          .replace("    pitch_deg: { min: 0, max: 15 }",
+                                   "    widen_override: true\n    pitch_deg: { min: 0, max: 20 }")
+                          .write();
+  const std::string& rig = edited.path();
   const VerifyRun r = run_verify(rig, {}, 1000);
   EXPECT_EQ(r.code, 1) << r.out;
   const auto found = failures(r, "static", "rig");
   ASSERT_EQ(found.size(), 1u) << r.out;
   const std::string message = found[0]["message"];
-  EXPECT_NE(message.find("envelope_beyond_card.yaml:"), std::string::npos) << message;
+  EXPECT_NE(message.find(rig + ":"), std::string::npos) << message;
   EXPECT_NE(message.find("mandible_envelope.pitch_deg: 0..20 deg, beyond the mandible's joint "
                          "limits -4..18 deg"),
             std::string::npos)
@@ -280,25 +386,17 @@ TEST(Verify, AnEnvelopeWidenedBeyondTheCardFails) {
 // int16) `encoding`: a neck that turns ±340° is no encoding failure there,
 // but is one on a custom CAN bus, whose int16 field carries ±327.67°.
 TEST(Verify, ChecksEncodingsOnlyWhereTheDriverUsesThem) {
-  std::ifstream in(kSource + "/config/rigs/default.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string rig = text.str();
-  const auto replace = [&](const std::string& from, const std::string& to) {
-    const auto at = rig.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    rig.replace(at, from.size(), to);
-  };
-  replace("address: 4\n      position_deg: { min: -65, max: 65 }",
-          "address: 4\n      position_deg: { min: -340, max: 340 }");
-  const testing::TempFile custom(rig, ".yaml");
+  EditedRig rig = default_rig();
+  rig.replace("address: 4\n      position_deg: { min: -65, max: 65 }",
+              "address: 4\n      position_deg: { min: -340, max: 340 }");
+  const auto custom = rig.write();
   ConfigOverrides o;
   o.rig_path = custom.path();
   o.keep_problems = true;
   EXPECT_THROW(load_config(default_config_path(), o), ConfigError);  // the loader refuses it
 
-  replace("protocol: custom\n      values: int16", "protocol: cia402");
-  const testing::TempFile cia402(rig, ".yaml");
+  const auto cia402 =
+      rig.replace("protocol: custom\n      values: int16", "protocol: cia402").write();
   const auto cfg = load_rig(cia402.path());
   const auto proof = verify::prove(cfg);
   const auto* f = find_failure(proof.findings, "encoding");
@@ -306,14 +404,8 @@ TEST(Verify, ChecksEncodingsOnlyWhereTheDriverUsesThem) {
 }
 
 TEST(Verify, ChecksCiA402EncodingsInTheDrivesInt32Counts) {
-  std::ifstream in(kSource + "/config/rigs/default.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string rig = text.str();
-  const std::string from = "protocol: custom\n      values: int16";
-  ASSERT_NE(rig.find(from), std::string::npos);
-  rig.replace(rig.find(from), from.size(), "protocol: cia402");
-  const testing::TempFile cia402(rig, ".yaml");
+  const auto cia402 =
+      default_rig().replace("protocol: custom\n      values: int16", "protocol: cia402").write();
   auto cfg = load_rig(cia402.path());
   EXPECT_EQ(find_failure(verify::prove(cfg).findings, "encoding"), nullptr);  // the bus's counts
   // neck_pan's own encoding: 65 deg at 5e7 counts per deg is beyond int32.
