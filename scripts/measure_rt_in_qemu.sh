@@ -136,15 +136,8 @@ done
 root=$work/root
 rm -rf "$root"
 mkdir -p "$root"/{bin,proc,sys,dev,tmp,cfg}
-copy_with_libs() {
-  for bin in "$@"; do
-    cp "$bin" "$root/bin/"
-    ldd "$bin" | grep -o '/[^ ]*' | while read -r lib; do
-      mkdir -p "$root$(dirname "$lib")"
-      cp -L "$lib" "$root$lib"
-    done
-  done
-}
+# shellcheck source=tests/drivers/qemu/initramfs.sh
+source "$repo/tests/drivers/qemu/initramfs.sh"
 cp /bin/busybox "$root/bin/busybox"
 copy_with_libs "$facectl_bin" "$(command -v stress-ng)"
 if command -v strip >/dev/null; then strip "$root/bin/$(basename "$facectl_bin")"; fi
@@ -195,7 +188,7 @@ echo "FACECTL-RT-DONE"
 poweroff -f
 INIT
 chmod +x "$root/init"
-(cd "$root" && find . | /bin/busybox cpio -o -H newc 2>/dev/null | gzip -1 > "$work/initramfs.gz")
+pack_initramfs "$work/initramfs.gz"
 echo "Initramfs: $(du -h "$work/initramfs.gz" | cut -f1)"
 
 # --- Boots -------------------------------------------------------------------

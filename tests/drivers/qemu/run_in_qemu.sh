@@ -39,22 +39,12 @@ rm -rf "$work"
 root=$work/root
 mkdir -p "$root"/{bin,sbin,proc,sys,dev,tmp,lib/modules}
 
-copy_with_libs() {
-  for bin in "$@"; do
-    cp "$bin" "$root/bin/"
-    ldd "$bin" | grep -o '/[^ ]*' | while read -r lib; do
-      mkdir -p "$root$(dirname "$lib")"
-      cp -L "$lib" "$root$lib"
-    done
-  done
-}
+# shellcheck source=tests/drivers/qemu/initramfs.sh
+source "$(dirname "$0")/initramfs.sh"
 cp /bin/busybox "$root/bin/busybox"
 copy_with_libs "$test_bin" "$(command -v candump)" "$(command -v cansend)"
 cp "$ip_bin" "$root/sbin/iproute2-ip"
-ldd "$ip_bin" | grep -o '/[^ ]*' | while read -r lib; do
-  mkdir -p "$root$(dirname "$lib")"
-  cp -L "$lib" "$root$lib"
-done
+copy_libs "$ip_bin"
 for m in can can-raw can-dev vcan hid hid-generic uhid; do
   cp "$(modinfo -k "$kver" -n "$m")" "$root/lib/modules/$m.ko"
 done
@@ -119,7 +109,7 @@ echo "FACECTL-QEMU-RESULT: tests=\$rc candump=\$ok"
 poweroff -f
 INIT
 chmod +x "$root/init"
-(cd "$root" && find . | /bin/busybox cpio -o -H newc 2>/dev/null | gzip -1 > "$work/initramfs.gz")
+pack_initramfs "$work/initramfs.gz"
 
 echo "Booting $kernel in qemu-system-x86_64 -accel tcg with $(du -h "$work/initramfs.gz" | cut -f1) initramfs"
 start=$(date +%s)

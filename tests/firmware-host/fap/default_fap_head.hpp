@@ -3,9 +3,8 @@
 
 #include <string>
 
-#include "firmware-host/config/expression_library.hpp"
-#include "firmware-host/config/head_config.hpp"
 #include "firmware-host/fap/fap_mapping.hpp"
+#include "tests/support/default_head.hpp"
 
 namespace facectl::testing {
 
@@ -17,12 +16,10 @@ struct DefaultFapHead {
 
 inline const DefaultFapHead& default_fap_head() {
   static const DefaultFapHead h = [] {
-    const std::string src = FACECTL_SOURCE_DIR;
-    HeadConfig head = load_head_config(src + "/config/heads/default/head.yaml");
-    ExpressionLibrary lib =
-        ExpressionLibrary::load(src + "/config/expressions/library.yaml", head.layout);
-    FapMapping mapping = load_fap_mapping(head, lib, src + "/config/fap/visemes.yaml");
-    return DefaultFapHead{std::move(head), std::move(lib), std::move(mapping)};
+    const DefaultHead& base = default_head();
+    FapMapping mapping = load_fap_mapping(
+        base.head, base.expressions, std::string(FACECTL_SOURCE_DIR) + "/config/fap/visemes.yaml");
+    return DefaultFapHead{base.head, base.expressions, std::move(mapping)};
   }();
   return h;
 }
