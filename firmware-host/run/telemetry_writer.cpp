@@ -38,14 +38,22 @@ using Clock = std::chrono::steady_clock;
 TelemetryWriter::TelemetryWriter(const ControllerModel& model, SpscRing<TelemetryRecord>& ring,
                                  std::string path)
     : model_(model), ring_(ring), path_(std::move(path)) {
-  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd_ < 0) {
-    throw std::runtime_error(path_ + ": cannot write telemetry: " + std::strerror(errno));
+  // Non-blocking from the open on: a blocking open of a FIFO waits without
+  // end for a reader that may never come (the head never starts); and a reader
+  // that stops reading must not block the drain beyond its budget. (No effect
+  // on regular files, whose writes do not wait on a reader.)
+  const auto reader_deadline = Clock::now() + std::chrono::seconds(1);
+  while ((fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NONBLOCK,
+                       0644)) < 0 &&
+         errno == ENXIO && Clock::now() < reader_deadline) {
+    ::usleep(10'000);  // a FIFO with no reader yet: give one a moment to open it
   }
-  // A pipe or socket reader that stops reading must not block the drain
-  // beyond its budget (no effect on regular files, whose writes do not wait
-  // on a reader).
-  ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) | O_NONBLOCK);
+  if (fd_ < 0) {
+    throw std::runtime_error(path_ + ": cannot write telemetry: " +
+                             (errno == ENXIO ? std::string("no process has this FIFO open for "
+                                                           "reading (waited 1 s)")
+                                             : std::strerror(errno)));
+  }
   buffer_.reserve(kBlockBytes + 64 * 1024);
   {
     char* text = nullptr;

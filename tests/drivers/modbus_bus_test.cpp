@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <mutex>
 #include <thread>
 
 #include "sim/devices/modbus_board_server.hpp"
@@ -71,10 +72,12 @@ class Tick {
   }
   void pause(bool p) { paused_ = p; }
   std::int64_t max_call_ns() const { return max_call_ns_; }
+  // What the tick last read. Only the tick's thread calls the bus: read()
+  // and write() are one thread's calls (the seam's contract; TSan caught this
+  // test reading from a second thread).
   std::vector<double> measured() {
-    std::vector<double> m(n_);
-    bus_.read({now_ns(), 0.001}, m);
-    return m;
+    const std::lock_guard<std::mutex> lock(last_mutex_);
+    return last_;
   }
 
  private:
@@ -90,6 +93,10 @@ class Tick {
       for (std::size_t i = 0; i < n_; ++i) cmd[i] = target_(i, t);
       const std::int64_t a = now_ns();
       bus_.read({a, 0.001}, meas);
+      {
+        const std::lock_guard<std::mutex> lock(last_mutex_);
+        last_ = meas;
+      }
       bus_.write({a, 0.001}, cmd);
       (void)bus_.status();
       max_call_ns_ = std::max(max_call_ns_.load(), now_ns() - a);
@@ -100,6 +107,8 @@ class Tick {
   std::function<double(std::size_t, double)> target_;
   std::atomic<bool> stop_{false}, paused_{false};
   std::atomic<std::int64_t> max_call_ns_{0};
+  std::mutex last_mutex_;
+  std::vector<double> last_ = std::vector<double>(n_);
   std::thread thread_;
 };
 

@@ -12,6 +12,7 @@
 #include "firmware-host/verify/static_proof.hpp"
 #include "firmware-host/verify/verify_command.hpp"
 #include "tests/support/edited_rig.hpp"
+#include "tests/support/sample_count.hpp"
 #include "tests/support/temp_file.hpp"
 
 namespace facectl {
@@ -412,7 +413,8 @@ TEST(Verify, ChecksCiA402EncodingsInTheDrivesInt32Counts) {
   for (ActuatorModel& a : cfg.built.model.actuators) {
     if (a.name == "neck_pan") a.encoding = {ActuatorEncoding::Raw::kInt32, 5e7, 0.0};
   }
-  const auto* f = find_failure(verify::prove(cfg).findings, "encoding");
+  const auto proof = verify::prove(cfg);  // f points into it
+  const auto* f = find_failure(proof.findings, "encoding");
   ASSERT_NE(f, nullptr);
   EXPECT_EQ(f->subject, "neck_pan");
   EXPECT_NE(f->message.find("does not fit raw int32: position -65 encodes to -3250000000"),
@@ -423,7 +425,7 @@ TEST(Verify, ChecksCiA402EncodingsInTheDrivesInt32Counts) {
 // Soundness: millions of admissible faces (random points of the box, made
 // admissible by the tick's own projection, plus the box's extremes) never map
 // outside the range the proof reported.
-void expect_sound(const std::string& rig, int samples) {
+void expect_sound(const std::string& rig, long samples) {
   const auto cfg = load_rig(rig);
   const ControllerModel& m = cfg.built.model;
   const auto proof = verify::prove(cfg);
@@ -433,7 +435,7 @@ void expect_sound(const std::string& rig, int samples) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::array<double, kMaxFaceSignals> face{};
   std::array<double, kMaxActuators> out{};
-  for (int s = 0; s < samples; ++s) {
+  for (long s = 0; s < samples; ++s) {
     const bool corner = s % 4 == 0;
     for (std::size_t j = 0; j < set.size(); ++j) {
       const double t = corner ? static_cast<double>(rng() % 2) : u(rng);
@@ -453,11 +455,11 @@ void expect_sound(const std::string& rig, int samples) {
 }
 
 TEST(Verify, TheStaticProofIsSoundOnTheDefaultRig) {
-  expect_sound(kSource + "/config/rigs/default.yaml", 2'000'000);
+  expect_sound(kSource + "/config/rigs/default.yaml", testing::sample_count(2'000'000));
 }
 
 TEST(Verify, TheStaticProofIsSoundOnTheHobbyRig) {
-  expect_sound(kSource + "/config/rigs/hobby.yaml", 1'000'000);
+  expect_sound(kSource + "/config/rigs/hobby.yaml", testing::sample_count(1'000'000));
 }
 
 }  // namespace
