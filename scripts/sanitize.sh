@@ -41,7 +41,11 @@ run_asan() {
   # the CI compiles the instrumented sources once for both.
   configure "$BUILD_ASAN" -DFACECTL_FUZZ=ON -DFACECTL_BUILD_TESTS=ON
   cmake --build "$BUILD_ASAN" -j "$JOBS"
-  ctest --test-dir "$BUILD_ASAN" --output-on-failure -j "$JOBS"
+  # Not the QEMU guest test (label qemu): its CAN drives and boards keep
+  # heartbeat and watchdog deadlines of 100 ms, which an ASan build on an
+  # emulated CPU misses (heartbeat lost, watchdog tripped) whenever the host
+  # is busy. The ordinary suite runs it.
+  ctest --test-dir "$BUILD_ASAN" --output-on-failure -j "$JOBS" -LE qemu
   echo "sanitize: asan+ubsan suite passed in $((SECONDS - t0)) s"
 }
 

@@ -12,6 +12,7 @@
 
 #include "control/analysis/channel_polynomial.hpp"
 #include "tests/support/default_face_space.hpp"
+#include "tests/support/sample_count.hpp"
 
 namespace facectl::verify {
 namespace {
@@ -330,7 +331,7 @@ void check_sound_and_tight(std::span<const LinearInequality> rows, int samples) 
                 1e3 * pr.b.upper, 1e3 * pr.seen_lo, 1e3 * pr.seen_hi, pr.b.boxes_used);
 }
 
-constexpr int kSamples = 1'000'000;
+const int kSamples = static_cast<int>(testing::sample_count(1'000'000));
 
 TEST(ChannelBoundShippedModel, SoundAndTightOnTheBox) {
   check_sound_and_tight({}, kSamples);

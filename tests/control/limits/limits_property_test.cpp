@@ -8,12 +8,14 @@
 #include <random>
 
 #include "control/limits/trajectory_limiter.hpp"
+#include "tests/support/sample_count.hpp"
 #include "tests/support/sim_head.hpp"
 
 namespace facectl {
 namespace {
 
-constexpr long kTicks = 1'000'000;
+// At least one whole e-stop and shutdown cycle (100 000 ticks) when sanitized.
+const long kTicks = testing::sample_count(1'000'000);
 constexpr double kRel = 1e-9;  // floating-point tolerance, relative to the bound
 
 // Random targets (in and far out of range) and random tick lengths including

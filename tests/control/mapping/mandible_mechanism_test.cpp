@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tests/support/mandible_mechanisms.hpp"
+#include "tests/support/sample_count.hpp"
 
 namespace facectl {
 namespace {
@@ -198,7 +199,8 @@ TEST(MandibleMechanism, UnreachableTargetsGoToTheNearestReachablePose) {
     std::mt19937_64 rng(42 + n);
     std::uniform_real_distribution<double> pitch(-6, 22), yaw(-7, 7), prot(-2, 10);
     int clamped = 0;
-    for (int trial = 0; trial < 24; ++trial) {
+    const long trials = testing::sample_count(24, 6);  // each runs three grid searches
+    for (long trial = 0; trial < trials; ++trial) {
       const face::MandiblePose target = pose_deg_mm(pitch(rng), yaw(rng), prot(rng));
       MandibleStrokes out{};
       const MandibleSolveResult r = solve(m, target, out);
@@ -237,7 +239,7 @@ TEST(MandibleMechanism, UnreachableTargetsGoToTheNearestReachablePose) {
       EXPECT_LE(r.distance, finer.second + 1e-9);
       EXPECT_LT(finer.second, r.distance + 0.01);
     }
-    EXPECT_GT(clamped, 16) << n << " struts";
+    EXPECT_GT(clamped, trials * 2 / 3) << n << " struts";  // 16 of 24
   }
 }
 

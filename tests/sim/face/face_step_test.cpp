@@ -8,6 +8,7 @@
 
 #include "alloc_counter.hpp"
 #include "default_head.hpp"
+#include "tests/support/sample_count.hpp"
 
 namespace facectl::face {
 namespace {
@@ -131,17 +132,20 @@ int soak(const FaceModel& m, int frames, unsigned seed) {
   return inverted;
 }
 
+// Frames of each soak: a tenth under the sanitizers (tests/support/sample_count.hpp).
+const int kSoakFrames = static_cast<int>(facectl::testing::sample_count(2000));
+
 TEST(Soak, RandomContractionsNeverProduceNaNAtTwoScales) {
-  EXPECT_GE(soak(default_model(), 2000, 5), 0);
-  EXPECT_GE(soak(build_face_model(default_spec(), 1500), 1000, 6), 0);
+  EXPECT_GE(soak(default_model(), kSoakFrames, 5), 0);
+  EXPECT_GE(soak(build_face_model(default_spec(), 1500), kSoakFrames / 2, 6), 0);
 }
 
 // The skin may fold where neighbouring vertices ride on different muscles, but no
 // triangle may turn over: the no-inversion constraint and the end-of-frame untangling
 // (docs/FACE_MODEL.md, Solver) keep every triangle within 90° of its rest normal.
 TEST(Soak, RandomContractionsNeverInvertATriangleAtTwoScales) {
-  EXPECT_EQ(soak(default_model(), 2000, 5), 0) << "inverted triangle-frames at 468 vertices";
-  EXPECT_EQ(soak(build_face_model(default_spec(), 1500), 1000, 6), 0)
+  EXPECT_EQ(soak(default_model(), kSoakFrames, 5), 0) << "inverted triangle-frames at 468 vertices";
+  EXPECT_EQ(soak(build_face_model(default_spec(), 1500), kSoakFrames / 2, 6), 0)
       << "inverted triangle-frames at 1500 vertices";
 }
 

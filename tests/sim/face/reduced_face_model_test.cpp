@@ -2,6 +2,7 @@
 // fit that tracks the full model on held-out inputs.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -9,6 +10,7 @@
 #include "default_head.hpp"
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/reduced_model_fit.hpp"
+#include "tests/support/sample_count.hpp"
 
 namespace facectl::face {
 namespace {
@@ -16,10 +18,14 @@ namespace {
 const ReducedFaceModel& small_fit(ReduceReport* report = nullptr) {
   static ReduceReport rep;
   static const ReducedFaceModel r = [] {
+    // Under the sanitizers a quarter of the samples and half the frames: the
+    // fit then runs every path of the full model and the regression, but
+    // is too small to meet the accuracy bound below.
+    using facectl::testing::kSanitized;
     ReduceOptions o;
-    o.train_samples = 160;
-    o.test_samples = 40;
-    o.frames = 200;
+    o.train_samples = kSanitized ? 40 : 160;
+    o.test_samples = kSanitized ? 10 : 40;
+    o.frames = kSanitized ? 100 : 200;
     return build_reduced_model(testing::default_model(), o, &rep);
   }();
   if (report) *report = rep;
@@ -31,8 +37,11 @@ TEST(ReducedFaceModel, FitTracksTheFullModelOnHeldOutInputs) {
   small_fit(&rep);
   // A regression bound for this small, fast fit (160 samples); the shipped model's
   // measured error (800 samples) is in docs/PERFORMANCE.md.
-  EXPECT_LT(rep.test_rms_mm, 1.0);
-  EXPECT_LT(rep.test_max_mm, 10.0);
+  if (!facectl::testing::kSanitized) {
+    EXPECT_LT(rep.test_rms_mm, 1.0);
+    EXPECT_LT(rep.test_max_mm, 10.0);
+  }
+  EXPECT_TRUE(std::isfinite(rep.test_max_mm));
   EXPECT_GT(rep.test_rms_mm, 0.0);
 }
 
