@@ -5,15 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <vector>
 
 #include "control/mapping/mandible_mechanism.hpp"
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/run/offline_head.hpp"
 #include "tests/support/temp_file.hpp"
+#include "tests/support/text_files.hpp"
 
 namespace facectl {
 namespace {
@@ -21,24 +20,14 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 std::string default_rig_text() {
-  std::ifstream f(std::string(FACECTL_SOURCE_DIR) + "/config/rigs/default.yaml");
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
+  return testing::read_text(testing::source_path("config/rigs/default.yaml"));
 }
 
 // Gives the actuator mapped from `signal` a fault reaction.
 std::string with_reaction(const std::string& text, const std::string& signal,
                           const std::string& reaction) {
   const std::string map = "      map:\n        terms: { " + signal + "_deg: 1.0 }";
-  return replaced(text, map, "      fault_reaction: " + reaction + "\n" + map);
+  return testing::replaced_once(text, map, "      fault_reaction: " + reaction + "\n" + map);
 }
 
 // can0: jaw struts hold (as shipped), neck_pan holds, neck_tilt and eye_yaw_l
@@ -326,9 +315,9 @@ TEST_F(FaultReaction, EstopDuringAHoldingFaultCutsEverything) {
 }
 
 TEST_F(FaultReaction, AnAllRelaxRigCutsEverythingAsBefore) {
-  std::string t = default_rig_text();
-  for (int i = 0; i < 3; ++i) t = replaced(t, "fault_reaction: hold", "fault_reaction: relax");
-  start(t);
+  // The three jaw struts are the shipped rig's only holding actuators.
+  start(testing::replaced_all(default_rig_text(), "fault_reaction: hold", "fault_reaction: relax",
+                              3));
   head_->hardware().find("modbus0")->inject_fault("board 3 not answering");
   head_->step(head_->period());
   EXPECT_EQ(head_->controller().state(), SafetyState::kFault);

@@ -1,11 +1,9 @@
 #pragma once
 
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 
 #include "tests/support/temp_file.hpp"
+#include "tests/support/text_files.hpp"
 
 namespace facectl::testing {
 
@@ -15,22 +13,11 @@ namespace facectl::testing {
 class EditedRig {
  public:
   // `shipped`: a path under the source tree, e.g. "config/rigs/hobby.yaml".
-  explicit EditedRig(const std::string& shipped) {
-    std::ifstream in(std::string(FACECTL_SOURCE_DIR) + "/" + shipped);
-    if (!in) throw std::runtime_error("cannot read " + shipped);
-    std::stringstream text;
-    text << in.rdbuf();
-    text_ = text.str();
-  }
+  explicit EditedRig(const std::string& shipped) : text_(read_text(source_path(shipped))) {}
 
-  // Replaces `from`, which must occur exactly once: an edit that no longer
-  // matches the shipped rig fails the test instead of testing an unbroken rig.
+  // Replaces `from`, which must occur exactly once (replaced_once).
   EditedRig& replace(const std::string& from, const std::string& to) {
-    const auto at = text_.find(from);
-    if (at == std::string::npos || text_.find(from, at + 1) != std::string::npos) {
-      throw std::logic_error("the rig edit must match exactly once: " + from);
-    }
-    text_.replace(at, from.size(), to);
+    text_ = replaced_once(text_, from, to);
     return *this;
   }
 

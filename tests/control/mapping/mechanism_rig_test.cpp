@@ -6,43 +6,28 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <random>
-#include <sstream>
 
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/run/offline_head.hpp"
 #include "tests/support/temp_file.hpp"
+#include "tests/support/text_files.hpp"
 
 namespace facectl {
 namespace {
 
-const std::string kSource = FACECTL_SOURCE_DIR;
 constexpr double kDeg = M_PI / 180.0;
 
 std::string default_rig_text() {
-  std::ifstream f(kSource + "/config/rigs/default.yaml");
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
+  return testing::read_text(testing::source_path("config/rigs/default.yaml"));
 }
 
 LoadedConfig load_rig_text(const std::string& text, bool keep_problems = false) {
-  static int n = 0;
-  const std::string path = "/tmp/facectl-mechanism-rig-" + std::to_string(getpid()) + "-" +
-                           std::to_string(n++) + ".yaml";
-  std::ofstream(path) << text;
+  testing::TempFile file(text);
   ConfigOverrides o;
-  o.rig_path = path;
+  o.rig_path = file.path();
   o.keep_problems = keep_problems;
-  try {
-    LoadedConfig c = load_config(default_config_path(), o);
-    std::remove(path.c_str());
-    return c;
-  } catch (...) {
-    std::remove(path.c_str());
-    throw;
-  }
+  return load_config(default_config_path(), o);
 }
 
 std::string load_error(const std::string& text) {
@@ -52,13 +37,6 @@ std::string load_error(const std::string& text) {
     return e.what();
   }
   return "";
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
 }
 
 face::MandiblePose commanded_pose(OfflineHead& head, const face::MandiblePose& guess) {
@@ -147,9 +125,9 @@ TEST(MechanismRig, BangBangJawCommandsKeepTheStrutPoseInsideTheEnvelope) {
 TEST(MechanismRig, StrutsRestingAtNoPoseOfTheJawAreAProblemAndEnableFaults) {
   // The digastric rests at 47 mm, its stroke at the mandible's rest 35 mm: that
   // is the jaw about 7 degrees closed, outside the envelope.
-  std::string text = replaced(default_rig_text(), "rest_mm: 35", "rest_mm: 47");
-  text = replaced(text, "mandible_mm: [0, -78, 38] }",
-                  "mandible_mm: [0, -78, 38], stroke_at_rest_mm: 35 }");
+  std::string text = testing::replaced_once(default_rig_text(), "rest_mm: 35", "rest_mm: 47");
+  text = testing::replaced_once(text, "mandible_mm: [0, -78, 38] }",
+                                "mandible_mm: [0, -78, 38], stroke_at_rest_mm: 35 }");
   LoadedConfig cfg = load_rig_text(text, true);
   ASSERT_FALSE(cfg.built.problems.empty());
   EXPECT_NE(cfg.built.problems[0].find("struts' rest positions are no mandible pose"),
@@ -163,26 +141,27 @@ TEST(MechanismRig, StrutsRestingAtNoPoseOfTheJawAreAProblemAndEnableFaults) {
 
 TEST(MechanismRig, ConfigMistakesAreNamed) {
   const std::string rig = default_rig_text();
-  std::string e =
-      load_error(replaced(rig, "- { actuator: jaw_digastric,", "- { actuator: jaw_digastrik,"));
+  std::string e = load_error(
+      testing::replaced_once(rig, "- { actuator: jaw_digastric,", "- { actuator: jaw_digastrik,"));
   EXPECT_NE(e.find("rig.mandible_mechanism.struts.actuator: expected the name of an actuator of "
                    "this rig, found 'jaw_digastrik'"),
             std::string::npos)
       << e;
-  e = load_error(replaced(rig, "      rest_mm: 35\n",
-                          "      rest_mm: 35\n      map: { terms: { jaw_pitch_deg: -1.67 } }\n"));
+  e = load_error(testing::replaced_once(
+      rig, "      rest_mm: 35\n",
+      "      rest_mm: 35\n      map: { terms: { jaw_pitch_deg: -1.67 } }\n"));
   EXPECT_NE(e.find("expected no `map` for a strut of the mandible mechanism"), std::string::npos)
       << e;
-  e = load_error(replaced(rig, "      pitch: { max_velocity_deg_s: 150,",
-                          "      pitch: { max_velocity_deg_s: -150,"));
+  e = load_error(testing::replaced_once(rig, "      pitch: { max_velocity_deg_s: 150,",
+                                        "      pitch: { max_velocity_deg_s: -150,"));
   EXPECT_NE(e.find("rig.mandible_mechanism.limits.pitch.max_velocity_deg_s"), std::string::npos)
       << e;
-  e = load_error(
-      replaced(rig, "    dofs: [pitch, yaw, protrusion]", "    dofs: [pitch, yaw, yaw]"));
+  e = load_error(testing::replaced_once(rig, "    dofs: [pitch, yaw, protrusion]",
+                                        "    dofs: [pitch, yaw, yaw]"));
   EXPECT_NE(e.find("each degree of freedom once"), std::string::npos) << e;
   // Too slow struts for the jaw's rates: a problem the run refuses, with numbers.
-  LoadedConfig slow =
-      load_rig_text(replaced(rig, "max_velocity_mm_s: 350", "max_velocity_mm_s: 100"), true);
+  LoadedConfig slow = load_rig_text(
+      testing::replaced_once(rig, "max_velocity_mm_s: 350", "max_velocity_mm_s: 100"), true);
   ASSERT_EQ(slow.built.problems.size(), 1u);
   EXPECT_NE(slow.built.problems[0].find("can ask strut 'jaw_digastric' for"), std::string::npos)
       << slow.built.problems[0];

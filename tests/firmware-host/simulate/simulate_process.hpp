@@ -8,9 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "tests/support/text_files.hpp"
 
 namespace facectl::testing {
 
@@ -34,13 +35,6 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-inline std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 inline void write_text(const std::filesystem::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
@@ -59,10 +53,6 @@ inline ProcessResult run_facectl(const std::vector<std::string>& args,
   cmd += " < /dev/null > '" + log.string() + "' 2>&1";
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(log)};
-}
-
-inline std::string source_path(const std::string& relative) {
-  return std::string(FACECTL_SOURCE_DIR) + "/" + relative;
 }
 
 // Every regular file under `dir` with its bytes, by path relative to `dir`.
