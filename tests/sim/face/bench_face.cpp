@@ -1,6 +1,6 @@
 // Face-model benchmarks (single thread): the full layered step at the skin sizes of the
 // thesis's Table 5.1, skull + muscles alone, and the reduced model per control tick.
-// Run: ./build/tests/face/bench_face  (not part of ctest; numbers in docs/PERFORMANCE.md)
+// Run: ./build/tests/bench_face  (not part of ctest; numbers in docs/PERFORMANCE.md)
 #include <benchmark/benchmark.h>
 
 #include <map>
