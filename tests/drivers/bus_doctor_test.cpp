@@ -3,6 +3,7 @@
 #include "drivers/bus_doctor.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -57,7 +58,8 @@ TEST(BusDoctor, ModbusFlagsKnownBadDefaultsAndBoardState) {
 }
 
 TEST(BusDoctor, TheUsbSerialLatencyTimerIsReadFromSysfs) {
-  const auto root = std::filesystem::temp_directory_path() / "facectl_sysfs_test";
+  const auto root =
+      std::filesystem::temp_directory_path() / ("facectl_sysfs_test_" + std::to_string(getpid()));
   std::filesystem::create_directories(root / "class/tty/ttyUSB0/device");
   std::ofstream(root / "class/tty/ttyUSB0/device/latency_timer") << "16\n";
   EXPECT_EQ(usb_serial_latency_timer_ms("/dev/ttyUSB0", root.string()), 16);

@@ -1,5 +1,6 @@
 // Bad input names file:line, what was expected and what was found.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -15,7 +16,8 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("facectl_face_" + name);
+  const fs::path p =
+      fs::temp_directory_path() / ("facectl_face_" + std::to_string(getpid()) + "_" + name);
   std::ofstream(p) << text;
   return p.string();
 }
@@ -48,7 +50,9 @@ TEST(ObjInput, BadNumberAndIndexAreNamed) {
 
 TEST(ObjInput, RoundTripsTheDefaultSkin) {
   const FaceModel& m = testing::default_model();
-  const std::string p = (fs::temp_directory_path() / "facectl_face_rt.obj").string();
+  const std::string p =
+      (fs::temp_directory_path() / ("facectl_face_rt_" + std::to_string(getpid()) + ".obj"))
+          .string();
   write_obj(p, m.skin, 0.01);
   TriMesh back = read_obj(p, 0.01);
   ASSERT_EQ(back.v.size(), m.skin.v.size());
@@ -59,7 +63,8 @@ TEST(ObjInput, RoundTripsTheDefaultSkin) {
 
 // Copies the default head into a temp folder with one file replaced.
 std::string head_with(const std::string& file, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "facectl_face_head";
+  const fs::path dir =
+      fs::temp_directory_path() / ("facectl_face_head_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::copy(FACECTL_DEFAULT_HEAD_DIR, dir);
   std::ofstream(dir / file) << text;

@@ -1,6 +1,7 @@
 // The reduced model: allocation-free evaluation, exact save/load, error messages, and a
 // fit that tracks the full model on held-out inputs.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -70,7 +71,9 @@ TEST(ReducedFaceModel, EvaluateDoesNotAllocate) {
 
 TEST(ReducedFaceModel, SaveLoadRoundTripIsExact) {
   const ReducedFaceModel& r = shipped();
-  const std::string p = (std::filesystem::temp_directory_path() / "facectl_reduced.txt").string();
+  const std::string p = (std::filesystem::temp_directory_path() /
+                         ("facectl_reduced_" + std::to_string(getpid()) + ".txt"))
+                            .string();
   save_reduced_model(r, p);
   const ReducedFaceModel back = load_reduced_model(p, testing::default_spec());
   EXPECT_EQ(back.control_points, r.control_points);
@@ -106,8 +109,9 @@ TEST(ReducedFaceModel, ShippedCacheTracksTheFullModelOnAnExpression) {
 }
 
 TEST(ReducedFaceModel, MalformedFileNamesFileAndLine) {
-  const std::string p =
-      (std::filesystem::temp_directory_path() / "facectl_bad_reduced.txt").string();
+  const std::string p = (std::filesystem::temp_directory_path() /
+                         ("facectl_bad_reduced_" + std::to_string(getpid()) + ".txt"))
+                            .string();
   std::ofstream(p) << "facectl-reduced-face 1\nmuscles 1 frontalis_l\n";
   try {
     load_reduced_model(p, testing::default_spec());
