@@ -7,6 +7,7 @@
 #include "firmware-host/cli/face_cli.hpp"
 #include "firmware-host/cli/plot_command.hpp"
 #include "firmware-host/cli/run_command.hpp"
+#include "firmware-host/cli/serve_command.hpp"
 #include "firmware-host/simulate/simulate_bench.hpp"
 #include "firmware-host/simulate/simulate_command.hpp"
 #include "firmware-host/verify/verify_command.hpp"
@@ -17,6 +18,7 @@ namespace {
 // code the chosen command's callback returns.
 struct CliOptions {
   facectl::RunOptions run;
+  facectl::ServeOptions serve;
   facectl::BenchLoopOptions bench;
   facectl::SimulateBenchOptions bench_sim;
   facectl::PlotOptions plot;
@@ -48,6 +50,24 @@ void add_run_command(CLI::App& app, CliOptions& o) {
       "Rehearse a fault: estop@S, bus_fault:BUS@S, input_loss@S, overrun_storm:MS@S");
   run_cmd->add_flag("--quiet", o.run.quiet, "No live status line");
   run_cmd->callback([&o] { o.exit_code = facectl::run_command(o.run); });
+}
+
+// `facectl serve`: the head as a service with the control API and console.
+void add_serve_command(CLI::App& app, CliOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "serve",
+      "Keep the head under control as a service: HTTP control API and operator console "
+      "(docs/API.md); starts IDLE");
+  cmd->add_option("--config", o.serve.config,
+                  "Runtime config (default: the shipped config/facectl.yaml)");
+  cmd->add_option("--listen", o.serve.listen,
+                  "ADDR:PORT to listen on (default from config: 127.0.0.1:8080; port 0: any)");
+  cmd->add_flag("--allow-remote", o.serve.allow_remote,
+                "Allow a non-loopback listen address (needs an access token)");
+  cmd->add_option("--hardware", o.serve.hardware, "sim or real (default from config: sim)");
+  cmd->add_option("--event-log", o.serve.event_log, "Event log file (JSON lines)");
+  cmd->add_option("--console", o.serve.console, "Folder of the operator console's files");
+  cmd->callback([&o] { o.exit_code = facectl::serve_command(o.serve); });
 }
 
 // `facectl bench loop` and `facectl bench simulate`.
@@ -145,6 +165,7 @@ int run_cli(int argc, char** argv) {
   app.require_subcommand(1);
   CliOptions o;
   add_run_command(app, o);
+  add_serve_command(app, o);
   add_bench_commands(app, o);
   add_plot_command(app, o);
   add_verify_command(app, o);

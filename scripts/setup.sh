@@ -8,6 +8,8 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libmodbus-dev libgpiod-dev libhidapi-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libpng-dev libglpk-dev
+  # `facectl serve`: its HTTP server and the systemd notify protocol.
+  libcpp-httplib-dev libsystemd-dev
   clang-format clang-tidy
   # The SocketCAN tests run in a QEMU guest (tests/drivers/qemu): the emulator,
   # Debian's kernel with the CAN modules, a static busybox for the initramfs,

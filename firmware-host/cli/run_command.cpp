@@ -20,15 +20,10 @@
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/inputs/gamepad_puppeteer.hpp"
 #include "firmware-host/inputs/show_player.hpp"
-#include "firmware-host/model/sim_twin.hpp"
 #include "firmware-host/run/fault_injection.hpp"
-#include "firmware-host/run/real_hardware.hpp"
-#include "firmware-host/run/realtime_loop.hpp"
-#include "firmware-host/run/realtime_readiness.hpp"
-#include "firmware-host/run/realtime_thread.hpp"
+#include "firmware-host/run/head_runtime.hpp"
 #include "firmware-host/run/run_summary.hpp"
 #include "firmware-host/run/status_line.hpp"
-#include "firmware-host/run/telemetry_writer.hpp"
 
 namespace facectl {
 namespace {
@@ -43,31 +38,18 @@ extern "C" void on_signal(int sig) {
 // How long the loop keeps ticking (and recording) after FAULT or ESTOP.
 constexpr double kFaultLingerSeconds = 0.5;
 
-// Everything one run owns, declared in the order the stages build it: members
-// are destroyed in reverse, so each input thread's mailbox, each writer's ring
-// and each bus outlives its user.
+// Everything one run owns: the head, then its inputs. Members are destroyed
+// in reverse, so each input thread stops before the mailbox it feeds.
 struct RunSession {
   std::vector<Injection> injections;
-  std::unique_ptr<LoadedConfig> cfg;
-  RealtimeReport rt;
-  std::unique_ptr<SimHardware> sim;
-  std::unique_ptr<RealHardware> real;
-  LatestValueMailbox<FaceCommand> mailbox;
-  SpscRing<TransitionEvent> events{256};
-  std::unique_ptr<SpscRing<TelemetryRecord>> telemetry;
-  std::unique_ptr<TelemetryWriter> writer;
-  std::unique_ptr<Controller> controller;
+  HeadRuntime head;
   std::unique_ptr<ShowPlayer> player;
   std::unique_ptr<HidGamepad> pad;
   std::unique_ptr<ShowRecorder> recorder;
   std::unique_ptr<GamepadPuppeteer> puppeteer;
   double end_s = 1e300;
-  LoopStats stats;
-  std::unique_ptr<RealtimeLoop> loop;
-  std::atomic<bool> stop{false};
-  std::thread rt_thread;
 
-  const ControllerModel& model() const { return cfg->built.model; }
+  const ControllerModel& model() const { return head.model(); }
 };
 
 // Stage 1. Everything is loaded and validated before anything is enabled.
@@ -76,19 +58,11 @@ void load(const RunOptions& options, RunSession& s) {
   ConfigOverrides overrides;
   overrides.show_path = options.show;
   overrides.rate_hz = options.rate_hz;
-  if (options.hardware) {
-    if (*options.hardware == "sim") {
-      overrides.hardware = HardwareMode::kSim;
-    } else if (*options.hardware == "real") {
-      overrides.hardware = HardwareMode::kReal;
-    } else {
-      throw ConfigError("--hardware: expected sim or real, found '" + *options.hardware + "'");
-    }
-  }
+  overrides.hardware = parse_hardware_option(options.hardware);
   for (const auto& text : options.inject) s.injections.push_back(parse_injection(text));
   const std::string path = options.config.empty() ? default_config_path() : options.config;
-  s.cfg = std::make_unique<LoadedConfig>(load_config(path, overrides));
-  const LoadedConfig& cfg = *s.cfg;
+  s.head.cfg = std::make_unique<LoadedConfig>(load_config(path, overrides));
+  const LoadedConfig& cfg = *s.head.cfg;
   check_injection_buses(s.injections, cfg.rig);
   if (cfg.runtime.hardware == HardwareMode::kReal && !s.injections.empty()) {
     throw ConfigError(
@@ -107,28 +81,9 @@ void load(const RunOptions& options, RunSession& s) {
   }
 }
 
-// Stage 2. The simulated twins, or the real buses and GPIO; the telemetry
-// recording; the controller over them. Throws when something cannot be opened.
+// Stage 2. The hardware, the telemetry recording and the controller.
 void open_hardware(const RunOptions& options, RunSession& s) {
-  const ControllerModel& model = s.model();
-  if (s.cfg->runtime.hardware == HardwareMode::kReal) {
-    try {
-      s.real = make_real_hardware(model, *s.cfg);
-    } catch (const std::exception& e) {
-      throw std::runtime_error(std::string("real hardware: ") + e.what());
-    }
-    for (const auto& note : s.real->notes) std::fprintf(stderr, "%s\n", note.c_str());
-  } else {
-    s.sim = make_sim_hardware(model, s.cfg->rig);
-  }
-  const std::vector<ActuatorBus*>& seams = s.real ? s.real->seams : s.sim->seams;
-  SafetyIo& io = s.real ? s.real->io() : static_cast<SafetyIo&>(s.sim->io);
-  if (options.record) {
-    s.telemetry = std::make_unique<SpscRing<TelemetryRecord>>(s.cfg->runtime.telemetry_ring);
-    s.writer = std::make_unique<TelemetryWriter>(model, *s.telemetry, *options.record);
-  }
-  s.controller = std::make_unique<Controller>(
-      model, seams, io, ControllerChannels{&s.mailbox, s.telemetry.get(), &s.events});
+  open_head(s.head, options.record, false);
 }
 
 // Stage 3. Input: the gamepad (puppeteering), or the show, looping when a
@@ -136,7 +91,7 @@ void open_hardware(const RunOptions& options, RunSession& s) {
 void open_input(const RunOptions& options, RunSession& s) {
   const ControllerModel& model = s.model();
   if (options.gamepad) {
-    const GamepadConfig& g = *s.cfg->runtime.gamepad;
+    const GamepadConfig& g = *s.head.cfg->runtime.gamepad;
     try {
       s.pad = std::make_unique<HidGamepad>(g.selector, g.layout);
     } catch (const std::exception& e) {
@@ -147,53 +102,40 @@ void open_input(const RunOptions& options, RunSession& s) {
     }
     s.puppeteer = std::make_unique<GamepadPuppeteer>(
         [p = s.pad.get()](GamepadState& st) { return p->latest(st); }, GamepadMapping(g.terms),
-        model.neutral, s.mailbox, g.rate_hz, s.recorder.get());
+        model.neutral, s.head.mailbox, g.rate_hz, s.recorder.get());
     std::fprintf(
         stderr, "facectl run: puppeteering from gamepad %s; Ctrl-C ends the run\n",
         g.selector.path.empty()
             ? (std::to_string(g.selector.vendor) + ":" + std::to_string(g.selector.product)).c_str()
             : g.selector.path.c_str());
-  } else if (s.cfg->show) {
-    s.player = std::make_unique<ShowPlayer>(*s.cfg->show, s.mailbox, s.cfg->runtime.show_rate_hz,
+  } else if (s.head.cfg->show) {
+    s.player = std::make_unique<ShowPlayer>(*s.head.cfg->show, s.head.mailbox,
+                                            s.head.cfg->runtime.show_rate_hz,
                                             options.duration_s.has_value());
   }
-  s.end_s = options.duration_s ? *options.duration_s : (s.player) ? s.cfg->show->duration() : 1e300;
+  s.end_s = options.duration_s ? *options.duration_s
+            : (s.player)       ? s.head.cfg->show->duration()
+                               : 1e300;
 }
 
-void warn_if_not_realtime_ready(const RuntimeConfig& runtime) {
-  const std::vector<std::string> gaps = realtime_gaps(runtime.realtime);
-  if (gaps.empty()) return;
-  std::fprintf(stderr,
-               "warning: this machine is not set up for a hard real-time loop "
-               "(docs/REALTIME.md). Under load expect stalls of tens of ms, and a FAULT when one "
-               "outlasts %d periods (runtime.overrun_fault_count):\n",
-               runtime.safety.overrun_fault_count);
-  for (const std::string& gap : gaps) std::fprintf(stderr, "  - %s\n", gap.c_str());
-}
-
-// Stage 4. Start: logger, input, then the real-time loop, and ask to enable.
+// Stage 4. Start: input, logger and the real-time loop, and ask to enable.
 void start(RunSession& s) {
-  warn_if_not_realtime_ready(s.cfg->runtime);
-  if (s.writer) s.writer->start();
   if (s.player) s.player->start();
   if (s.puppeteer) s.puppeteer->start();
-  s.loop = std::make_unique<RealtimeLoop>(*s.controller, s.model().rate_hz, s.stats);
-  s.rt_thread = start_realtime_thread(
-      s.cfg->runtime.realtime, [&s] { s.loop->run(s.stop); }, s.rt);
-  for (const auto& w : s.rt.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  s.controller->request_enable();
+  start_head_loop(s.head);
+  s.head.controller->request_enable();
 }
 
 // Prints the state machine's transitions; remembers the last FAULT or ESTOP
 // for the status line.
 void drain_events(RunSession& s, bool tty, const char*& fault_text) {
-  while (const TransitionEvent* ev = s.events.front()) {
+  while (const TransitionEvent* ev = s.head.events.front()) {
     if (tty) std::fputs("\r\033[K", stdout), std::fflush(stdout);
     print_transition(*ev);
     if (ev->to == SafetyState::kFault || ev->to == SafetyState::kEstop) {
       fault_text = ev->to == SafetyState::kFault ? "FAULT" : "ESTOP";
     }
-    s.events.pop();
+    s.head.events.pop();
   }
 }
 
@@ -211,12 +153,12 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     const double t = static_cast<double>(monotonic_ns() - t0) * 1e-9;
     drain_events(s, tty, fault_text);
-    fire_due_injections(s.injections, t, s.sim.get(), s.player.get(), s.loop.get());
-    const SafetyState state = s.controller->state();
+    fire_due_injections(s.injections, t, s.head.sim.get(), s.player.get(), s.head.loop.get());
+    const SafetyState state = s.head.controller->state();
     if (!shutdown && (g_signal.load() != 0 || t >= s.end_s ||
                       (!options.duration_s && s.player && s.player->finished()))) {
       shutdown = true;
-      s.controller->request_shutdown();
+      s.head.controller->request_shutdown();
       if (g_signal.load() != 0) {
         std::fprintf(stderr, "\nfacectl run: signal %d: easing to rest\n", g_signal.load());
       }
@@ -226,18 +168,19 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
     // until the run ends (duration, signal); even then it lets a moving one
     // come to a stop before the outputs are released (a second signal
     // releases at once).
-    if (fault_at && t - *fault_at >= kFaultLingerSeconds && !s.controller->fault_holding()) break;
+    if (fault_at && t - *fault_at >= kFaultLingerSeconds && !s.head.controller->fault_holding())
+      break;
     if (shutdown && state == SafetyState::kIdle) break;
     if (shutdown && state == SafetyState::kFault &&
-        (!s.controller->fault_moving() || g_signal_count.load() > 1)) {
-      if (s.controller->fault_moving()) {
+        (!s.head.controller->fault_moving() || g_signal_count.load() > 1)) {
+      if (s.head.controller->fault_moving()) {
         std::fprintf(stderr, "\nfacectl run: second signal: releasing a moving held actuator\n");
       }
       break;
     }
     if (tty && monotonic_ns() - last_status > 100'000'000) {
       last_status = monotonic_ns();
-      std::printf("\r\033[K%s", format_status(s.stats, state, t, fault_text).c_str());
+      std::printf("\r\033[K%s", format_status(s.head.stats, state, t, fault_text).c_str());
       std::fflush(stdout);
     }
   }
@@ -246,21 +189,19 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
 // Stage 6. Stops the loop, then releases the outputs, stops the inputs and
 // flushes the logger.
 void stop(RunSession& s, bool tty) {
-  s.stop.store(true);
-  s.rt_thread.join();
-  s.controller->release_outputs();  // nothing holds once the loop has stopped
+  stop_head_loop(s.head);  // nothing holds once the loop has stopped
   if (s.player) s.player->stop();
   if (s.puppeteer) s.puppeteer->stop();
-  if (s.writer) {
+  if (s.head.writer) {
     // A slow file must not hold the exit: the drain has a budget, and a
     // signal from here on cuts it short (the rows left are counted lost).
     const int signals = g_signal_count.load();
-    s.writer->finish(TelemetryWriter::kDrainBudgetSeconds,
-                     [signals] { return g_signal_count.load() > signals; });
+    s.head.writer->finish(TelemetryWriter::kDrainBudgetSeconds,
+                          [signals] { return g_signal_count.load() > signals; });
   }
-  while (const TransitionEvent* ev = s.events.front()) {
+  while (const TransitionEvent* ev = s.head.events.front()) {
     print_transition(*ev);
-    s.events.pop();
+    s.head.events.pop();
   }
   if (tty) std::fputs("\r\033[K", stdout);
 }
@@ -292,10 +233,10 @@ int run_command(const RunOptions& options) {
     std::fprintf(stderr, "facectl run: %s\n", e.what());
     return 2;
   }
-  for (const auto& w : s.cfg->built.warnings) std::fprintf(stderr, "%s\n", w.c_str());
+  for (const auto& w : s.head.cfg->built.warnings) std::fprintf(stderr, "%s\n", w.c_str());
 
   // Threads started from here on stay off the loop's CPU.
-  keep_off_realtime_cpu(s.cfg->runtime.realtime, s.rt);
+  keep_off_realtime_cpu(s.head.cfg->runtime.realtime, s.head.rt);
   try {
     open_hardware(options, s);
     open_input(options, s);
@@ -314,9 +255,15 @@ int run_command(const RunOptions& options) {
   supervise(options, s, tty);
   stop(s, tty);
 
-  RunSummaryInput in{s.model(),        *s.controller,   s.stats,          s.rt,
-                     s.writer.get(),   s.cfg->rig.name, s.cfg->head.name, s.events.dropped(),
-                     s.real != nullptr};
+  RunSummaryInput in{s.model(),
+                     *s.head.controller,
+                     s.head.stats,
+                     s.head.rt,
+                     s.head.writer.get(),
+                     s.head.cfg->rig.name,
+                     s.head.cfg->head.name,
+                     s.head.events.dropped(),
+                     s.head.real != nullptr};
   int rc = print_run_summary(in);
   if (s.recorder) rc = std::max(rc, write_recorded_show(options, *s.recorder));
   return rc;

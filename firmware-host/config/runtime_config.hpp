@@ -6,6 +6,7 @@
 #include "control/command/command_shaper.hpp"
 #include "control/safety/safety_state_machine.hpp"
 #include "firmware-host/config/hardware_config.hpp"
+#include "firmware-host/config/serve_config.hpp"
 
 namespace facectl {
 
@@ -36,6 +37,7 @@ struct RuntimeConfig {
   HardwareMode hardware = HardwareMode::kSim;  // `hardware:`; `facectl run --hardware` overrides
   std::optional<SafetyIoConfig> safety_io;     // required by hardware: real
   std::optional<GamepadConfig> gamepad;        // puppeteering (`facectl run --gamepad`)
+  ServeConfig serve;                           // `facectl serve`
 };
 
 RuntimeConfig load_runtime_config(const std::string& path);

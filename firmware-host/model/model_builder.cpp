@@ -155,26 +155,6 @@ void set_envelope(const HeadConfig& head, const RigConfig& rig, BuiltModel& out)
   }
 }
 
-// Each face signal's range as the tick admits it: the envelope for the jaw,
-// the admissible range for the rest.
-struct FaceBounds {
-  std::array<double, kMaxFaceSignals> lo{};
-  std::array<double, kMaxFaceSignals> hi{};
-};
-
-FaceBounds face_bounds(const ControllerModel& m) {
-  FaceBounds b;
-  for (std::size_t i = 0; i < m.layout.size(); ++i) {
-    Range r = m.admissible[i];
-    if (i == m.layout.jaw_pitch()) r = m.envelope.pitch;
-    if (i == m.layout.jaw_yaw()) r = m.envelope.yaw;
-    if (i == m.layout.jaw_protrusion()) r = m.envelope.protrusion;
-    b.lo[i] = r.min;
-    b.hi[i] = r.max;
-  }
-  return b;
-}
-
 // Coupled face limits: the neutral pose must satisfy them (it is where the
 // face goes on stale input, and the projection's fallback), and lie inside
 // the bounds.
@@ -377,6 +357,19 @@ void set_actuator_constraints(const RigConfig& rig, BuiltModel& out) {
 }
 
 }  // namespace
+
+FaceBounds face_bounds(const ControllerModel& m) {
+  FaceBounds b;
+  for (std::size_t i = 0; i < m.layout.size(); ++i) {
+    Range r = m.admissible[i];
+    if (i == m.layout.jaw_pitch()) r = m.envelope.pitch;
+    if (i == m.layout.jaw_yaw()) r = m.envelope.yaw;
+    if (i == m.layout.jaw_protrusion()) r = m.envelope.protrusion;
+    b.lo[i] = r.min;
+    b.hi[i] = r.max;
+  }
+  return b;
+}
 
 BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const RuntimeConfig& runtime) {
   BuiltModel out;

@@ -26,4 +26,12 @@ struct BuiltModel {
 // on. Validates what no single file can (e.g. every actuator is driven).
 BuiltModel build_model(const HeadConfig& head, const RigConfig& rig, const RuntimeConfig& runtime);
 
+// Each face signal's range as the tick admits it (SI): the envelope for the
+// jaw, the admissible range for the rest.
+struct FaceBounds {
+  std::array<double, kMaxFaceSignals> lo{};
+  std::array<double, kMaxFaceSignals> hi{};
+};
+FaceBounds face_bounds(const ControllerModel& m);
+
 }  // namespace facectl

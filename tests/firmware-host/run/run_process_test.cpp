@@ -17,62 +17,17 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/facectl_child.hpp"
 #include "tests/support/temp_file.hpp"
 
 namespace {
 
-struct Child {
-  pid_t pid = -1;
-  std::string out_path;
-};
+using facectl::testing::Child;
+using facectl::testing::wait_exit;
+using facectl::testing::wait_exit_within;
 
-// `file_size_limit`: RLIMIT_FSIZE for the child, a disk that fills up at
-// that size (writes past it fail with EFBIG, as ENOSPC on a full disk).
 Child spawn(const std::vector<std::string>& args, rlim_t file_size_limit = RLIM_INFINITY) {
-  Child c;
-  c.out_path = "/tmp/facectl-test-out-" + std::to_string(getpid()) + "-" +
-               std::to_string(std::rand()) + ".txt";
-  c.pid = fork();
-  if (c.pid == 0) {
-    FILE* f = std::freopen(c.out_path.c_str(), "w", stdout);
-    (void)f;
-    dup2(fileno(stdout), STDERR_FILENO);
-    if (file_size_limit != RLIM_INFINITY) {
-      signal(SIGXFSZ, SIG_IGN);  // the write fails instead
-      const rlimit lim{file_size_limit, file_size_limit};
-      setrlimit(RLIMIT_FSIZE, &lim);
-    }
-    std::vector<char*> argv;
-    std::string bin = FACECTL_BINARY;
-    argv.push_back(bin.data());
-    std::vector<std::string> copy = args;
-    for (auto& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(bin.c_str(), argv.data());
-    _exit(127);
-  }
-  return c;
-}
-
-int wait_exit(const Child& c) {
-  int status = 0;
-  waitpid(c.pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-// As wait_exit, but gives up after `seconds`: kills the child and returns -1.
-int wait_exit_within(const Child& c, double seconds) {
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  int status = 0;
-  while (waitpid(c.pid, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > until) {
-      kill(c.pid, SIGKILL);
-      waitpid(c.pid, &status, 0);
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return facectl::testing::spawn_facectl(args, {file_size_limit, {}});
 }
 
 std::string read_file(const std::string& path) {

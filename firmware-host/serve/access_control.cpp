@@ -1,0 +1,99 @@
+#include "firmware-host/serve/access_control.hpp"
+
+#include <arpa/inet.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+
+namespace facectl {
+
+ListenAddress parse_listen_address(const std::string& text) {
+  ListenAddress a;
+  std::string port;
+  if (!text.empty() && text.front() == '[') {
+    const auto close = text.find(']');
+    if (close == std::string::npos || close + 1 >= text.size() || text[close + 1] != ':') {
+      throw std::invalid_argument("expected [IPv6]:PORT, found '" + text + "'");
+    }
+    a.host = text.substr(1, close - 1);
+    port = text.substr(close + 2);
+  } else {
+    const auto colon = text.rfind(':');
+    if (colon == std::string::npos || colon == 0) {
+      throw std::invalid_argument("expected ADDR:PORT, found '" + text + "'");
+    }
+    a.host = text.substr(0, colon);
+    port = text.substr(colon + 1);
+  }
+  char* end = nullptr;
+  const long p = std::strtol(port.c_str(), &end, 10);
+  if (port.empty() || *end != '\0' || p < 0 || p > 65535) {
+    throw std::invalid_argument("expected a port in 0..65535 (0: any free port), found '" + port +
+                                "'");
+  }
+  a.port = static_cast<int>(p);
+  in_addr v4{};
+  in6_addr v6{};
+  if (a.host == "localhost") {
+    a.host = "127.0.0.1";
+    a.loopback = true;
+  } else if (inet_pton(AF_INET, a.host.c_str(), &v4) == 1) {
+    a.loopback = (ntohl(v4.s_addr) >> 24) == 127;
+  } else if (inet_pton(AF_INET6, a.host.c_str(), &v6) == 1) {
+    a.loopback = IN6_IS_ADDR_LOOPBACK(&v6);
+  } else {
+    throw std::invalid_argument("expected an IPv4 or [IPv6] address, found '" + a.host + "'");
+  }
+  return a;
+}
+
+std::string load_access_token(const std::string& token_env, const std::string& token_file) {
+  std::string token;
+  std::string from;
+  if (!token_env.empty()) {
+    const char* v = std::getenv(token_env.c_str());
+    if (v == nullptr) throw std::runtime_error("serve.token_env: $" + token_env + " is not set");
+    token = v;
+    from = "$" + token_env;
+  } else if (!token_file.empty()) {
+    std::ifstream in(token_file);
+    if (!in || !std::getline(in, token)) {
+      throw std::runtime_error("serve.token_file: cannot read a token from " + token_file);
+    }
+    from = token_file;
+  } else {
+    return {};
+  }
+  while (!token.empty() && (token.back() == '\r' || token.back() == ' ' || token.back() == '\t')) {
+    token.pop_back();
+  }
+  if (token.size() < 16) {
+    throw std::runtime_error("access token in " + from +
+                             ": expected at least 16 characters, found " +
+                             std::to_string(token.size()));
+  }
+  return token;
+}
+
+bool token_matches(const std::string& expected, const std::string& given) {
+  unsigned char diff = expected.size() == given.size() ? 0 : 1;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const char g = i < given.size() ? given[i] : '\0';
+    diff |= static_cast<unsigned char>(expected[i] ^ g);
+  }
+  return diff == 0;
+}
+
+std::optional<std::string> bearer_token(const std::string& authorization_header,
+                                        const std::string& access_token_param) {
+  constexpr std::string_view kScheme = "Bearer ";
+  if (authorization_header.size() > kScheme.size() &&
+      authorization_header.compare(0, kScheme.size(), kScheme) == 0) {
+    return authorization_header.substr(kScheme.size());
+  }
+  if (!access_token_param.empty()) return access_token_param;
+  return std::nullopt;
+}
+
+}  // namespace facectl

@@ -1,0 +1,141 @@
+#include "firmware-host/serve/api_json.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "firmware-host/model/model_builder.hpp"
+
+namespace facectl {
+namespace {
+
+using nlohmann::json;
+
+double actuator_unit_scale(const ActuatorModel& a) {
+  return a.kind == ActuatorKind::kRotary ? 180.0 / std::numbers::pi : 1000.0;
+}
+
+const char* actuator_unit(const ActuatorModel& a) {
+  return a.kind == ActuatorKind::kRotary ? "deg" : "mm";
+}
+
+}  // namespace
+
+json state_json(const HeadService& service) {
+  const HeadRuntime& head = service.head();
+  json j;
+  j["state"] = std::string(to_string(service.state()));
+  json faults = json::array();
+  if (auto f = service.active_fault()) {
+    faults.push_back(
+        {{"state", f->state}, {"reason", f->reason}, {"detail", f->detail}, {"time_s", f->time_s}});
+  }
+  j["faults"] = faults;
+  j["faults_seen"] = head.controller->faults_seen();
+  j["uptime_s"] = service.uptime_s();
+  const FaceDirector::Status st = service.director().status();
+  j["source"] = {{"kind", std::string(to_string(st.source))}, {"name", st.name}};
+  j["show"] =
+      st.source == FaceDirector::Source::kShow
+          ? json{{"name", st.name}, {"position_s", st.position_s}, {"duration_s", st.duration_s}}
+          : json(nullptr);
+  j["queue"] = st.queue;
+  j["loop"] = {{"ticks", head.stats.ticks.load()},
+               {"overruns", head.stats.overruns.load()},
+               {"alive", service.loop_alive()}};
+  return j;
+}
+
+json rig_json(const LoadedConfig& config) {
+  const ControllerModel& m = config.built.model;
+  json actuators = json::array();
+  for (const ActuatorModel& a : m.actuators) {
+    const double k = actuator_unit_scale(a);
+    actuators.push_back({{"name", a.name},
+                         {"unit", actuator_unit(a)},
+                         {"min", a.limits.position_min * k},
+                         {"max", a.limits.position_max * k},
+                         {"soft_min", a.limits.soft_min * k},
+                         {"soft_max", a.limits.soft_max * k},
+                         {"rest", a.rest * k}});
+  }
+  const FaceBounds b = face_bounds(m);
+  json signals = json::array();
+  for (std::size_t i = 0; i < m.layout.size(); ++i) {
+    const SignalInfo& s = m.layout.signal(i);
+    const double k = 1.0 / yaml_to_si(s.kind);
+    signals.push_back({{"name", s.name},
+                       {"key", yaml_key(s)},
+                       {"unit", std::string(yaml_unit(s.kind))},
+                       {"min", b.lo[i] * k},
+                       {"max", b.hi[i] * k},
+                       {"neutral", m.neutral[i] * k}});
+  }
+  return {{"rig", config.rig.name},
+          {"head", config.head.name},
+          {"rate_hz", m.rate_hz},
+          {"actuators", actuators},
+          {"signals", signals}};
+}
+
+json telemetry_json(const TelemetryRecord& rec, const ControllerModel& m) {
+  json commands = json::array();
+  json measured = json::array();
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    const double k = actuator_unit_scale(m.actuators[i]);
+    commands.push_back(rec.command[i] * k);
+    measured.push_back(rec.feedback[i] * k);
+  }
+  json face = json::array();
+  for (std::size_t i = 0; i < m.layout.size(); ++i) {
+    face.push_back(rec.face[i] / yaml_to_si(m.layout.signal(i).kind));
+  }
+  return {{"tick", rec.tick},
+          {"time_s", rec.time_s},
+          {"state", std::string(to_string(rec.state))},
+          {"input_stale", rec.input_stale},
+          {"commands", commands},
+          {"measured", measured},
+          {"face", face}};
+}
+
+json events_json(const EventLog& log, std::size_t limit) {
+  json events = json::array();
+  for (const EventLog::Entry& e : log.recent(limit)) {
+    events.push_back({{"time", e.time}, {"kind", e.kind}, {"source", e.source}, {"text", e.text}});
+  }
+  return {{"events", events}};
+}
+
+FaceDirector::Pose parse_pose_request(const json& body, const ControllerModel& m,
+                                      std::string& summary) {
+  if (!body.is_object() || !body.contains("signals") || !body["signals"].is_object()) {
+    throw std::invalid_argument("expected {\"signals\": {\"<signal key>\": value, ...}}");
+  }
+  const FaceBounds b = face_bounds(m);
+  FaceDirector::Pose pose = m.neutral;
+  std::ostringstream text;
+  for (const auto& [key, value] : body["signals"].items()) {
+    const auto i = m.layout.find_yaml_key(key);
+    if (!i) throw std::invalid_argument("signals." + key + ": no such signal on this head");
+    if (!value.is_number()) {
+      throw std::invalid_argument("signals." + key + ": expected a number, found " + value.dump());
+    }
+    const SignalInfo& s = m.layout.signal(*i);
+    const double k = yaml_to_si(s.kind);
+    const double v = value.get<double>();
+    if (!std::isfinite(v) || v * k < b.lo[*i] - 1e-12 || v * k > b.hi[*i] + 1e-12) {
+      std::ostringstream e;
+      e << "signals." << key << ": expected " << b.lo[*i] / k << ".." << b.hi[*i] / k << ", found "
+        << v;
+      throw std::invalid_argument(e.str());
+    }
+    pose[*i] = v * k;
+    text << (text.tellp() > 0 ? ", " : "") << key << "=" << v;
+  }
+  summary = text.str();
+  return pose;
+}
+
+}  // namespace facectl

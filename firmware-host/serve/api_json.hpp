@@ -1,0 +1,25 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "control/telemetry_record.hpp"
+#include "firmware-host/serve/head_service.hpp"
+
+namespace facectl {
+
+// The JSON documents of the HTTP API (docs/API.md). Values are in the units
+// the YAML files use: deg for rotary actuators and angles, mm for linear ones.
+nlohmann::json state_json(const HeadService& service);
+nlohmann::json rig_json(const LoadedConfig& config);
+nlohmann::json telemetry_json(const TelemetryRecord& rec, const ControllerModel& model);
+nlohmann::json events_json(const EventLog& log, std::size_t limit);
+
+// The pose of POST /api/v1/pose: {"signals": {"jaw_pitch_deg": 6, ...}} over
+// the neutral face. Throws std::invalid_argument naming the key for an
+// unknown signal, a value that is not a number, or one outside the range the
+// tick admits (the envelope for the jaw).
+FaceDirector::Pose parse_pose_request(const nlohmann::json& body, const ControllerModel& model,
+                                      std::string& summary);
+
+}  // namespace facectl

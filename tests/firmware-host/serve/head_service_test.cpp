@@ -1,0 +1,166 @@
+// The operations of `facectl serve` on the default head, simulated hardware:
+// each one goes through the safety state machine, an e-stop or a fault is
+// never bypassed, and every command and transition lands in the event log.
+#include "firmware-host/serve/head_service.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "tests/firmware-host/serve/served_head.hpp"
+
+namespace facectl {
+namespace {
+
+using testing::ServedHead;
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(HeadService, StartsIdleEnablesToRunningAndDisablesToIdle) {
+  ServedHead h;
+  EXPECT_EQ(h.service().state(), SafetyState::kIdle);
+  EXPECT_EQ(h.service().enable("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+  EXPECT_EQ(h.service().disable("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kIdle));
+}
+
+TEST(HeadService, ResetIsRefusedWhileTheEstopIsPressedThenReEnables) {
+  ServedHead h;
+  SimHardware& sim = *h.session().head.sim;
+  ASSERT_EQ(h.service().enable("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+  sim.io.press_estop();
+  ASSERT_TRUE(h.wait_for(SafetyState::kEstop));
+
+  // Neither enable nor reset gets past a pressed e-stop.
+  const HeadService::Result enable = h.service().enable("test");
+  EXPECT_EQ(enable.status, 409);
+  EXPECT_NE(enable.error.find("reset"), std::string::npos) << enable.error;
+  const HeadService::Result pressed = h.service().reset("test", true);
+  EXPECT_EQ(pressed.status, 409);
+  EXPECT_NE(pressed.error.find("e-stop is still pressed"), std::string::npos) << pressed.error;
+  EXPECT_EQ(h.service().state(), SafetyState::kEstop);
+  EXPECT_FALSE(sim.io.power_enabled());
+
+  sim.io.release_estop();
+  EXPECT_EQ(h.service().reset("test", true).status, 200);
+  // Re-enabled through ENABLING, the bumpless ramp from the measured positions.
+  ASSERT_TRUE(h.wait_for(SafetyState::kEnabling, 1.0));
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+}
+
+TEST(HeadService, AFaultIsResetOnlyOnceItsCauseIsGone) {
+  ServedHead h;
+  SimHardware& sim = *h.session().head.sim;
+  ASSERT_EQ(h.service().enable("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+  sim.io.inject_fault(true);  // the safety I/O reports a fault
+  ASSERT_TRUE(h.wait_for(SafetyState::kFault));
+  ASSERT_TRUE(testing::wait_until(
+      [&] { return h.service().active_fault()->reason == "safety I/O fault"; }, 1.0));
+  EXPECT_EQ(h.service().active_fault()->state, "FAULT");
+
+  const HeadService::Result still = h.service().reset("test", true);
+  EXPECT_EQ(still.status, 409);
+  EXPECT_NE(still.error.find("cause is still present"), std::string::npos) << still.error;
+
+  sim.io.inject_fault(false);
+  const HeadService::Result reset = h.service().reset("test", false);
+  EXPECT_EQ(reset.status, 200) << reset.error;
+  ASSERT_TRUE(h.wait_for(SafetyState::kIdle));
+  EXPECT_FALSE(h.service().active_fault().has_value());
+  // {"enable": false}: stays IDLE.
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(h.service().state(), SafetyState::kIdle);
+}
+
+TEST(HeadService, ResetWithNothingToResetIsRefused) {
+  ServedHead h;
+  EXPECT_EQ(h.service().reset("test", true).status, 409);
+  EXPECT_EQ(h.service().state(), SafetyState::kIdle);
+}
+
+TEST(HeadService, UnknownAndBrokenShowsAreRefusedAndTheSourceStays) {
+  ServedHead h;
+  h.shows().write("broken.yaml",
+                  "show:\n  name: broken\n  keyframes:\n    - { t: 0, expression: nope }\n");
+  ASSERT_EQ(h.service().hold_expression("test", "joy", 0.5).status, 200);
+
+  EXPECT_EQ(h.service().play("test", "absent", false).status, 404);
+  EXPECT_EQ(h.service().play("test", "../shows/demo", false).status, 404);
+  const HeadService::Result broken = h.service().play("test", "broken", false);
+  EXPECT_EQ(broken.status, 422);
+  EXPECT_NE(broken.error.find("broken.yaml"), std::string::npos) << broken.error;
+  EXPECT_EQ(h.service().hold_expression("test", "nope", 1.0).status, 404);
+
+  const FaceDirector::Status st = h.service().director().status();
+  EXPECT_EQ(st.source, FaceDirector::Source::kExpression);
+  EXPECT_EQ(st.name, "joy");
+  EXPECT_EQ(h.service().state(), SafetyState::kIdle);  // nothing enabled
+}
+
+TEST(HeadService, PlaysQueuesAndStopsShowsByName) {
+  ServedHead h;
+  ASSERT_EQ(h.service().play("test", "demo", false).status, 200);
+  ASSERT_EQ(h.service().play("test", "demo", true).status, 200);
+  FaceDirector::Status st = h.service().director().status();
+  EXPECT_EQ(st.source, FaceDirector::Source::kShow);
+  EXPECT_EQ(st.name, "demo");
+  EXPECT_DOUBLE_EQ(st.duration_s, 13.0);
+  ASSERT_EQ(st.queue.size(), 1u);
+  EXPECT_EQ(h.service().stop_show("test").status, 200);
+  st = h.service().director().status();
+  EXPECT_EQ(st.source, FaceDirector::Source::kNeutral);
+  EXPECT_TRUE(st.queue.empty());
+}
+
+TEST(HeadService, TheEventLogHoldsEachCommandAndTransitionWithItsSource) {
+  ServedHead h;
+  ASSERT_EQ(h.service().enable("api 127.0.0.1").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+  ASSERT_EQ(h.service().disable("api 127.0.0.1").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kIdle));
+  ASSERT_TRUE(testing::wait_until(
+      [&] { return read_all(h.log_path()).find("STOPPING -> IDLE") != std::string::npos; }, 2.0));
+  const std::string log = read_all(h.log_path());
+  for (const char* expected : {R"("kind":"command","source":"api 127.0.0.1","text":"enable")",
+                               R"("text":"IDLE -> ENABLING: enable requested")",
+                               R"("text":"ENABLING -> RUNNING: enable ramp complete")",
+                               R"("kind":"command","source":"api 127.0.0.1","text":"disable")",
+                               R"("text":"RUNNING -> STOPPING: shutdown requested")"}) {
+    EXPECT_NE(log.find(expected), std::string::npos) << expected << "\n" << log;
+  }
+}
+
+TEST(EventLog, RotatesBySizeAndKeepsTheNewestFiles) {
+  testing::TempDir dir;
+  const std::string path = dir.file("events.jsonl");
+  {
+    EventLog log(path, 1024, 2);
+    for (int i = 0; i < 60; ++i) log.add("command", "test", "entry " + std::to_string(i));
+    EXPECT_EQ(log.write_errors(), 0u);
+    ASSERT_EQ(log.recent(5).size(), 5u);
+    EXPECT_EQ(log.recent(5).back().text, "entry 59");
+  }
+  EXPECT_TRUE(std::filesystem::exists(path + ".1"));
+  EXPECT_TRUE(std::filesystem::exists(path + ".2"));
+  EXPECT_FALSE(std::filesystem::exists(path + ".3"));
+  EXPECT_LE(std::filesystem::file_size(path), 1024u);
+  EXPECT_NE(read_all(path).find("entry 59"), std::string::npos);
+  // Reopened after a restart: appended, not truncated.
+  EventLog again(path, 1 << 20, 2);
+  again.add("service", "test", "restarted");
+  const std::string text = read_all(path);
+  EXPECT_NE(text.find("entry 59"), std::string::npos);
+  EXPECT_NE(text.find("restarted"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace facectl

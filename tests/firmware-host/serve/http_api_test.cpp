@@ -1,0 +1,241 @@
+// The HTTP side of `facectl serve`, through a real HTTP client on loopback:
+// bad requests get a 4xx with a reason and leave the head as it was, the
+// access token guards every path, and the telemetry stream keeps its rate.
+#include "firmware-host/serve/http_api.hpp"
+
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "tests/firmware-host/serve/served_head.hpp"
+
+namespace facectl {
+namespace {
+
+using nlohmann::json;
+using testing::ServedHead;
+
+constexpr const char* kToken = "0123456789abcdef-token";
+
+// The API of a ServedHead on a free loopback port, with or without a token.
+class ServedApi {
+ public:
+  explicit ServedApi(std::string token = "") {
+    HttpApi::Options o;
+    o.listen = parse_listen_address("127.0.0.1:0");
+    o.token = std::move(token);
+    o.console_dir = head_.shows().path();  // any folder: the static files' mount
+    api_ = std::make_unique<HttpApi>(head_.service(), o);
+    api_->bind();
+    thread_ = std::thread([this] { api_->serve(); });
+    client_ = std::make_unique<httplib::Client>("http://" + api_->address());
+    client_->set_read_timeout(10, 0);
+  }
+  ~ServedApi() {
+    api_->stop();
+    thread_.join();
+  }
+
+  httplib::Client& client() { return *client_; }
+  ServedHead& head() { return head_; }
+  std::string address() const { return api_->address(); }
+
+ private:
+  ServedHead head_;
+  std::unique_ptr<HttpApi> api_;
+  std::thread thread_;
+  std::unique_ptr<httplib::Client> client_;
+};
+
+json body(const httplib::Result& r) {
+  return json::parse(r->body);
+}
+
+TEST(HttpApi, StateNamesTheSafetyState) {
+  ServedApi api;
+  const auto r = api.client().Get("/api/v1/state");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(body(r)["state"], "IDLE");
+  EXPECT_EQ(r->get_header_value("Content-Type"), "application/json");
+}
+
+TEST(HttpApi, EnableAndDisableMoveTheStateMachine) {
+  ServedApi api;
+  auto r = api.client().Post("/api/v1/enable", "", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  ASSERT_TRUE(api.head().wait_for(SafetyState::kRunning));
+  r = api.client().Post("/api/v1/disable", "", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  ASSERT_TRUE(api.head().wait_for(SafetyState::kIdle));
+}
+
+TEST(HttpApi, BadRequestsGetAReasonAndChangeNothing) {
+  ServedApi api;
+  ASSERT_EQ(
+      api.client().Post("/api/v1/expression/hold", R"({"name":"joy"})", "application/json")->status,
+      200);
+  struct Case {
+    const char* path;
+    const char* body;
+    int status;
+    const char* says;
+  };
+  for (const Case& c : {
+           Case{"/api/v1/enable", "{bad", 400, "malformed JSON"},
+           Case{"/api/v1/show/play", R"({"nam":"demo"})", 400, "expected {\"name\""},
+           Case{"/api/v1/show/play", R"({"name":"nope"})", 404, "no show 'nope'"},
+           Case{"/api/v1/show/play", R"({"name":"../../etc/passwd"})", 404, "not a show name"},
+           Case{"/api/v1/expression/hold", R"({"name":"joy","weight":3})", 400, "weight"},
+           Case{"/api/v1/pose", R"({"signals":{"jaw_pitch_deg":30}})", 422,
+                "jaw_pitch_deg: expected -4..18, found 30"},
+           Case{"/api/v1/pose", R"({"signals":{"jaw_yaw_deg":-6}})", 422, "jaw_yaw_deg"},
+           Case{"/api/v1/pose", R"({"signals":{"no_such_muscle":0.5}})", 422, "no such signal"},
+           Case{"/api/v1/pose", R"({"signals":{"jaw_pitch_deg":"6"}})", 422, "expected a number"},
+           Case{"/api/v1/reset", R"({"enable":"yes"})", 400, "enable: expected true or false"},
+           Case{"/api/v1/launch", "{}", 404, "no such resource: POST /api/v1/launch"},
+       }) {
+    const auto r = api.client().Post(c.path, c.body, "application/json");
+    ASSERT_TRUE(r) << c.path;
+    EXPECT_EQ(r->status, c.status) << c.path << " " << c.body << ": " << r->body;
+    EXPECT_NE(body(r)["error"].get<std::string>().find(c.says), std::string::npos)
+        << c.path << " " << c.body << ": " << r->body;
+  }
+  const auto r = api.client().Get("/api/v1/telemetry?rate_hz=1000");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(r->body.find("rate_hz"), std::string::npos);
+  // The head was left alone: IDLE, still holding the expression.
+  EXPECT_EQ(api.head().service().state(), SafetyState::kIdle);
+  EXPECT_EQ(api.head().service().director().status().name, "joy");
+}
+
+TEST(HttpApi, EveryPathNeedsTheTokenWhenOneIsSet) {
+  ServedApi api(kToken);
+  for (const char* path : {"/api/v1/state", "/api/v1/rig", "/", "/index.html", "/nope"}) {
+    const auto r = api.client().Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 401) << path;
+    EXPECT_EQ(r->get_header_value("WWW-Authenticate"), R"(Bearer realm="facectl")");
+  }
+  const auto enable = api.client().Post("/api/v1/enable", "", "application/json");
+  ASSERT_TRUE(enable);
+  EXPECT_EQ(enable->status, 401);
+  EXPECT_EQ(api.head().service().state(), SafetyState::kIdle);
+
+  const auto wrong = api.client().Get("/api/v1/state", {{"Authorization", "Bearer nope"}});
+  EXPECT_EQ(wrong->status, 401);
+  const auto prefix =
+      api.client().Get("/api/v1/state", {{"Authorization", std::string("Bearer ") + kToken + "x"}});
+  EXPECT_EQ(prefix->status, 401);
+  const auto right =
+      api.client().Get("/api/v1/state", {{"Authorization", std::string("Bearer ") + kToken}});
+  EXPECT_EQ(right->status, 200);
+  const auto param = api.client().Get(std::string("/api/v1/state?access_token=") + kToken);
+  EXPECT_EQ(param->status, 200);
+}
+
+TEST(HttpApi, TheRigDescribesActuatorsAndSignalsInYamlUnits) {
+  ServedApi api;
+  const json rig = body(api.client().Get("/api/v1/rig"));
+  const ControllerModel& m = api.head().session().head.model();
+  ASSERT_EQ(rig["actuators"].size(), m.actuators.size());
+  ASSERT_EQ(rig["signals"].size(), m.layout.size());
+  for (const json& s : rig["signals"]) {
+    if (s["key"] == "jaw_pitch_deg") {
+      EXPECT_NEAR(s["min"].get<double>(), -4.0, 1e-9);
+      EXPECT_NEAR(s["max"].get<double>(), 18.0, 1e-9);
+    }
+  }
+  for (const json& a : rig["actuators"]) {
+    EXPECT_LE(a["min"].get<double>(), a["soft_min"].get<double>()) << a;
+    EXPECT_LT(a["soft_min"].get<double>(), a["soft_max"].get<double>()) << a;
+    EXPECT_LE(a["soft_max"].get<double>(), a["max"].get<double>()) << a;
+  }
+}
+
+TEST(HttpApi, ThePoseHoldsTheGivenSignalsOverNeutral) {
+  ServedApi api;
+  const auto r =
+      api.client().Post("/api/v1/pose", R"({"signals":{"jaw_pitch_deg":6}})", "application/json");
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(body(r)["source"]["kind"], "pose");
+  const std::size_t pitch = api.head().session().head.model().layout.jaw_pitch();
+  // After the crossfade the tick's face command carries the pose (in SI).
+  ASSERT_TRUE(testing::wait_until(
+      [&] {
+        TelemetryRecord rec;
+        api.head().service().latest(rec);
+        return std::abs(rec.face[pitch] - 6.0 * M_PI / 180.0) < 1e-3;
+      },
+      3.0));
+}
+
+TEST(HttpApi, TheTelemetryStreamSendsJsonEventsAtTheChosenRate) {
+  ServedApi api;
+  httplib::Client c("http://" + api.address());
+  std::vector<std::string> events;
+  std::string pending;
+  const auto start = std::chrono::steady_clock::now();
+  c.Get("/api/v1/telemetry?rate_hz=50", [&](const char* data, std::size_t n) {
+    pending.append(data, n);
+    for (std::size_t end; (end = pending.find("\n\n")) != std::string::npos;) {
+      events.push_back(pending.substr(0, end));
+      pending.erase(0, end + 2);
+    }
+    return events.size() < 25;  // then hang up
+  });
+  const double took =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_GE(events.size(), 25u);
+  // 25 events at 50 Hz take 0.5 s; a stream that ignored the rate would be far quicker.
+  EXPECT_GT(took, 0.4);
+  const ControllerModel& m = api.head().session().head.model();
+  for (const std::string& e : events) {
+    ASSERT_EQ(e.rfind("data: ", 0), 0u) << e;
+    const json j = json::parse(e.substr(6));
+    EXPECT_EQ(j["commands"].size(), m.actuators.size());
+    EXPECT_EQ(j["face"].size(), m.layout.size());
+    EXPECT_EQ(j["state"], "IDLE");
+  }
+}
+
+// The whole answer to `request`, sent as it is over a plain TCP connection.
+std::string raw_exchange(int port, const std::string& request) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string answer;
+  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0 &&
+      write(fd, request.data(), request.size()) == static_cast<ssize_t>(request.size())) {
+    char buf[4096];
+    for (ssize_t n; (n = read(fd, buf, sizeof buf)) > 0;)
+      answer.append(buf, static_cast<std::size_t>(n));
+  }
+  close(fd);
+  return answer;
+}
+
+TEST(HttpApi, APostWithoutContentLengthIsToldWhy) {
+  ServedApi api;
+  const int port = std::stoi(api.address().substr(api.address().rfind(':') + 1));
+  // As `curl -X POST` sends it: no body and no Content-Length.
+  const std::string answer =
+      raw_exchange(port, "POST /api/v1/enable HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(answer.rfind("HTTP/1.1 400", 0), 0u) << answer;
+  EXPECT_NE(answer.find("Content-Length header"), std::string::npos) << answer;
+  EXPECT_EQ(api.head().service().state(), SafetyState::kIdle);
+}
+
+}  // namespace
+}  // namespace facectl

@@ -1,0 +1,108 @@
+// `facectl serve` as a user starts it: a child process on the default head,
+// simulated hardware. It refuses to listen beyond loopback without the flag
+// and a token, says where it listens, and stops on SIGTERM with the head at rest.
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/support/facectl_child.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace facectl {
+namespace {
+
+using testing::Child;
+using testing::TempDir;
+using testing::wait_exit;
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A runtime file next to the shipped one's folders, with a `serve:` block.
+std::string config_with(const TempDir& dir, const std::string& serve_block) {
+  const std::string src = std::string(FACECTL_SOURCE_DIR) + "/config/";
+  std::string text = read_all(src + "facectl.yaml");
+  for (const char* key : {"head: ", "rig: ", "expressions: ", "show: "}) {
+    const auto at = text.find(std::string("\n") + key);
+    text.insert(at + 1 + std::string(key).size(), src);
+  }
+  text += "\n" + serve_block + "\n";
+  // No real-time privileges needed by the test.
+  text = std::regex_replace(text, std::regex("priority: 80, cpu: 1, lock_memory: true"),
+                            "priority: 0, lock_memory: false");
+  dir.write("facectl.yaml", text);
+  return dir.file("facectl.yaml");
+}
+
+TEST(ServeProcess, ANonLoopbackAddressNeedsTheFlagAndAToken) {
+  TempDir dir;
+  const std::string plain = config_with(dir, "");
+  Child c = testing::spawn_facectl({"serve", "--config", plain, "--listen", "0.0.0.0:0"});
+  EXPECT_EQ(wait_exit(c), 2);
+  EXPECT_NE(read_all(c.out_path).find("needs --allow-remote"), std::string::npos)
+      << read_all(c.out_path);
+
+  c = testing::spawn_facectl(
+      {"serve", "--config", plain, "--listen", "0.0.0.0:0", "--allow-remote"});
+  EXPECT_EQ(wait_exit(c), 2);
+  EXPECT_NE(read_all(c.out_path).find("needs an access token"), std::string::npos)
+      << read_all(c.out_path);
+
+  c = testing::spawn_facectl({"serve", "--config", plain, "--listen", "nowhere"});
+  EXPECT_EQ(wait_exit(c), 2);
+  EXPECT_NE(read_all(c.out_path).find("expected ADDR:PORT"), std::string::npos);
+}
+
+TEST(ServeProcess, ServesWithATokenStopsOnSigtermAtRestAndKeepsItsLog) {
+  TempDir dir;
+  const std::string config = config_with(dir, "serve: { token_env: FACECTL_TEST_TOKEN }");
+  const std::string log = dir.file("events.jsonl");
+  Child c = testing::spawn_facectl(
+      {"serve", "--config", config, "--listen", "0.0.0.0:0", "--allow-remote", "--event-log", log},
+      {RLIM_INFINITY, {"FACECTL_TEST_TOKEN=0123456789abcdef-process"}});
+  std::smatch m;
+  std::string out;
+  const std::regex listening(R"(listening on http://0\.0\.0\.0:(\d+)/)");
+  ASSERT_TRUE(testing::wait_until(
+      [&] {
+        out = read_all(c.out_path);
+        return std::regex_search(out, m, listening);
+      },
+      20.0))
+      << out;
+  httplib::Client client("127.0.0.1", std::stoi(m[1]));
+  EXPECT_EQ(client.Get("/api/v1/state")->status, 401);
+  const httplib::Headers auth{{"Authorization", "Bearer 0123456789abcdef-process"}};
+  ASSERT_EQ(client.Post("/api/v1/enable", auth, "", "application/json")->status, 200);
+  ASSERT_TRUE(testing::wait_until(
+      [&] {
+        const auto r = client.Get("/api/v1/state", auth);
+        return r && nlohmann::json::parse(r->body)["state"] == "RUNNING";
+      },
+      10.0));
+
+  kill(c.pid, SIGTERM);
+  EXPECT_EQ(wait_exit(c), 0) << read_all(c.out_path);
+  const std::string events = read_all(log);
+  EXPECT_NE(events.find("RUNNING -> STOPPING: shutdown requested"), std::string::npos) << events;
+  EXPECT_NE(events.find("STOPPING -> IDLE"), std::string::npos) << events;
+  EXPECT_NE(events.find(R"("text":"stopped in IDLE")"), std::string::npos) << events;
+}
+
+}  // namespace
+}  // namespace facectl

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "firmware-host/config/loaded_config.hpp"
+#include "firmware-host/serve/serve_session.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace facectl::testing {
+
+// The default head served on simulated hardware, as `facectl serve` runs it
+// but in this process and without real-time privileges: its shows are the
+// shipped demo plus whatever a test writes into shows().
+class ServedHead {
+ public:
+  ServedHead() {
+    std::filesystem::copy_file(std::string(FACECTL_SOURCE_DIR) + "/config/shows/demo.yaml",
+                               shows_.file("demo.yaml"));
+    s_.head.cfg = std::make_unique<LoadedConfig>(
+        load_config(std::string(FACECTL_SOURCE_DIR) + "/config/facectl.yaml"));
+    RuntimeConfig& rt = s_.head.cfg->runtime;
+    rt.realtime.priority = 0;
+    rt.realtime.cpu = -1;
+    rt.realtime.lock_memory = false;
+    rt.realtime.cpu_dma_latency_us = -1;
+    rt.serve.shows_dir = shows_.path();
+    open_serve_session(s_, logs_.file("events.jsonl"));
+    start_serve_session(s_);
+  }
+  ~ServedHead() { stop_serve_session(s_); }
+  ServedHead(const ServedHead&) = delete;
+  ServedHead& operator=(const ServedHead&) = delete;
+
+  HeadService& service() { return *s_.service; }
+  ServeSession& session() { return s_; }
+  const TempDir& shows() const { return shows_; }
+  std::string log_path() const { return logs_.file("events.jsonl"); }
+
+  // Waits up to `seconds` for the state; true if it was reached.
+  bool wait_for(SafetyState state, double seconds = 5.0) {
+    return testing::wait_until([&] { return service().state() == state; }, seconds);
+  }
+
+ private:
+  TempDir shows_;
+  TempDir logs_;
+  ServeSession s_;
+};
+
+}  // namespace facectl::testing
