@@ -9,8 +9,10 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libpng-dev libglpk-dev
   clang-format clang-tidy
-  # `facectl serve` tells systemd it is ready and alive (sd_notify).
-  libsystemd-dev
+  # `facectl serve` tells systemd it is ready and alive (sd_notify); the
+  # deployment test checks the unit and sysusers file (systemd-analyze,
+  # systemd-sysusers) and builds the .deb (dpkg-shlibdeps, dpkg-deb).
+  libsystemd-dev systemd dpkg-dev
   # The SocketCAN tests run in a QEMU guest (tests/drivers/qemu): the emulator,
   # Debian's kernel with the CAN modules, a static busybox for the initramfs,
   # and can-utils and iproute2 for the guest's candump, cansend and vcan set-up.
