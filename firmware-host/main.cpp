@@ -8,6 +8,7 @@
 #include "firmware-host/cli/plot_command.hpp"
 #include "firmware-host/cli/run_command.hpp"
 #include "firmware-host/cli/serve_command.hpp"
+#include "firmware-host/config/config_location.hpp"
 #include "firmware-host/simulate/simulate_bench.hpp"
 #include "firmware-host/simulate/simulate_command.hpp"
 #include "firmware-host/verify/verify_command.hpp"
@@ -33,7 +34,8 @@ void add_run_command(CLI::App& app, CliOptions& o) {
   CLI::App* run_cmd = app.add_subcommand(
       "run", "Drive the head from a show, with the real-time loop (simulated hardware by default)");
   run_cmd->add_option("--config", o.run.config,
-                      "Runtime config (default: the shipped config/facectl.yaml)");
+                      "Runtime config (default: $FACECTL_CONFIG, else the shipped " +
+                          facectl::shipped_dirs().config + "/facectl.yaml)");
   run_cmd->add_option("--show", o.run.show, "Show file to play (overrides the config's show)");
   run_cmd->add_option("--duration", o.run.duration_s, "Run this many seconds, looping the show");
   run_cmd->add_option("--rate", o.run.rate_hz, "Loop rate in Hz (default from config: 1000)");

@@ -8,9 +8,13 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libmodbus-dev libgpiod-dev libhidapi-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libpng-dev libglpk-dev
-  # `facectl serve`: its HTTP server and the systemd notify protocol.
-  libcpp-httplib-dev libsystemd-dev
+  # `facectl serve`'s HTTP server.
+  libcpp-httplib-dev
   clang-format clang-tidy
+  # `facectl serve` tells systemd it is ready and alive (sd_notify); the
+  # deployment test checks the unit and sysusers file (systemd-analyze,
+  # systemd-sysusers) and builds the .deb (dpkg-shlibdeps, dpkg-deb).
+  libsystemd-dev systemd dpkg-dev
   # The SocketCAN tests run in a QEMU guest (tests/drivers/qemu): the emulator,
   # Debian's kernel with the CAN modules, a static busybox for the initramfs,
   # and can-utils and iproute2 for the guest's candump, cansend and vcan set-up.

@@ -11,14 +11,15 @@
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/obj_io.hpp"
 #include "facectl/face/reduced_model_fit.hpp"
+#include "firmware-host/config/config_location.hpp"
 
 namespace {
 
 using namespace facectl::face;
 
 struct FaceArgs {
-  std::string head = FACECTL_DEFAULT_HEAD_DIR;
-  std::string library = FACECTL_CONFIG_DIR "/expressions/library.yaml";
+  std::string head = facectl::shipped_dirs().config + "/heads/default";
+  std::string library = facectl::shipped_dirs().config + "/expressions/library.yaml";
   int frames = 300;
   int resolution = 0;
 };

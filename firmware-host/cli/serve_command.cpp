@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "firmware-host/config/config_location.hpp"
 #include "firmware-host/serve/http_api.hpp"
 #include "firmware-host/serve/serve_session.hpp"
 #include "firmware-host/serve/systemd_notify.hpp"
@@ -20,11 +21,12 @@ extern "C" void on_serve_signal(int sig) {
   g_signal.store(sig);
 }
 
-// The console's files: --console, serve.console, else the source tree's.
+// The console's files: --console, serve.console, else the shipped folder
+// (the source tree's from the build tree, else the installed one).
 std::string console_folder(const ServeOptions& options, const ServeConfig& serve) {
   if (options.console) return *options.console;
   if (!serve.console_dir.empty()) return serve.console_dir;
-  return FACECTL_CONSOLE_DIR;
+  return shipped_dirs().console;
 }
 
 // The session and its HTTP side; the server stops before the session.

@@ -1,14 +1,8 @@
 #include "firmware-host/config/loaded_config.hpp"
 
-#include <cstdlib>
 #include <sstream>
 
 namespace facectl {
-
-std::string default_config_path() {
-  if (const char* env = std::getenv("FACECTL_CONFIG")) return env;
-  return std::string(FACECTL_CONFIG_DIR) + "/facectl.yaml";
-}
 
 LoadedConfig load_config(const std::string& runtime_path, const ConfigOverrides& overrides) {
   LoadedConfig cfg;

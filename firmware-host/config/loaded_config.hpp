@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "firmware-host/config/config_location.hpp"  // default_config_path()
 #include "firmware-host/config/expression_library.hpp"
 #include "firmware-host/config/head_config.hpp"
 #include "firmware-host/config/rig_config.hpp"
@@ -32,9 +33,6 @@ struct ConfigOverrides {
   bool keep_problems = false;           // verify reports BuiltModel::problems instead of throwing
   std::optional<HardwareMode> hardware;
 };
-
-// The shipped default: config/facectl.yaml of the source tree, or $FACECTL_CONFIG.
-std::string default_config_path();
 
 // Loads and validates the runtime file and everything it names. Throws ConfigError.
 LoadedConfig load_config(const std::string& runtime_path, const ConfigOverrides& overrides = {});

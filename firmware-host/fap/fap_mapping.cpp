@@ -8,6 +8,7 @@
 
 #include "control/units.hpp"
 #include "facectl/face/input_error.hpp"
+#include "firmware-host/config/config_location.hpp"
 
 namespace facectl {
 namespace {
@@ -449,7 +450,7 @@ std::vector<FapRouteInfo> FapMapping::describe_routes() const {
 }
 
 std::string default_visemes_path() {
-  return std::string(FACECTL_CONFIG_DIR) + "/fap/visemes.yaml";
+  return shipped_dirs().config + "/fap/visemes.yaml";
 }
 
 FapMapping load_fap_mapping(const HeadConfig& head, const ExpressionLibrary& expressions,

@@ -97,7 +97,8 @@ class FapMapping {
               eye_pitch_r_ = 0, neck_pan_ = 0, neck_tilt_ = 0, neck_roll_ = 0;
 };
 
-// The shipped viseme table: config/fap/visemes.yaml of the source tree.
+// The shipped viseme table: fap/visemes.yaml in the shipped config folder
+// (shipped_dirs(): the source tree's config/ or the installed one).
 std::string default_visemes_path();
 
 // Builds the mapping for a loaded head: its feature points and reduced face
