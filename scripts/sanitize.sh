@@ -10,8 +10,9 @@
 #         real-time loop and its threads through the facectl program
 #         (facectl_process_tests, which runs the instrumented facectl), the
 #         Modbus I/O thread and the gamepad reader (facectl_driver_tests), the
-#         FAP UDP receiver thread (facectl_fap_tests) and the show player
-#         (facectl_host_tests).
+#         FAP UDP receiver thread (facectl_fap_tests), the show player
+#         (facectl_host_tests) and `facectl serve`'s threads: the face
+#         command source, the monitor and the HTTP workers (facectl_serve_tests).
 #
 # Usage: scripts/sanitize.sh [asan|tsan|all]   (default all)
 # Build directories: build-asan and build-tsan (BUILD_ASAN, BUILD_TSAN).
@@ -52,7 +53,7 @@ run_asan() {
 }
 
 tsan_binaries=(facectl_control_tests facectl_process_tests facectl_driver_tests facectl_fap_tests
-               facectl_host_tests)
+               facectl_host_tests facectl_serve_tests)
 run_tsan() {
   local t0=$SECONDS
   configure "$BUILD_TSAN" -DFACECTL_SANITIZE=thread
