@@ -97,10 +97,21 @@ void Controller::choose_targets() {
   // STOPPING heads for rest whatever the input says (the show is over).
   const SafetyState state = safety_.state();
   const double blend = safety_.enable_blend();
+  if (state == SafetyState::kJog) {
+    const JogTarget jog = jog_target_.load(std::memory_order_relaxed);
+    const auto a = static_cast<std::size_t>(jog.actuator);
+    if (jog.actuator >= 0 && a < model_.actuators.size() && !is_strut(a) &&
+        std::isfinite(jog.target)) {
+      const ActuatorLimits& l = model_.actuators[a].limits;
+      jog_hold_[a] = std::clamp(static_cast<double>(jog.target), l.soft_min, l.soft_max);
+    }
+  }
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     double target = mapped_[i];
     if (state == SafetyState::kEnabling) {
       target = enable_start_[i] + blend * (mapped_[i] - enable_start_[i]);
+    } else if (state == SafetyState::kJog) {
+      target = jog_hold_[i];
     } else if (state == SafetyState::kStopping) {
       target = model_.actuators[i].rest;
     } else if (state == SafetyState::kFault) {
@@ -140,6 +151,8 @@ void Controller::limit_mechanism(double dt, LimitFlags* flags) {
     target.yaw_rad = pose_start_.yaw_rad + b * (target.yaw_rad - pose_start_.yaw_rad);
     target.protrusion_m =
         pose_start_.protrusion_m + b * (target.protrusion_m - pose_start_.protrusion_m);
+  } else if (state == SafetyState::kJog) {
+    target = jog_pose_;
   } else if (state == SafetyState::kStopping) {
     target = model_.mandible_rest;
   } else if (state == SafetyState::kFault) {
@@ -235,9 +248,12 @@ bool Controller::limit_actuators(double dt, LimitFlags* flags) {
   const std::uint64_t coupled =
       model_.actuator_constraints.size() != 0 ? bound_actuator_constraints() : 0;
   bool bounded = false;
+  const bool jog = safety_.state() == SafetyState::kJog;
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
     if (by_pose && ((strut_mask_ >> i) & 1u) != 0) continue;
-    const ActuatorLimits& l = model_.actuators[i].limits;
+    ActuatorLimits l = model_.actuators[i].limits;
+    // JOG caps the speed only: braking from a faster motion keeps its full rate.
+    if (jog) l.max_velocity *= model_.safety.jog_speed_fraction;
     flags[i] = ((coupled >> i) & 1u) != 0
                    ? limit_step_within(l, limiter_[i], target_[i], dt, bound_lo_[i], bound_hi_[i])
                    : limit_step(l, limiter_[i], target_[i], dt);
@@ -312,8 +328,7 @@ bool Controller::at_rest(double dt) {
 }
 
 void Controller::enter_state(SafetyState state, SafetyState from, TransitionReason reason) {
-  const bool outputs = state == SafetyState::kEnabling || state == SafetyState::kRunning ||
-                       state == SafetyState::kStopping;
+  const bool outputs = commands_actuators(state);
   if (state == SafetyState::kEnabling) {
     // Bumpless: the commanded trajectory starts where the actuators are
     // (inside their hardware range: the state machine refused otherwise), and
@@ -338,6 +353,12 @@ void Controller::enter_state(SafetyState state, SafetyState from, TransitionReas
   }
   if (state == SafetyState::kFault || state == SafetyState::kEstop) {
     faults_seen_.fetch_add(1, std::memory_order_relaxed);
+  }
+  if (state == SafetyState::kJog) {
+    // Hold where JOG found everything; no jog target until one is asked for.
+    std::copy_n(command_.begin(), model_.actuators.size(), jog_hold_.begin());
+    jog_pose_ = {pose_limiter_[0].position, pose_limiter_[1].position, pose_limiter_[2].position};
+    jog_target_.store({}, std::memory_order_relaxed);
   }
   if (state == SafetyState::kStopping) {
     settled_time_ = 0.0;
@@ -481,6 +502,8 @@ void Controller::tick(const TickTiming& timing) {
   in.enable_request = enable_request_.exchange(false, std::memory_order_relaxed);
   in.shutdown_request = shutdown_request_.load(std::memory_order_relaxed);
   in.reset_request = reset_request_.exchange(false, std::memory_order_relaxed);
+  in.jog_request = jog_request_.exchange(false, std::memory_order_relaxed);
+  in.jog_end_request = jog_end_request_.exchange(false, std::memory_order_relaxed);
   in.at_rest = safety_.state() == SafetyState::kStopping && at_rest(dt);
   const SafetyState before = safety_.state();
   const TransitionReason transition = safety_.step(in, dt);

@@ -75,6 +75,20 @@ class Controller {
   }
   void request_shutdown() { shutdown_request_.store(true, std::memory_order_relaxed); }
   void request_reset() { reset_request_.store(true, std::memory_order_relaxed); }
+  // JOG (docs/SAFETY.md, "Jog"): entered from RUNNING, left back to it. In
+  // JOG the face input is ignored and every actuator holds where JOG found
+  // it, except the one jogged: towards its target, clamped to its soft range,
+  // at jog_speed_fraction of its max velocity. A strut of the mandible
+  // mechanism is never jogged alone (the pose holds).
+  void request_jog(bool on) {
+    (on ? jog_request_ : jog_end_request_).store(true, std::memory_order_relaxed);
+  }
+  void request_jog_target(std::size_t actuator, double target) {
+    jog_target_.store({static_cast<std::int32_t>(actuator), static_cast<float>(target)},
+                      std::memory_order_relaxed);
+  }
+  // True for the struts of the mandible mechanism, which JOG does not move alone.
+  bool is_strut(std::size_t actuator) const { return ((strut_mask_ >> actuator) & 1u) != 0; }
 
   SafetyState state() const { return state_mirror_.load(std::memory_order_relaxed); }
   std::uint64_t faults_seen() const { return faults_seen_.load(std::memory_order_relaxed); }
@@ -187,6 +201,17 @@ class Controller {
   std::atomic<bool> enable_request_{false};
   std::atomic<bool> shutdown_request_{false};
   std::atomic<bool> reset_request_{false};
+  std::atomic<bool> jog_request_{false};
+  std::atomic<bool> jog_end_request_{false};
+  // One word, so the actuator and its target never tear (float: 1e-7 of a rad or m).
+  struct JogTarget {
+    std::int32_t actuator = -1;
+    float target = 0.0F;
+  };
+  static_assert(std::atomic<JogTarget>::is_always_lock_free);
+  std::atomic<JogTarget> jog_target_{JogTarget{}};
+  std::array<double, kMaxActuators> jog_hold_{};  // JOG: where each actuator holds
+  face::MandiblePose jog_pose_;                   // JOG: the pose the mechanism holds
   std::atomic<SafetyState> state_mirror_{SafetyState::kIdle};
   std::atomic<std::uint64_t> faults_seen_{0};
   std::atomic<bool> stop_timed_out_{false};

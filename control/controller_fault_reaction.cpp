@@ -24,8 +24,7 @@ double stop_point(const ActuatorLimits& l, const LimiterState& s) {
 bool Controller::start_fault_reactions(SafetyState from, TransitionReason reason) {
   // Nothing was commanded before (IDLE) or the safety I/O itself failed:
   // everything is cut, as on e-stop.
-  const bool live = from == SafetyState::kEnabling || from == SafetyState::kRunning ||
-                    from == SafetyState::kStopping;
+  const bool live = commands_actuators(from);
   if (!live || reason == TransitionReason::kSafetyIoFault) return false;
   const std::size_t n = model_.actuators.size();
   for (std::size_t i = 0; i < n; ++i) {

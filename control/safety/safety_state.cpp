@@ -16,6 +16,8 @@ std::string_view to_string(SafetyState state) {
       return "FAULT";
     case SafetyState::kEstop:
       return "ESTOP";
+    case SafetyState::kJog:
+      return "JOG";
   }
   return "?";
 }
@@ -48,6 +50,10 @@ std::string_view to_string(TransitionReason reason) {
       return "limit breach: a command outside the hardware range was stopped";
     case TransitionReason::kFaultReset:
       return "reset";
+    case TransitionReason::kJogRequested:
+      return "jog requested";
+    case TransitionReason::kJogEnded:
+      return "jog ended";
   }
   return "?";
 }

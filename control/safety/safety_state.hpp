@@ -12,7 +12,16 @@ enum class SafetyState : std::uint8_t {
   kStopping,  // easing to the rest pose before disabling (shutdown)
   kFault,     // each actuator by its fault reaction (relax, hold, rest); IDLE on reset
   kEstop,     // nothing transmitted, power-enable off; leaves to IDLE on release + reset
+  kJog,       // from RUNNING: the face input is ignored, every actuator holds but the
+              // one an operator jogs, within its soft limits at a capped speed
 };
+
+// ENABLING, RUNNING, JOG and STOPPING command the actuators; the other states
+// do not (FAULT only by its per-actuator reactions).
+constexpr bool commands_actuators(SafetyState s) {
+  return s == SafetyState::kEnabling || s == SafetyState::kRunning || s == SafetyState::kJog ||
+         s == SafetyState::kStopping;
+}
 
 enum class TransitionReason : std::uint8_t {
   kNone,
@@ -28,6 +37,8 @@ enum class TransitionReason : std::uint8_t {
   kFeedbackOutOfRange,
   kLimitBreach,
   kFaultReset,
+  kJogRequested,
+  kJogEnded,
 };
 
 std::string_view to_string(SafetyState state);

@@ -68,6 +68,12 @@ TransitionReason SafetyStateMachine::step(const SafetyInputs& in, double dt) {
     case SafetyState::kRunning:
       if (in.shutdown_request)
         return go(SafetyState::kStopping, TransitionReason::kShutdownRequested);
+      if (in.jog_request) return go(SafetyState::kJog, TransitionReason::kJogRequested);
+      break;
+    case SafetyState::kJog:
+      if (in.shutdown_request)
+        return go(SafetyState::kStopping, TransitionReason::kShutdownRequested);
+      if (in.jog_end_request) return go(SafetyState::kRunning, TransitionReason::kJogEnded);
       break;
     case SafetyState::kStopping:
       if (in.at_rest) return go(SafetyState::kIdle, TransitionReason::kRestReached);

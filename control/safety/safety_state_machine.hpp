@@ -5,10 +5,11 @@
 namespace facectl {
 
 struct SafetyParams {
-  double enable_ramp_s = 1.0;    // bumpless blend from measured to target
-  double stop_timeout_s = 3.0;   // STOPPING gives up and disables after this
-  int overrun_fault_count = 10;  // consecutive overruns that mean FAULT
-  double input_timeout_s = 0.2;  // no fresh command for this long: ease to neutral
+  double enable_ramp_s = 1.0;       // bumpless blend from measured to target
+  double stop_timeout_s = 3.0;      // STOPPING gives up and disables after this
+  int overrun_fault_count = 10;     // consecutive overruns that mean FAULT
+  double input_timeout_s = 0.2;     // no fresh command for this long: ease to neutral
+  double jog_speed_fraction = 0.1;  // JOG: of each actuator's max velocity and acceleration
 };
 
 // What the tick observed, for step 8.
@@ -22,7 +23,9 @@ struct SafetyInputs {
   bool enable_request = false;
   bool shutdown_request = false;
   bool reset_request = false;
-  bool at_rest = false;  // every actuator settled at its rest position
+  bool jog_request = false;      // RUNNING -> JOG
+  bool jog_end_request = false;  // JOG -> RUNNING
+  bool at_rest = false;          // every actuator settled at its rest position
 };
 
 // Step 8 of the tick: the safety state machine. Pure logic over its inputs and
@@ -36,10 +39,7 @@ class SafetyStateMachine {
 
   SafetyState state() const { return state_; }
   double time_in_state() const { return time_in_state_; }
-  bool outputs_enabled() const {
-    return state_ == SafetyState::kEnabling || state_ == SafetyState::kRunning ||
-           state_ == SafetyState::kStopping;
-  }
+  bool outputs_enabled() const { return commands_actuators(state_); }
   // 0..1 progress of the ENABLING blend from measured positions to the target.
   double enable_blend() const;
 

@@ -6,9 +6,8 @@ namespace facectl {
 
 RuntimeConfig load_runtime_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path, "");
-  root.expect_keys(
-      {"runtime", "head", "rig", "expressions", "show", "hardware", "safety_io", "gamepad",
-                   "serve"});
+  root.expect_keys({"runtime", "head", "rig", "expressions", "show", "hardware", "safety_io",
+                    "gamepad", "serve"});
   RuntimeConfig cfg;
   cfg.file = path;
   cfg.head_path = resolve_path(path, root["head"].string());
@@ -22,8 +21,8 @@ RuntimeConfig load_runtime_config(const std::string& path) {
 
   if (auto rt = root.get("runtime")) {
     rt->expect_keys({"rate_hz", "realtime", "input_timeout_ms", "overrun_fault_count",
-                     "enable_ramp_s", "stop_timeout_s", "shaping", "telemetry_ring",
-                     "show_rate_hz"});
+                     "enable_ramp_s", "stop_timeout_s", "shaping", "telemetry_ring", "show_rate_hz",
+                     "jog_speed_fraction"});
     if (auto n = rt->get("rate_hz")) cfg.rate_hz = n->number_in(1.0, 10000.0);
     if (auto r = rt->get("realtime")) {
       r->expect_keys({"priority", "cpu", "lock_memory", "cpu_dma_latency_us"});
@@ -41,6 +40,9 @@ RuntimeConfig load_runtime_config(const std::string& path) {
     }
     if (auto n = rt->get("enable_ramp_s")) cfg.safety.enable_ramp_s = n->number_in(0.0, 60.0);
     if (auto n = rt->get("stop_timeout_s")) cfg.safety.stop_timeout_s = n->number_in(0.1, 60.0);
+    if (auto n = rt->get("jog_speed_fraction")) {
+      cfg.safety.jog_speed_fraction = n->number_in(0.01, 1.0);
+    }
     if (auto s = rt->get("shaping")) {
       s->expect_keys({"activation_ms", "deactivation_ms", "smoothing_ms", "neutral_ease_s"});
       if (auto n = s->get("activation_ms")) {

@@ -2,6 +2,8 @@
 
 #include <arpa/inet.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -87,9 +89,12 @@ bool token_matches(const std::string& expected, const std::string& given) {
 
 std::optional<std::string> bearer_token(const std::string& authorization_header,
                                         const std::string& access_token_param) {
-  constexpr std::string_view kScheme = "Bearer ";
-  if (authorization_header.size() > kScheme.size() &&
-      authorization_header.compare(0, kScheme.size(), kScheme) == 0) {
+  // The scheme's name is case-insensitive (RFC 7235, 2.1).
+  constexpr std::string_view kScheme = "bearer ";
+  const std::string_view h = authorization_header;
+  if (h.size() > kScheme.size() &&
+      std::equal(kScheme.begin(), kScheme.end(), h.begin(),
+                 [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); })) {
     return authorization_header.substr(kScheme.size());
   }
   if (!access_token_param.empty()) return access_token_param;

@@ -1,6 +1,9 @@
 #include "firmware-host/serve/head_service.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "control/realtime/loop_timer.hpp"
@@ -160,6 +163,55 @@ HeadService::Result HeadService::reset(const std::string& who, bool then_enable)
     return refuse(409, "reset refused: " + why);
   }
   if (then_enable) head_.controller->request_enable();
+  return {};
+}
+
+HeadService::Result HeadService::jog_start(const std::string& who) {
+  const SafetyState s = state();
+  if (s == SafetyState::kJog) return {};
+  if (s != SafetyState::kRunning) {
+    return refuse(409, "JOG starts from RUNNING; the head is " + state_name(s));
+  }
+  log_.add("command", who, "jog start");
+  head_.controller->request_jog(true);
+  return {};
+}
+
+HeadService::Result HeadService::jog_stop(const std::string& who) {
+  const SafetyState s = state();
+  if (s != SafetyState::kJog) return refuse(409, "not jogging: the head is " + state_name(s));
+  log_.add("command", who, "jog stop");
+  head_.controller->request_jog(false);
+  return {};
+}
+
+HeadService::Result HeadService::jog(const std::string& who, const std::string& actuator,
+                                     double position) {
+  const ControllerModel& m = head_.model();
+  std::size_t i = 0;
+  while (i < m.actuators.size() && m.actuators[i].name != actuator) ++i;
+  if (i == m.actuators.size()) return refuse(404, "no actuator '" + actuator + "' on this rig");
+  const SafetyState s = state();
+  if (s != SafetyState::kJog) {
+    return refuse(
+        409, "jogging needs the JOG state (POST /api/v1/jog/start); the head is " + state_name(s));
+  }
+  if (head_.controller->is_strut(i)) {
+    return refuse(409, actuator +
+                           " is a strut of the mandible mechanism: it moves only with the "
+                           "others, by the jaw's pose");
+  }
+  const ActuatorModel& a = m.actuators[i];
+  const double k = a.kind == ActuatorKind::kRotary ? std::numbers::pi / 180.0 : 1e-3;
+  const double si = position * k;
+  if (!std::isfinite(position) || si < a.limits.soft_min || si > a.limits.soft_max) {
+    std::ostringstream e;
+    e << "position of " << actuator << ": expected " << a.limits.soft_min / k << ".."
+      << a.limits.soft_max / k << " (its soft range), found " << position;
+    return refuse(422, e.str());
+  }
+  log_.add("command", who, "jog " + actuator + " to " + std::to_string(position));
+  head_.controller->request_jog_target(i, si);
   return {};
 }
 

@@ -54,6 +54,12 @@ class HeadService {
   Result hold_pose(const std::string& who, const FaceDirector::Pose& pose,
                    const std::string& summary);
 
+  // JOG: from RUNNING and back; one actuator at a time to a position in its
+  // YAML unit (deg or mm), inside its soft range.
+  Result jog_start(const std::string& who);
+  Result jog_stop(const std::string& who);
+  Result jog(const std::string& who, const std::string& actuator, double position);
+
   SafetyState state() const { return head_.controller->state(); }
   std::optional<ActiveFault> active_fault() const;
   // The newest telemetry record, and how many the monitor has taken.

@@ -18,7 +18,8 @@ using nlohmann::json;
 using Result = HeadService::Result;
 
 constexpr std::size_t kMaxBodyBytes = 64 * 1024;  // no operation needs more
-constexpr double kMinStreamHz = 10.0;
+constexpr double kMinStreamHz = 10.0;             // the rates a client may pick
+constexpr double kMaxStreamHz = 100.0;
 
 void reply(httplib::Response& res, int status, const json& body) {
   res.status = status;
@@ -189,22 +190,43 @@ void HttpApi::routes() {
            double weight = 1.0;
            if (body.is_object() && body.contains("weight")) {
              const json& w = body["weight"];
-             if (!w.is_number() || !(w.get<double>() >= 0.0 && w.get<double>() <= 1.0)) {
-               throw std::invalid_argument("weight: expected a number in 0..1, found " + w.dump());
+             if (!w.is_number()) {
+               throw std::invalid_argument("weight: expected a number, found " + w.dump());
+             }
+             if (!(w.get<double>() >= 0.0 && w.get<double>() <= 1.0)) {
+               return reply_error(res, 422, "weight: expected 0..1, found " + w.dump());
              }
              weight = w.get<double>();
            }
            answer(res, service_.hold_expression(who(req), required_name(body), weight));
          });
   s.Post("/api/v1/pose", [this, answer](const httplib::Request& req, httplib::Response& res) {
+    const json body = body_json(req);  // malformed JSON: 400
     std::string summary;
     FaceDirector::Pose pose;
     try {
-      pose = parse_pose_request(body_json(req), service_.head().model(), summary);
+      pose = parse_pose_request(body, service_.head().model(), summary);
     } catch (const std::invalid_argument& e) {
       return reply_error(res, 422, e.what());
     }
     answer(res, service_.hold_pose(who(req), pose, summary));
+  });
+  s.Post("/api/v1/jog/start", [this, answer](const httplib::Request& req, httplib::Response& res) {
+    body_json(req);
+    answer(res, service_.jog_start(who(req)));
+  });
+  s.Post("/api/v1/jog/stop", [this, answer](const httplib::Request& req, httplib::Response& res) {
+    body_json(req);
+    answer(res, service_.jog_stop(who(req)));
+  });
+  s.Post("/api/v1/jog", [this, answer](const httplib::Request& req, httplib::Response& res) {
+    const json body = body_json(req);
+    if (!body.is_object() || !body.contains("actuator") || !body["actuator"].is_string() ||
+        !body.contains("position") || !body["position"].is_number()) {
+      throw std::invalid_argument(R"(expected {"actuator": "<name>", "position": <deg or mm>})");
+    }
+    answer(res, service_.jog(who(req), body["actuator"].get<std::string>(),
+                             body["position"].get<double>()));
   });
   s.Get("/api/v1/events", [this](const httplib::Request& req, httplib::Response& res) {
     std::size_t limit = 100;
@@ -225,9 +247,8 @@ void HttpApi::routes() {
       const std::string v = req.get_param_value("rate_hz");
       char* end = nullptr;
       hz = std::strtod(v.c_str(), &end);
-      if (v.empty() || *end != '\0' || !(hz >= kMinStreamHz && hz <= options_.max_stream_hz)) {
-        throw std::invalid_argument("rate_hz: expected " + std::to_string(kMinStreamHz) + ".." +
-                                    std::to_string(options_.max_stream_hz) + ", found '" + v + "'");
+      if (v.empty() || *end != '\0' || !(hz >= kMinStreamHz && hz <= kMaxStreamHz)) {
+        throw std::invalid_argument("rate_hz: expected 10..100, found '" + v + "'");
       }
     }
     if (streams_.fetch_add(1) >= options_.max_streams) {

@@ -23,7 +23,6 @@ class HttpApi {
     ListenAddress listen;
     std::string token;        // empty: no token (loopback only)
     std::string console_dir;  // served at /
-    double max_stream_hz = 100.0;
     long max_streams = 16;
   };
 

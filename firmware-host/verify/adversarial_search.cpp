@@ -212,8 +212,7 @@ class Search {
       return;
     }
     in_fault_ = false;
-    const bool live = state == SafetyState::kEnabling || state == SafetyState::kRunning ||
-                      state == SafetyState::kStopping;
+    const bool live = commands_actuators(state);
     if (state == SafetyState::kIdle) c.request_enable();
     const auto& cmd = c.commands();
     const std::size_t n = m_.actuators.size();

@@ -51,8 +51,7 @@ class Collector {
 
 // The states a show may pass through: anything else (FAULT, ESTOP) fails it.
 bool live(SafetyState s) {
-  return s == SafetyState::kIdle || s == SafetyState::kEnabling || s == SafetyState::kRunning ||
-         s == SafetyState::kStopping;
+  return s == SafetyState::kIdle || commands_actuators(s);
 }
 
 // Watches the controller's state on every tick, and its transitions (the

@@ -42,6 +42,47 @@ TEST(SafetyStateMachine, EnablesThroughARampThenRuns) {
   EXPECT_NEAR(ticks, 500, 1);
 }
 
+TEST(SafetyStateMachine, JogIsEnteredOnlyFromRunningAndLeftBackToIt) {
+  SafetyStateMachine idle{SafetyParams{}};
+  SafetyInputs in;
+  in.jog_request = true;
+  EXPECT_EQ(idle.step(in, kDt), TransitionReason::kNone);  // not from IDLE
+  EXPECT_EQ(idle.state(), SafetyState::kIdle);
+
+  SafetyStateMachine sm = running_machine();
+  EXPECT_EQ(sm.step(in, kDt), TransitionReason::kJogRequested);
+  EXPECT_EQ(sm.state(), SafetyState::kJog);
+  EXPECT_TRUE(sm.outputs_enabled());
+  in.jog_request = false;
+  in.jog_end_request = true;
+  EXPECT_EQ(sm.step(in, kDt), TransitionReason::kJogEnded);
+  EXPECT_EQ(sm.state(), SafetyState::kRunning);
+}
+
+TEST(SafetyStateMachine, JogYieldsToShutdownFaultsAndTheEstop) {
+  SafetyInputs jog;
+  jog.jog_request = true;
+  SafetyStateMachine stop = running_machine();
+  stop.step(jog, kDt);
+  SafetyInputs in;
+  in.shutdown_request = true;
+  EXPECT_EQ(stop.step(in, kDt), TransitionReason::kShutdownRequested);
+  EXPECT_EQ(stop.state(), SafetyState::kStopping);
+
+  SafetyStateMachine fault = running_machine();
+  fault.step(jog, kDt);
+  in = {};
+  in.bus_fault = true;
+  EXPECT_EQ(fault.step(in, kDt), TransitionReason::kBusFault);
+
+  SafetyStateMachine estop = running_machine();
+  estop.step(jog, kDt);
+  in = {};
+  in.estop = true;
+  EXPECT_EQ(estop.step(in, kDt), TransitionReason::kEstopInput);
+  EXPECT_FALSE(estop.outputs_enabled());
+}
+
 TEST(SafetyStateMachine, EstopFromAnyStateLatchesUntilReleasedAndReset) {
   SafetyStateMachine sm = running_machine();
   SafetyInputs in;

@@ -41,6 +41,7 @@ TEST(AccessToken, ComparesWholeTokensOnly) {
 
 TEST(AccessToken, ComesFromTheHeaderOrTheQueryParameter) {
   EXPECT_EQ(bearer_token("Bearer abc", ""), "abc");
+  EXPECT_EQ(bearer_token("bearer abc", ""), "abc");  // the scheme is case-insensitive
   EXPECT_EQ(bearer_token("", "abc"), "abc");
   EXPECT_EQ(bearer_token("Bearer abc", "def"), "abc");
   EXPECT_EQ(bearer_token("Basic abc", ""), std::nullopt);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -137,6 +138,77 @@ TEST(HeadService, TheEventLogHoldsEachCommandAndTransitionWithItsSource) {
                                R"("text":"RUNNING -> STOPPING: shutdown requested")"}) {
     EXPECT_NE(log.find(expected), std::string::npos) << expected << "\n" << log;
   }
+}
+
+std::size_t actuator_index(const ControllerModel& m, const std::string& name) {
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    if (m.actuators[i].name == name) return i;
+  }
+  throw std::out_of_range(name);
+}
+
+TEST(HeadService, JogMovesOneActuatorAtTheCappedSpeedWhileTheOthersHold) {
+  ServedHead h;
+  const ControllerModel& m = h.session().head.model();
+  const std::size_t pan = actuator_index(m, "neck_pan");
+  const std::size_t tilt = actuator_index(m, "neck_tilt");
+  const double cap = m.safety.jog_speed_fraction * m.actuators[pan].limits.max_velocity;
+
+  EXPECT_EQ(h.service().jog_start("test").status, 409);  // not from IDLE
+  EXPECT_EQ(h.service().jog("test", "neck_pan", 10).status, 409);
+  ASSERT_EQ(h.service().enable("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+  ASSERT_EQ(h.service().jog_start("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kJog));
+
+  EXPECT_EQ(h.service().jog("test", "nope", 0).status, 404);
+  EXPECT_EQ(h.service().jog("test", "jaw_digastric", 0).status, 409);  // a strut
+  const HeadService::Result far = h.service().jog("test", "neck_pan", 61);
+  EXPECT_EQ(far.status, 422);
+  EXPECT_NE(far.error.find("expected -60..60"), std::string::npos) << far.error;
+
+  TelemetryRecord start;
+  ASSERT_TRUE(testing::wait_until([&] { return h.service().latest(start) > 0; }, 1.0));
+  // The face input is ignored in JOG: a new source moves nothing.
+  ASSERT_EQ(h.service().hold_expression("test", "joy", 1.0).status, 200);
+  ASSERT_EQ(h.service().jog("test", "neck_pan", 20).status, 200);
+  const double goal = 20.0 * M_PI / 180.0;
+  TelemetryRecord prev = start;
+  double fastest = 0.0;
+  double tilt_moved = 0.0;
+  ASSERT_TRUE(testing::wait_until(
+      [&] {
+        TelemetryRecord rec;
+        h.service().latest(rec);
+        if (rec.tick > prev.tick) {
+          fastest = std::max(
+              fastest, std::abs(rec.command[pan] - prev.command[pan]) / (rec.time_s - prev.time_s));
+          tilt_moved = std::max(tilt_moved, std::abs(rec.command[tilt] - start.command[tilt]));
+          prev = rec;
+        }
+        return std::abs(rec.command[pan] - goal) < 1e-6;
+      },
+      10.0))
+      << "neck_pan at " << prev.command[pan] << " rad, goal " << goal;
+  EXPECT_LE(fastest, cap * 1.001);
+  EXPECT_GT(fastest, cap * 0.5);
+  EXPECT_LT(tilt_moved, 1e-9);
+
+  ASSERT_EQ(h.service().jog_stop("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+}
+
+TEST(HeadService, TheEstopEndsAJog) {
+  ServedHead h;
+  ASSERT_EQ(h.service().enable("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+  ASSERT_EQ(h.service().jog_start("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kJog));
+  ASSERT_EQ(h.service().jog("test", "neck_pan", 30).status, 200);
+  h.session().head.sim->io.press_estop();
+  ASSERT_TRUE(h.wait_for(SafetyState::kEstop));
+  EXPECT_FALSE(h.session().head.sim->io.power_enabled());
+  EXPECT_EQ(h.service().jog("test", "neck_pan", 0).status, 409);
 }
 
 TEST(EventLog, RotatesBySizeAndKeepsTheNewestFiles) {
