@@ -98,12 +98,12 @@ void Controller::choose_targets() {
   const SafetyState state = safety_.state();
   const double blend = safety_.enable_blend();
   if (state == SafetyState::kJog) {
-    const JogTarget jog = jog_target_.load(std::memory_order_relaxed);
-    const auto a = static_cast<std::size_t>(jog.actuator);
-    if (jog.actuator >= 0 && a < model_.actuators.size() && !is_strut(a) &&
-        std::isfinite(jog.target)) {
+    const std::uint64_t jog = jog_target_.load(std::memory_order_relaxed);
+    const auto a = static_cast<std::size_t>(jog >> 32);  // -1 (none) is out of range
+    const float target = std::bit_cast<float>(static_cast<std::uint32_t>(jog));
+    if (a < model_.actuators.size() && !is_strut(a) && std::isfinite(target)) {
       const ActuatorLimits& l = model_.actuators[a].limits;
-      jog_hold_[a] = std::clamp(static_cast<double>(jog.target), l.soft_min, l.soft_max);
+      jog_hold_[a] = std::clamp(static_cast<double>(target), l.soft_min, l.soft_max);
     }
   }
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
@@ -358,7 +358,7 @@ void Controller::enter_state(SafetyState state, SafetyState from, TransitionReas
     // Hold where JOG found everything; no jog target until one is asked for.
     std::copy_n(command_.begin(), model_.actuators.size(), jog_hold_.begin());
     jog_pose_ = {pose_limiter_[0].position, pose_limiter_[1].position, pose_limiter_[2].position};
-    jog_target_.store({}, std::memory_order_relaxed);
+    jog_target_.store(kNoJog, std::memory_order_relaxed);
   }
   if (state == SafetyState::kStopping) {
     settled_time_ = 0.0;

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -84,7 +85,7 @@ class Controller {
     (on ? jog_request_ : jog_end_request_).store(true, std::memory_order_relaxed);
   }
   void request_jog_target(std::size_t actuator, double target) {
-    jog_target_.store({static_cast<std::int32_t>(actuator), static_cast<float>(target)},
+    jog_target_.store(pack_jog(static_cast<std::int32_t>(actuator), static_cast<float>(target)),
                       std::memory_order_relaxed);
   }
   // True for the struts of the mandible mechanism, which JOG does not move alone.
@@ -203,13 +204,15 @@ class Controller {
   std::atomic<bool> reset_request_{false};
   std::atomic<bool> jog_request_{false};
   std::atomic<bool> jog_end_request_{false};
-  // One word, so the actuator and its target never tear (float: 1e-7 of a rad or m).
-  struct JogTarget {
-    std::int32_t actuator = -1;
-    float target = 0.0F;
-  };
-  static_assert(std::atomic<JogTarget>::is_always_lock_free);
-  std::atomic<JogTarget> jog_target_{JogTarget{}};
+  // One word, so the actuator and its target never tear: the index in the
+  // high half, the target's float bits (1e-7 of a rad or m) in the low one.
+  // An integer, not a struct: clang calls libatomic for an atomic struct.
+  static std::uint64_t pack_jog(std::int32_t actuator, float target) {
+    return (std::uint64_t{static_cast<std::uint32_t>(actuator)} << 32) |
+           std::bit_cast<std::uint32_t>(target);
+  }
+  static constexpr std::uint64_t kNoJog = std::uint64_t{0xFFFFFFFFu} << 32;  // actuator -1
+  std::atomic<std::uint64_t> jog_target_{kNoJog};
   std::array<double, kMaxActuators> jog_hold_{};  // JOG: where each actuator holds
   face::MandiblePose jog_pose_;                   // JOG: the pose the mechanism holds
   std::atomic<SafetyState> state_mirror_{SafetyState::kIdle};
