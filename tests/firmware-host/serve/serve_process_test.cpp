@@ -42,9 +42,6 @@ std::string config_with(const TempDir& dir, const std::string& serve_block) {
     text.insert(at + 1 + std::string(key).size(), src);
   }
   text += "\n" + serve_block + "\n";
-  // No real-time privileges needed by the test.
-  text = std::regex_replace(text, std::regex("priority: 80, cpu: 1, lock_memory: true"),
-                            "priority: 0, lock_memory: false");
   dir.write("facectl.yaml", text);
   return dir.file("facectl.yaml");
 }
