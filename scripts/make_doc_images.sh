@@ -35,3 +35,8 @@ cp "$tmp/simulate/plots/jaw_digastric.svg" docs/images/simulate/
 # The expression library's contact sheet (README, docs/FACE_MODEL.md): each
 # expression simulated from rest to steady state on the full face model.
 "$facectl" face contact-sheet --out docs/images/expressions.png --columns 6
+
+# The operator console of `facectl serve` just after ENABLE: the browser
+# test's screenshot (tests/firmware-host/serve/console_browser_test.py, chromium).
+python3 tests/firmware-host/serve/console_browser_test.py "$facectl" config/facectl.yaml \
+  docs/images/console.png > /dev/null

@@ -275,7 +275,10 @@ void HttpApi::routes() {
         },
         [this](bool) { streams_.fetch_sub(1); });
   });
-  if (!options_.console_dir.empty() && !s.set_mount_point("/", options_.console_dir)) {
+  // The console's page at / and its files under /console/ (the API contract);
+  // the page loads them from /console/.
+  if (!options_.console_dir.empty() && (!s.set_mount_point("/", options_.console_dir) ||
+                                        !s.set_mount_point("/console/", options_.console_dir))) {
     std::fprintf(stderr, "warning: no operator console in %s; serving the API only\n",
                  options_.console_dir.c_str());
   }

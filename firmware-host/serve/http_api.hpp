@@ -22,7 +22,7 @@ class HttpApi {
   struct Options {
     ListenAddress listen;
     std::string token;        // empty: no token (loopback only)
-    std::string console_dir;  // served at /
+    std::string console_dir;  // served at / and /console/
     long max_streams = 16;
   };
 
