@@ -451,6 +451,7 @@ def exercise(chk, port):
     check_telemetry(chk, port, rig)
 
     call(chk, port, "GET", "/", 404 if not console_present(port) else 200)
+    call(chk, port, "GET", "/console/", 404 if not console_present(port) else 200)
 
     call(chk, port, "POST", "/api/v1/pose", 400, body=b"{")
     call(chk, port, "POST", "/api/v1/jog/start", 409)  # IDLE
