@@ -102,6 +102,12 @@ void Controller::choose_targets() {
     const auto a = static_cast<std::size_t>(jog >> 32);  // -1 (none) is out of range
     const float target = std::bit_cast<float>(static_cast<std::uint32_t>(jog));
     if (a < model_.actuators.size() && !is_strut(a) && std::isfinite(target)) {
+      // Another actuator than the last: the last one stops where it is now
+      // (the limiter brakes it without passing that point).
+      if (jog_active_ < model_.actuators.size() && jog_active_ != a) {
+        jog_hold_[jog_active_] = limiter_[jog_active_].position;
+      }
+      jog_active_ = a;
       const ActuatorLimits& l = model_.actuators[a].limits;
       jog_hold_[a] = std::clamp(static_cast<double>(target), l.soft_min, l.soft_max);
     }
@@ -329,7 +335,12 @@ bool Controller::at_rest(double dt) {
 
 void Controller::enter_state(SafetyState state, SafetyState from, TransitionReason reason) {
   const bool outputs = commands_actuators(state);
-  if (state == SafetyState::kEnabling) {
+  if (state == SafetyState::kEnabling && from == SafetyState::kJog) {
+    // Leaving JOG: the outputs are live and the limiters keep their motion;
+    // the ramp starts from the commands and the held pose as they are.
+    std::copy_n(command_.begin(), model_.actuators.size(), enable_start_.begin());
+    pose_start_ = jog_pose_;
+  } else if (state == SafetyState::kEnabling) {
     // Bumpless: the commanded trajectory starts where the actuators are
     // (inside their hardware range: the state machine refused otherwise), and
     // the backends hold there until the first write (ActuatorBus::set_enabled).
@@ -347,7 +358,8 @@ void Controller::enter_state(SafetyState state, SafetyState from, TransitionReas
   if (!outputs && !fault_driving_) {
     for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(false);
     io_.set_power_enable(false);
-  } else if (state == SafetyState::kEnabling) {
+  } else if (state == SafetyState::kEnabling && !commands_actuators(from)) {
+    // (From JOG the outputs are live already: only the ramp starts again.)
     io_.set_power_enable(true);
     for (std::size_t b = 0; b < bus_count_; ++b) buses_[b]->set_enabled(true);
   }
@@ -359,6 +371,7 @@ void Controller::enter_state(SafetyState state, SafetyState from, TransitionReas
     std::copy_n(command_.begin(), model_.actuators.size(), jog_hold_.begin());
     jog_pose_ = {pose_limiter_[0].position, pose_limiter_[1].position, pose_limiter_[2].position};
     jog_target_.store(kNoJog, std::memory_order_relaxed);
+    jog_active_ = kMaxActuators;
   }
   if (state == SafetyState::kStopping) {
     settled_time_ = 0.0;

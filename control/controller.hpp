@@ -214,6 +214,7 @@ class Controller {
   static constexpr std::uint64_t kNoJog = std::uint64_t{0xFFFFFFFFu} << 32;  // actuator -1
   std::atomic<std::uint64_t> jog_target_{kNoJog};
   std::array<double, kMaxActuators> jog_hold_{};  // JOG: where each actuator holds
+  std::size_t jog_active_ = kMaxActuators;        // JOG: the actuator jogged last
   face::MandiblePose jog_pose_;                   // JOG: the pose the mechanism holds
   std::atomic<SafetyState> state_mirror_{SafetyState::kIdle};
   std::atomic<std::uint64_t> faults_seen_{0};

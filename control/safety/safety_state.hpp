@@ -13,7 +13,8 @@ enum class SafetyState : std::uint8_t {
   kFault,     // each actuator by its fault reaction (relax, hold, rest); IDLE on reset
   kEstop,     // nothing transmitted, power-enable off; leaves to IDLE on release + reset
   kJog,       // from RUNNING: the face input is ignored, every actuator holds but the
-              // one an operator jogs, within its soft limits at a capped speed
+              // one an operator jogs, within its soft limits at a capped speed; leaves
+              // through ENABLING
 };
 
 // ENABLING, RUNNING, JOG and STOPPING command the actuators; the other states

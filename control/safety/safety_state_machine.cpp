@@ -73,7 +73,9 @@ TransitionReason SafetyStateMachine::step(const SafetyInputs& in, double dt) {
     case SafetyState::kJog:
       if (in.shutdown_request)
         return go(SafetyState::kStopping, TransitionReason::kShutdownRequested);
-      if (in.jog_end_request) return go(SafetyState::kRunning, TransitionReason::kJogEnded);
+      // Back through the bumpless ramp: the face input's target may be far
+      // from where the jog left the head.
+      if (in.jog_end_request) return go(SafetyState::kEnabling, TransitionReason::kJogEnded);
       break;
     case SafetyState::kStopping:
       if (in.at_rest) return go(SafetyState::kIdle, TransitionReason::kRestReached);

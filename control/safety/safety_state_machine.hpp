@@ -9,7 +9,7 @@ struct SafetyParams {
   double stop_timeout_s = 3.0;      // STOPPING gives up and disables after this
   int overrun_fault_count = 10;     // consecutive overruns that mean FAULT
   double input_timeout_s = 0.2;     // no fresh command for this long: ease to neutral
-  double jog_speed_fraction = 0.1;  // JOG: of each actuator's max velocity and acceleration
+  double jog_speed_fraction = 0.1;  // JOG: of each actuator's max velocity
 };
 
 // What the tick observed, for step 8.
@@ -24,7 +24,7 @@ struct SafetyInputs {
   bool shutdown_request = false;
   bool reset_request = false;
   bool jog_request = false;      // RUNNING -> JOG
-  bool jog_end_request = false;  // JOG -> RUNNING
+  bool jog_end_request = false;  // JOG -> ENABLING (the ramp), then RUNNING
   bool at_rest = false;          // every actuator settled at its rest position
 };
 

@@ -81,9 +81,7 @@ void prepare(const ServeOptions& options, Served& s) {
 void serve_until_signal(Served& s) {
   while (g_signal.load() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   notify_stopping();
-  s.session.log->add("service", "signal",
-                     "signal " + std::to_string(g_signal.load()) + ": easing to rest and stopping");
-  s.session.head.controller->request_shutdown();
+  s.session.service->begin_shutdown("signal " + std::to_string(g_signal.load()));
   const auto limit =
       std::chrono::steady_clock::now() +
       std::chrono::duration<double>(s.session.head.model().safety.stop_timeout_s + 1.0);
@@ -112,6 +110,7 @@ int serve_command(const ServeOptions& options) {
 
   start_serve_session(s.session);
   s.http = std::thread([&s] { s.api->serve(); });
+  s.api->wait_until_serving();  // a stop() before that would be lost
   const std::string where = "http://" + s.api->address() + "/";
   s.session.log->add("service", "serve",
                      "listening on " + where + ", head IDLE, event log " + s.session.log->path());

@@ -8,6 +8,7 @@
 
 #include "control/realtime/loop_timer.hpp"
 #include "firmware-host/serve/systemd_notify.hpp"
+#include "firmware-host/verify/static_proof.hpp"
 
 namespace facectl {
 namespace {
@@ -28,7 +29,19 @@ HeadService::Result refuse(int status, std::string why) {
 
 HeadService::HeadService(HeadRuntime& head, FaceDirector& director, const ShowCatalog& shows,
                          EventLog& log)
-    : head_(head), director_(director), shows_(shows), log_(log), start_ns_(monotonic_ns()) {}
+    : head_(head), director_(director), shows_(shows), log_(log), start_ns_(monotonic_ns()) {
+  // The static proof's ranges are in file order of the rig's actuators, by name.
+  const verify::StaticProof proof = verify::prove(*head_.cfg);
+  const ControllerModel& m = head_.model();
+  for (const ActuatorModel& a : m.actuators) {
+    const double k = a.kind == ActuatorKind::kRotary ? 180.0 / std::numbers::pi : 1000.0;
+    JogRange r{a.limits.soft_min * k, a.limits.soft_max * k};
+    for (const verify::ActuatorRange& p : proof.actuators) {
+      if (p.name == a.name) r = {std::max(r.lo, p.lo), std::min(r.hi, p.hi)};
+    }
+    jog_ranges_.push_back(r);
+  }
+}
 
 HeadService::~HeadService() {
   stop_monitor();
@@ -129,7 +142,19 @@ bool HeadService::wait_for_state_change(SafetyState from, double seconds) const 
   return state() != from;
 }
 
+std::optional<HeadService::Result> HeadService::refuse_if_stopping() const {
+  if (!stopping_.load()) return std::nullopt;
+  return refuse(503, "the service is stopping: the head eases to rest");
+}
+
+void HeadService::begin_shutdown(const std::string& who) {
+  stopping_.store(true);
+  log_.add("service", who, "easing to rest and stopping");
+  head_.controller->request_shutdown();
+}
+
 HeadService::Result HeadService::enable(const std::string& who) {
+  if (auto r = refuse_if_stopping()) return *r;
   const SafetyState s = state();
   if (faulted(s)) {
     return refuse(409, "the head is in " + state_name(s) + ": reset it first");
@@ -149,6 +174,7 @@ HeadService::Result HeadService::disable(const std::string& who) {
 }
 
 HeadService::Result HeadService::reset(const std::string& who, bool then_enable) {
+  if (auto r = refuse_if_stopping()) return *r;
   const SafetyState s = state();
   if (!faulted(s)) return refuse(409, "nothing to reset: the head is " + state_name(s));
   log_.add("command", who, then_enable ? "reset and enable" : "reset");
@@ -167,6 +193,7 @@ HeadService::Result HeadService::reset(const std::string& who, bool then_enable)
 }
 
 HeadService::Result HeadService::jog_start(const std::string& who) {
+  if (auto r = refuse_if_stopping()) return *r;
   const SafetyState s = state();
   if (s == SafetyState::kJog) return {};
   if (s != SafetyState::kRunning) {
@@ -174,6 +201,8 @@ HeadService::Result HeadService::jog_start(const std::string& who) {
   }
   log_.add("command", who, "jog start");
   head_.controller->request_jog(true);
+  // Answer once the tick took it, so a jog right after is not refused.
+  wait_for_state_change(s, std::max(0.1, 5.0 / head_.model().rate_hz));
   return {};
 }
 
@@ -182,11 +211,13 @@ HeadService::Result HeadService::jog_stop(const std::string& who) {
   if (s != SafetyState::kJog) return refuse(409, "not jogging: the head is " + state_name(s));
   log_.add("command", who, "jog stop");
   head_.controller->request_jog(false);
+  wait_for_state_change(s, std::max(0.1, 5.0 / head_.model().rate_hz));
   return {};
 }
 
 HeadService::Result HeadService::jog(const std::string& who, const std::string& actuator,
                                      double position) {
+  if (auto r = refuse_if_stopping()) return *r;
   const ControllerModel& m = head_.model();
   std::size_t i = 0;
   while (i < m.actuators.size() && m.actuators[i].name != actuator) ++i;
@@ -202,20 +233,22 @@ HeadService::Result HeadService::jog(const std::string& who, const std::string& 
                            "others, by the jaw's pose");
   }
   const ActuatorModel& a = m.actuators[i];
-  const double k = a.kind == ActuatorKind::kRotary ? std::numbers::pi / 180.0 : 1e-3;
-  const double si = position * k;
-  if (!std::isfinite(position) || si < a.limits.soft_min || si > a.limits.soft_max) {
+  const JogRange& r = jog_ranges_[i];
+  constexpr double kSlack = 1e-9;  // the YAML value back from SI
+  if (!std::isfinite(position) || position < r.lo - kSlack || position > r.hi + kSlack) {
     std::ostringstream e;
-    e << "position of " << actuator << ": expected " << a.limits.soft_min / k << ".."
-      << a.limits.soft_max / k << " (its soft range), found " << position;
+    e << "position of " << actuator << ": expected " << r.lo << ".." << r.hi
+      << " (its soft range, within where an admissible face takes it), found " << position;
     return refuse(422, e.str());
   }
+  const double k = a.kind == ActuatorKind::kRotary ? std::numbers::pi / 180.0 : 1e-3;
   log_.add("command", who, "jog " + actuator + " to " + std::to_string(position));
-  head_.controller->request_jog_target(i, si);
+  head_.controller->request_jog_target(i, std::clamp(position, r.lo, r.hi) * k);
   return {};
 }
 
 HeadService::Result HeadService::play(const std::string& who, const std::string& name, bool queue) {
+  if (auto r = refuse_if_stopping()) return *r;
   std::shared_ptr<const Show> show;
   try {
     show = shows_.load(name);
@@ -241,6 +274,7 @@ HeadService::Result HeadService::stop_show(const std::string& who) {
 
 HeadService::Result HeadService::hold_expression(const std::string& who, const std::string& name,
                                                  double weight) {
+  if (auto r = refuse_if_stopping()) return *r;
   const FacePose* pose = head_.cfg->expressions.find(name);
   if (pose == nullptr) return refuse(404, "no expression '" + name + "' in the library");
   FaceDirector::Pose values = head_.model().neutral;
@@ -252,6 +286,7 @@ HeadService::Result HeadService::hold_expression(const std::string& who, const s
 
 HeadService::Result HeadService::hold_pose(const std::string& who, const FaceDirector::Pose& pose,
                                            const std::string& summary) {
+  if (auto r = refuse_if_stopping()) return *r;
   log_.add("command", who, "hold pose " + summary);
   director_.hold(FaceDirector::Source::kPose, "", pose);
   return {};

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "control/telemetry_record.hpp"
 #include "firmware-host/run/head_runtime.hpp"
@@ -60,6 +61,18 @@ class HeadService {
   Result jog_stop(const std::string& who);
   Result jog(const std::string& who, const std::string& actuator, double position);
 
+  // SIGTERM: eases the head to rest, and from now on refuses every operation
+  // that could move it again (503), so no client can cancel the stop.
+  void begin_shutdown(const std::string& who);
+
+  // Where JOG may take an actuator, in its YAML unit: its soft range within
+  // the range the static proof found some admissible face maps it to (the
+  // envelope and the coupled face limits included; docs/SAFETY.md, "Jog").
+  struct JogRange {
+    double lo = 0.0, hi = 0.0;
+  };
+  const std::vector<JogRange>& jog_ranges() const { return jog_ranges_; }
+
   SafetyState state() const { return head_.controller->state(); }
   std::optional<ActiveFault> active_fault() const;
   // The newest telemetry record, and how many the monitor has taken.
@@ -76,6 +89,7 @@ class HeadService {
   void monitor();
   void drain_events();
   bool wait_for_state_change(SafetyState from, double seconds) const;
+  std::optional<Result> refuse_if_stopping() const;
 
   HeadRuntime& head_;
   FaceDirector& director_;
@@ -83,6 +97,8 @@ class HeadService {
   EventLog& log_;
   std::int64_t start_ns_;
   std::uint64_t events_lost_said_ = 0;
+  std::vector<JogRange> jog_ranges_;  // by actuator index
+  std::atomic<bool> stopping_{false};
 
   mutable std::mutex mutex_;  // latest_, fault_: between the monitor and the API's threads
   TelemetryRecord latest_{};

@@ -84,6 +84,13 @@ void HttpApi::serve() {
   server_->listen_after_bind();
 }
 
+void HttpApi::wait_until_serving() const {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!server_->is_running() && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
 void HttpApi::stop() {
   stopping_.store(true);
   if (server_) server_->stop();
@@ -149,7 +156,9 @@ void HttpApi::routes() {
   });
   s.Post("/api/v1/reset", [this, answer](const httplib::Request& req, httplib::Response& res) {
     const json body = body_json(req);
-    bool enable = true;
+    // Resetting an e-stop or fault must not itself start motion (ISO 13850):
+    // enabling again is asked for explicitly.
+    bool enable = false;
     if (body.is_object() && body.contains("enable")) {
       if (!body["enable"].is_boolean())
         throw std::invalid_argument("enable: expected true or false");

@@ -36,6 +36,8 @@ class HttpApi {
   // Serves until stop(); call on its own thread.
   void serve();
   void stop();
+  // Blocks until serve() accepts connections (stop() is a no-op before).
+  void wait_until_serving() const;
   std::string address() const;  // host:port as bound
 
  private:

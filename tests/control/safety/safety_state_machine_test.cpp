@@ -56,6 +56,9 @@ TEST(SafetyStateMachine, JogIsEnteredOnlyFromRunningAndLeftBackToIt) {
   in.jog_request = false;
   in.jog_end_request = true;
   EXPECT_EQ(sm.step(in, kDt), TransitionReason::kJogEnded);
+  EXPECT_EQ(sm.state(), SafetyState::kEnabling);  // back through the ramp
+  in.jog_end_request = false;
+  while (sm.state() == SafetyState::kEnabling) sm.step(in, kDt);
   EXPECT_EQ(sm.state(), SafetyState::kRunning);
 }
 

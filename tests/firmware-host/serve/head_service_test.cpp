@@ -195,7 +195,69 @@ TEST(HeadService, JogMovesOneActuatorAtTheCappedSpeedWhileTheOthersHold) {
   EXPECT_LT(tilt_moved, 1e-9);
 
   ASSERT_EQ(h.service().jog_stop("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));  // through the ramp
+}
+
+// Enabled and in JOG, or the test fails.
+void start_jog(ServedHead& h) {
+  ASSERT_EQ(h.service().enable("test").status, 200);
   ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+  ASSERT_EQ(h.service().jog_start("test").status, 200);
+  ASSERT_EQ(h.service().state(), SafetyState::kJog);  // answered once the tick took it
+}
+
+TEST(HeadService, JogStaysWhereSomeAdmissibleFaceTakesTheActuator) {
+  ServedHead h;
+  const ControllerModel& m = h.session().head.model();
+  const std::size_t cheek = actuator_index(m, "cheek_l");
+  // Soft range -40..40 deg, but no admissible face lowers the cheek below 0.
+  EXPECT_NEAR(h.service().jog_ranges()[cheek].lo, 0.0, 1e-6);
+  EXPECT_NEAR(h.service().jog_ranges()[cheek].hi, 37.0, 1e-6);
+  start_jog(h);
+  const HeadService::Result low = h.service().jog("test", "cheek_l", -10);
+  EXPECT_EQ(low.status, 422);
+  EXPECT_NE(low.error.find("expected 0..37"), std::string::npos) << low.error;
+  EXPECT_EQ(h.service().jog("test", "cheek_l", 20).status, 200);
+}
+
+TEST(HeadService, JoggingAnotherActuatorStopsTheFirstWhereItIs) {
+  ServedHead h;
+  const ControllerModel& m = h.session().head.model();
+  const std::size_t pan = actuator_index(m, "neck_pan");
+  start_jog(h);
+  ASSERT_EQ(h.service().jog("test", "neck_pan", 60).status, 200);  // 5 s at the jog speed
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_EQ(h.service().jog("test", "neck_tilt", 5).status, 200);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  TelemetryRecord a;
+  h.service().latest(a);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  TelemetryRecord b;
+  h.service().latest(b);
+  EXPECT_LT(a.command[pan], 30.0 * M_PI / 180.0);     // far from its old target
+  EXPECT_NEAR(b.command[pan], a.command[pan], 1e-9);  // and still
+}
+
+TEST(HeadService, LeavingJogRampsBackToTheFaceInput) {
+  ServedHead h;
+  start_jog(h);
+  ASSERT_EQ(h.service().jog_stop("test").status, 200);
+  EXPECT_EQ(h.service().state(), SafetyState::kEnabling);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+}
+
+TEST(HeadService, OnceStoppingNothingCanMoveTheHeadAgain) {
+  ServedHead h;
+  ASSERT_EQ(h.service().enable("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kRunning));
+  h.service().begin_shutdown("signal 15");
+  for (const HeadService::Result& r :
+       {h.service().enable("test"), h.service().reset("test", true), h.service().jog_start("test"),
+        h.service().play("test", "demo", false), h.service().hold_expression("test", "joy", 1.0)}) {
+    EXPECT_EQ(r.status, 503) << r.error;
+  }
+  EXPECT_EQ(h.service().disable("test").status, 200);
+  ASSERT_TRUE(h.wait_for(SafetyState::kIdle));
 }
 
 TEST(HeadService, TheEstopEndsAJog) {

@@ -120,6 +120,20 @@ TEST(HttpApi, BadRequestsGetAReasonAndChangeNothing) {
   EXPECT_EQ(api.head().service().director().status().name, "joy");
 }
 
+TEST(HttpApi, AResetDoesNotEnableUnlessAskedTo) {
+  ServedApi api;
+  SimHardware& sim = *api.head().session().head.sim;
+  ASSERT_EQ(api.client().Post("/api/v1/enable", "", "application/json")->status, 200);
+  ASSERT_TRUE(api.head().wait_for(SafetyState::kRunning));
+  sim.io.press_estop();
+  ASSERT_TRUE(api.head().wait_for(SafetyState::kEstop));
+  sim.io.release_estop();
+  ASSERT_EQ(api.client().Post("/api/v1/reset", "", "application/json")->status, 200);
+  ASSERT_TRUE(api.head().wait_for(SafetyState::kIdle));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(api.head().service().state(), SafetyState::kIdle);  // motion needs its own enable
+}
+
 TEST(HttpApi, EveryPathNeedsTheTokenWhenOneIsSet) {
   ServedApi api(kToken);
   for (const char* path : {"/api/v1/state", "/api/v1/rig", "/", "/index.html", "/nope"}) {
