@@ -151,7 +151,6 @@ TEST(HeadService, JogMovesOneActuatorAtTheCappedSpeedWhileTheOthersHold) {
   ServedHead h;
   const ControllerModel& m = h.session().head.model();
   const std::size_t pan = actuator_index(m, "neck_pan");
-  const std::size_t tilt = actuator_index(m, "neck_tilt");
   const double cap = m.safety.jog_speed_fraction * m.actuators[pan].limits.max_velocity;
 
   EXPECT_EQ(h.service().jog_start("test").status, 409);  // not from IDLE
@@ -175,7 +174,7 @@ TEST(HeadService, JogMovesOneActuatorAtTheCappedSpeedWhileTheOthersHold) {
   const double goal = 20.0 * M_PI / 180.0;
   TelemetryRecord prev = start;
   double fastest = 0.0;
-  double tilt_moved = 0.0;
+  double others_moved = 0.0;  // the largest move of an actuator not jogged
   ASSERT_TRUE(testing::wait_until(
       [&] {
         TelemetryRecord rec;
@@ -183,7 +182,11 @@ TEST(HeadService, JogMovesOneActuatorAtTheCappedSpeedWhileTheOthersHold) {
         if (rec.tick > prev.tick) {
           fastest = std::max(
               fastest, std::abs(rec.command[pan] - prev.command[pan]) / (rec.time_s - prev.time_s));
-          tilt_moved = std::max(tilt_moved, std::abs(rec.command[tilt] - start.command[tilt]));
+          for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+            if (i != pan) {
+              others_moved = std::max(others_moved, std::abs(rec.command[i] - start.command[i]));
+            }
+          }
           prev = rec;
         }
         return std::abs(rec.command[pan] - goal) < 1e-6;
@@ -192,7 +195,10 @@ TEST(HeadService, JogMovesOneActuatorAtTheCappedSpeedWhileTheOthersHold) {
       << "neck_pan at " << prev.command[pan] << " rad, goal " << goal;
   EXPECT_LE(fastest, cap * 1.001);
   EXPECT_GT(fastest, cap * 0.5);
-  EXPECT_LT(tilt_moved, 1e-9);
+  // Held: what is left is the limiters braking a residual velocity from
+  // before JOG (nanometres, nanoradians); joy would move the face servos by
+  // degrees and millimetres.
+  EXPECT_LT(others_moved, 1e-6);
 
   ASSERT_EQ(h.service().jog_stop("test").status, 200);
   ASSERT_TRUE(h.wait_for(SafetyState::kRunning));  // through the ramp
