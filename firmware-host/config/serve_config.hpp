@@ -18,7 +18,7 @@ struct ServeConfig {
   std::string event_log;         // empty = $LOGS_DIRECTORY/events.jsonl, else the XDG state dir
   long event_log_max_kb = 1024;  // rotate when the file passes this size
   long event_log_keep = 5;       // rotated files kept (events.jsonl.1 .. .N)
-  long max_streams = 16;  // concurrent telemetry streams
+  long max_streams = 16;         // concurrent telemetry streams
 };
 
 ServeConfig parse_serve_config(const ConfigNode& node, const std::string& runtime_file);

@@ -6,19 +6,12 @@
 #include <stdexcept>
 
 #include "firmware-host/model/model_builder.hpp"
+#include "firmware-host/serve/actuator_units.hpp"
 
 namespace facectl {
 namespace {
 
 using nlohmann::json;
-
-double actuator_unit_scale(const ActuatorModel& a) {
-  return a.kind == ActuatorKind::kRotary ? 180.0 / std::numbers::pi : 1000.0;
-}
-
-const char* actuator_unit(const ActuatorModel& a) {
-  return a.kind == ActuatorKind::kRotary ? "deg" : "mm";
-}
 
 }  // namespace
 
@@ -51,9 +44,9 @@ json rig_json(const LoadedConfig& config) {
   const ControllerModel& m = config.built.model;
   json actuators = json::array();
   for (const ActuatorModel& a : m.actuators) {
-    const double k = actuator_unit_scale(a);
+    const double k = yaml_per_si(a);
     actuators.push_back({{"name", a.name},
-                         {"unit", actuator_unit(a)},
+                         {"unit", yaml_unit(a)},
                          {"min", a.limits.position_min * k},
                          {"max", a.limits.position_max * k},
                          {"soft_min", a.limits.soft_min * k},
@@ -83,7 +76,7 @@ json telemetry_json(const TelemetryRecord& rec, const ControllerModel& m) {
   json commands = json::array();
   json measured = json::array();
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
-    const double k = actuator_unit_scale(m.actuators[i]);
+    const double k = yaml_per_si(m.actuators[i]);
     commands.push_back(rec.command[i] * k);
     measured.push_back(rec.feedback[i] * k);
   }
