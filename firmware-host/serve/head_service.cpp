@@ -8,6 +8,7 @@
 
 #include "control/realtime/loop_timer.hpp"
 #include "firmware-host/serve/actuator_units.hpp"
+#include "firmware-host/serve/loop_watchdog.hpp"
 #include "firmware-host/serve/systemd_notify.hpp"
 #include "firmware-host/verify/static_proof.hpp"
 
@@ -91,8 +92,7 @@ void HeadService::drain_events() {
 }
 
 void HeadService::monitor() {
-  std::uint64_t last_ticks = 0;
-  auto last_watchdog = std::chrono::steady_clock::now();
+  LoopWatchdog watchdog(std::chrono::milliseconds(100));
   while (!stop_.load(std::memory_order_relaxed)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
     drain_events();
@@ -109,13 +109,10 @@ void HeadService::monitor() {
         taken_ += n;
       }
     }
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_watchdog >= std::chrono::milliseconds(100)) {
-      const std::uint64_t ticks = head_.stats.ticks.load(std::memory_order_relaxed);
-      loop_alive_.store(ticks != last_ticks, std::memory_order_relaxed);
-      if (ticks != last_ticks) notify_watchdog();
-      last_ticks = ticks;
-      last_watchdog = now;
+    if (watchdog.look(head_.stats.ticks.load(std::memory_order_relaxed),
+                      std::chrono::steady_clock::now())) {
+      loop_alive_.store(watchdog.alive(), std::memory_order_relaxed);
+      if (watchdog.alive()) notify_watchdog();
     }
   }
 }

@@ -4,10 +4,14 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -44,6 +48,79 @@ std::string config_with(const TempDir& dir, const std::string& serve_block) {
   text += "\n" + serve_block + "\n";
   dir.write("facectl.yaml", text);
   return dir.file("facectl.yaml");
+}
+
+// systemd's end of Type=notify (sd_notify(3)): a datagram socket whose path
+// the service finds in NOTIFY_SOCKET.
+class NotifySocket {
+ public:
+  explicit NotifySocket(const std::string& path) : path_(path) {
+    fd_ = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_un a{};
+    a.sun_family = AF_UNIX;
+    std::strncpy(a.sun_path, path.c_str(), sizeof a.sun_path - 1);
+    bound_ = fd_ >= 0 && bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+    const timeval timeout{0, 50'000};
+    setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  }
+  ~NotifySocket() {
+    if (fd_ >= 0) close(fd_);
+  }
+  NotifySocket(const NotifySocket&) = delete;
+  NotifySocket& operator=(const NotifySocket&) = delete;
+
+  bool bound() const { return bound_; }
+  std::string env() const { return "NOTIFY_SOCKET=" + path_; }
+
+  // Every message received for `seconds`, or until one contains `until`.
+  std::vector<std::string> receive(double seconds, const std::string& until = "") {
+    std::vector<std::string> got;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    char buf[4096];
+    while (std::chrono::steady_clock::now() < end) {
+      const ssize_t n = recv(fd_, buf, sizeof buf, 0);
+      if (n <= 0) continue;
+      got.emplace_back(buf, static_cast<std::size_t>(n));
+      if (!until.empty() && got.back().find(until) != std::string::npos) break;
+    }
+    return got;
+  }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  bool bound_ = false;
+};
+
+std::string joined(const std::vector<std::string>& messages) {
+  std::string all;
+  for (const auto& m : messages) all += "[" + m + "] ";
+  return all;
+}
+
+TEST(ServeProcess, TellsSystemdItIsReadyPetsTheWatchdogAndSaysStopping) {
+  TempDir dir;
+  const std::string config = config_with(dir, "");
+  NotifySocket systemd(dir.file("notify"));
+  ASSERT_TRUE(systemd.bound()) << std::strerror(errno);
+  Child c = testing::spawn_facectl({"serve", "--config", config, "--listen", "127.0.0.1:0"},
+                                   {RLIM_INFINITY, {systemd.env()}});
+
+  const std::vector<std::string> start = systemd.receive(20.0, "READY=1");
+  ASSERT_FALSE(start.empty()) << read_all(c.out_path);
+  EXPECT_NE(start.back().find("STATUS=IDLE, listening on http://127.0.0.1:"), std::string::npos)
+      << joined(start);
+
+  // The loop ticks in IDLE: a ping each 100 ms (WatchdogSec in the unit is far longer).
+  const std::vector<std::string> running = systemd.receive(2.0);
+  const auto pings = std::count(running.begin(), running.end(), "WATCHDOG=1");
+  EXPECT_GE(pings, 5) << joined(running);
+
+  kill(c.pid, SIGTERM);
+  const std::vector<std::string> stop = systemd.receive(10.0, "STOPPING=1");
+  ASSERT_FALSE(stop.empty());
+  EXPECT_EQ(stop.back(), "STOPPING=1") << joined(stop);
+  EXPECT_EQ(wait_exit(c), 0) << read_all(c.out_path);
 }
 
 TEST(ServeProcess, ANonLoopbackAddressNeedsTheFlagAndAToken) {
