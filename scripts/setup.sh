@@ -8,9 +8,11 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libmodbus-dev libgpiod-dev libhidapi-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libpng-dev libglpk-dev
-  # `facectl serve`'s HTTP server, and the test that checks it against
-  # docs/openapi.yaml (tests/firmware-host/serve/openapi_conformance_test.py).
-  libcpp-httplib-dev python3-yaml python3-jsonschema
+  # `facectl serve`'s HTTP server and its HTTPS (OpenSSL), the test that
+  # checks it against docs/openapi.yaml (tests/firmware-host/serve/
+  # openapi_conformance_test.py), and openssl, which makes the HTTPS test's
+  # certificate.
+  libcpp-httplib-dev libssl-dev openssl python3-yaml python3-jsonschema
   clang-format clang-tidy
   # `facectl serve` tells systemd it is ready and alive (sd_notify); the
   # deployment test checks the unit and sysusers file (systemd-analyze,

@@ -65,6 +65,14 @@ void prepare(const ServeOptions& options, Served& s) {
                         s.session.head.cfg->runtime.file + ")");
     }
   }
+  api.tls_cert = serve.tls_cert;
+  api.tls_key = serve.tls_key;
+  if (!api.listen.loopback && api.tls_cert.empty()) {
+    std::fprintf(stderr,
+                 "facectl serve: warning: plain HTTP beyond loopback: the access token and "
+                 "every command cross the network readable; set serve.tls_cert and "
+                 "serve.tls_key (docs/API.md, \"Access\")\n");
+  }
   api.console_dir = console_folder(options, serve);
   api.max_streams = serve.max_streams;
 
@@ -111,7 +119,7 @@ int serve_command(const ServeOptions& options) {
   start_serve_session(s.session);
   s.http = std::thread([&s] { s.api->serve(); });
   s.api->wait_until_serving();  // a stop() before that would be lost
-  const std::string where = "http://" + s.api->address() + "/";
+  const std::string where = s.api->url();
   s.session.log->add("service", "serve",
                      "listening on " + where + ", head IDLE, event log " + s.session.log->path());
   notify_ready("IDLE, listening on " + where);

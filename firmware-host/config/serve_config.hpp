@@ -13,6 +13,8 @@ struct ServeConfig {
   bool allow_remote = false;     // a non-loopback listen address needs this and a token
   std::string token_env;         // environment variable holding the bearer token
   std::string token_file;        // or a file holding it (absolute or relative to the runtime file)
+  std::string tls_cert;          // PEM certificate (chain): serve HTTPS; with tls_key, or neither
+  std::string tls_key;           // its PEM private key
   std::string shows_dir;         // the shows the API may play, by name; empty = next to `show:`
   std::string console_dir;       // the operator console's files; empty = the built-in default
   std::string event_log;         // empty = $LOGS_DIRECTORY/events.jsonl, else the XDG state dir

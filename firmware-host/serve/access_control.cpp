@@ -1,6 +1,7 @@
 #include "firmware-host/serve/access_control.hpp"
 
 #include <arpa/inet.h>
+#include <openssl/crypto.h>
 
 #include <algorithm>
 #include <cctype>
@@ -79,12 +80,10 @@ std::string load_access_token(const std::string& token_env, const std::string& t
 }
 
 bool token_matches(const std::string& expected, const std::string& given) {
-  unsigned char diff = expected.size() == given.size() ? 0 : 1;
-  for (std::size_t i = 0; i < expected.size(); ++i) {
-    const char g = i < given.size() ? given[i] : '\0';
-    diff |= static_cast<unsigned char>(expected[i] ^ g);
-  }
-  return diff == 0;
+  // OpenSSL's comparison reads every byte whatever they hold; only the
+  // length, which is not secret, decides early.
+  return expected.size() == given.size() &&
+         CRYPTO_memcmp(expected.data(), given.data(), expected.size()) == 0;
 }
 
 std::optional<std::string> bearer_token(const std::string& authorization_header,

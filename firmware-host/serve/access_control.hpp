@@ -23,7 +23,8 @@ ListenAddress parse_listen_address(const std::string& text);
 std::string load_access_token(const std::string& token_env, const std::string& token_file);
 
 // Compares in time that depends only on the lengths, not on where the first
-// difference is, so a client cannot find the token byte by byte.
+// difference is (OpenSSL's CRYPTO_memcmp), so a client cannot find the token
+// byte by byte.
 bool token_matches(const std::string& expected, const std::string& given);
 
 // The token a request carries: "Authorization: Bearer X", else the

@@ -1,13 +1,18 @@
 #include "firmware-host/serve/http_api.hpp"
 
 #include <httplib.h>
+#include <openssl/err.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "firmware-host/serve/api_json.hpp"
 
@@ -52,12 +57,35 @@ std::string required_name(const json& body) {
   return body["name"].get<std::string>();
 }
 
+// HTTPS when the options name a certificate and key (cpp-httplib over
+// OpenSSL, as Debian builds it), else plain HTTP. Throws naming the files and
+// OpenSSL's reason when they do not load or do not match.
+std::unique_ptr<httplib::Server> make_server(const HttpApi::Options& o) {
+  if (o.tls_cert.empty()) return std::make_unique<httplib::Server>();
+  // OpenSSL says only "system lib" for a file it cannot open.
+  for (const auto& [what, file] : {std::pair{"certificate", &o.tls_cert}, {"key", &o.tls_key}}) {
+    if (::access(file->c_str(), R_OK) != 0) {
+      throw std::runtime_error(std::string("cannot read TLS ") + what + " " + *file + ": " +
+                               std::strerror(errno));
+    }
+  }
+  ERR_clear_error();
+  auto s = std::make_unique<httplib::SSLServer>(o.tls_cert.c_str(), o.tls_key.c_str());
+  if (!s->is_valid()) {
+    char why[256] = "unknown reason";
+    if (const unsigned long e = ERR_peek_last_error(); e != 0) {
+      ERR_error_string_n(e, why, sizeof why);
+    }
+    throw std::runtime_error("cannot use TLS certificate " + o.tls_cert + " with key " + o.tls_key +
+                             ": " + why);
+  }
+  return s;
+}
+
 }  // namespace
 
 HttpApi::HttpApi(HeadService& service, Options options)
-    : service_(service),
-      options_(std::move(options)),
-      server_(std::make_unique<httplib::Server>()) {
+    : service_(service), options_(std::move(options)), server_(make_server(options_)) {
   routes();
 }
 
@@ -73,6 +101,10 @@ void HttpApi::bind() {
     throw std::runtime_error("cannot listen on " + a.host + ":" + std::to_string(a.port) +
                              " (in use, or not an address of this machine)");
   }
+}
+
+std::string HttpApi::url() const {
+  return (options_.tls_cert.empty() ? "http://" : "https://") + address() + "/";
 }
 
 std::string HttpApi::address() const {

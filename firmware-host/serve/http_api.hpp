@@ -21,7 +21,9 @@ class HttpApi {
  public:
   struct Options {
     ListenAddress listen;
-    std::string token;        // empty: no token (loopback only)
+    std::string token;     // empty: no token (loopback only)
+    std::string tls_cert;  // PEM files: HTTPS; empty: plain HTTP
+    std::string tls_key;
     std::string console_dir;  // served at / and /console/
     long max_streams = 16;
   };
@@ -39,6 +41,7 @@ class HttpApi {
   // Blocks until serve() accepts connections (stop() is a no-op before).
   void wait_until_serving() const;
   std::string address() const;  // host:port as bound
+  std::string url() const;      // http(s)://host:port/
 
  private:
   void routes();

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -123,6 +124,88 @@ TEST(ServeProcess, TellsSystemdItIsReadyPetsTheWatchdogAndSaysStopping) {
   EXPECT_EQ(wait_exit(c), 0) << read_all(c.out_path);
 }
 
+// A self-signed certificate for 127.0.0.1 and its key, made by the openssl tool.
+void make_certificate(const TempDir& dir, const std::string& stem) {
+  const std::string cmd =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=127.0.0.1 "
+      "-addext subjectAltName=IP:127.0.0.1 -keyout " +
+      dir.file(stem + "-key.pem") + " -out " + dir.file(stem + "-cert.pem") + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+}
+
+// The port of "listening on <scheme>://127.0.0.1:PORT/" in the child's output, or 0.
+int listening_port(const Child& c, const std::string& scheme) {
+  const std::regex listening("listening on " + scheme + R"(://127\.0\.0\.1:(\d+)/)");
+  std::smatch m;
+  std::string out;
+  const bool found = testing::wait_until(
+      [&] {
+        out = read_all(c.out_path);
+        return std::regex_search(out, m, listening);
+      },
+      20.0);
+  return found ? std::stoi(m[1]) : 0;
+}
+
+TEST(ServeProcess, ServesHttpsWithTheCertificateOfItsConfig) {
+  TempDir dir;
+  make_certificate(dir, "head");
+  // Relative to the runtime file, as every path in it.
+  const std::string config =
+      config_with(dir, "serve: { tls_cert: head-cert.pem, tls_key: head-key.pem }");
+  Child c = testing::spawn_facectl({"serve", "--config", config, "--listen", "127.0.0.1:0"});
+  const int port = listening_port(c, "https");
+  ASSERT_NE(port, 0) << read_all(c.out_path);
+
+  httplib::SSLClient tls("127.0.0.1", port);
+  tls.set_ca_cert_path(dir.file("head-cert.pem").c_str());
+  tls.enable_server_certificate_verification(true);
+  const auto r = tls.Get("/api/v1/state");
+  ASSERT_TRUE(r) << httplib::to_string(r.error());
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(nlohmann::json::parse(r->body)["state"], "IDLE");
+  // Plain HTTP gets no answer from an HTTPS listener.
+  httplib::Client plain("127.0.0.1", port);
+  const auto p = plain.Get("/api/v1/state");
+  EXPECT_FALSE(p && p->status == 200);
+
+  kill(c.pid, SIGTERM);
+  EXPECT_EQ(wait_exit(c), 0) << read_all(c.out_path);
+}
+
+TEST(ServeProcess, RefusesHalfATlsPairAMissingFileAndAKeyThatIsNotTheCertificates) {
+  TempDir dir;
+  make_certificate(dir, "a");
+  make_certificate(dir, "b");
+  Child c = testing::spawn_facectl({"serve", "--config",
+                                    config_with(dir, "serve: { tls_cert: a-cert.pem }"), "--listen",
+                                    "127.0.0.1:0"});
+  EXPECT_EQ(wait_exit(c), 2);
+  EXPECT_NE(read_all(c.out_path).find("expected tls_cert together with tls_key"), std::string::npos)
+      << read_all(c.out_path);
+
+  c = testing::spawn_facectl(
+      {"serve", "--config", config_with(dir, "serve: { tls_cert: a-cert.pem, tls_key: b-key.pem }"),
+       "--listen", "127.0.0.1:0"});
+  EXPECT_EQ(wait_exit(c), 2);
+  const std::string out = read_all(c.out_path);
+  EXPECT_NE(out.find("cannot use TLS certificate " + dir.file("a-cert.pem") + " with key " +
+                     dir.file("b-key.pem")),
+            std::string::npos)
+      << out;
+
+  c = testing::spawn_facectl(
+      {"serve", "--config",
+       config_with(dir, "serve: { tls_cert: a-cert.pem, tls_key: missing-key.pem }"), "--listen",
+       "127.0.0.1:0"});
+  EXPECT_EQ(wait_exit(c), 2);
+  EXPECT_NE(read_all(c.out_path)
+                .find("cannot read TLS key " + dir.file("missing-key.pem") +
+                      ": No such file or directory"),
+            std::string::npos)
+      << read_all(c.out_path);
+}
+
 TEST(ServeProcess, ANonLoopbackAddressNeedsTheFlagAndAToken) {
   TempDir dir;
   const std::string plain = config_with(dir, "");
@@ -159,6 +242,7 @@ TEST(ServeProcess, ServesWithATokenStopsOnSigtermAtRestAndKeepsItsLog) {
       },
       20.0))
       << out;
+  EXPECT_NE(out.find("warning: plain HTTP beyond loopback"), std::string::npos) << out;
   httplib::Client client("127.0.0.1", std::stoi(m[1]));
   EXPECT_EQ(client.Get("/api/v1/state")->status, 401);
   const httplib::Headers auth{{"Authorization", "Bearer 0123456789abcdef-process"}};
