@@ -11,6 +11,57 @@
 
 namespace facectl {
 
+bool is_loopback_name(const std::string& host) {
+  std::string h = host;
+  std::transform(h.begin(), h.end(), h.begin(), [](unsigned char c) { return std::tolower(c); });
+  in_addr v4{};
+  in6_addr v6{};
+  if (h == "localhost") return true;
+  if (inet_pton(AF_INET, h.c_str(), &v4) == 1) return (ntohl(v4.s_addr) >> 24) == 127;
+  return inet_pton(AF_INET6, h.c_str(), &v6) == 1 && IN6_IS_ADDR_LOOPBACK(&v6);
+}
+
+namespace {
+
+// "host:port", "[v6]:port" or "host" -> host.
+std::string host_of(const std::string& authority) {
+  if (!authority.empty() && authority.front() == '[') {
+    const auto close = authority.find(']');
+    return close == std::string::npos ? authority : authority.substr(1, close - 1);
+  }
+  const auto colon = authority.rfind(':');
+  return colon == std::string::npos ? authority : authority.substr(0, colon);
+}
+
+bool same_text_ignoring_case(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) ==
+                  std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+}  // namespace
+
+std::optional<std::string> loopback_request_refusal(const std::string& host_header,
+                                                    const std::string& origin_header) {
+  if (!host_header.empty() && !is_loopback_name(host_of(host_header))) {
+    return "Host " + host_header +
+           " does not name this computer's loopback: a tokenless controller answers only "
+           "requests to localhost, 127.0.0.1 or [::1] (a page that rebinds its own name to "
+           "127.0.0.1 cannot reach it); configure a token to be reached by another name";
+  }
+  if (origin_header.empty()) return std::nullopt;
+  std::string_view origin = origin_header;
+  for (std::string_view scheme : {"http://", "https://"}) {
+    if (origin.starts_with(scheme)) origin.remove_prefix(scheme.size());
+  }
+  if (host_header.empty() || !same_text_ignoring_case(origin, host_header)) {
+    return "Origin " + origin_header + " is not this server (" + host_header +
+           "): a tokenless controller refuses requests from another site's pages";
+  }
+  return std::nullopt;
+}
+
 ListenAddress parse_listen_address(const std::string& text) {
   ListenAddress a;
   std::string port;
@@ -40,14 +91,11 @@ ListenAddress parse_listen_address(const std::string& text) {
   in6_addr v6{};
   if (a.host == "localhost") {
     a.host = "127.0.0.1";
-    a.loopback = true;
-  } else if (inet_pton(AF_INET, a.host.c_str(), &v4) == 1) {
-    a.loopback = (ntohl(v4.s_addr) >> 24) == 127;
-  } else if (inet_pton(AF_INET6, a.host.c_str(), &v6) == 1) {
-    a.loopback = IN6_IS_ADDR_LOOPBACK(&v6);
-  } else {
+  } else if (inet_pton(AF_INET, a.host.c_str(), &v4) != 1 &&
+             inet_pton(AF_INET6, a.host.c_str(), &v6) != 1) {
     throw std::invalid_argument("expected an IPv4 or [IPv6] address, found '" + a.host + "'");
   }
+  a.loopback = is_loopback_name(a.host);
   return a;
 }
 

@@ -16,6 +16,18 @@ struct ListenAddress {
 // Throws std::invalid_argument saying what is wrong.
 ListenAddress parse_listen_address(const std::string& text);
 
+// localhost, 127.0.0.0/8 or ::1 (no brackets).
+bool is_loopback_name(const std::string& host);
+
+// For a listener without a token, which only loopback may reach: why a
+// request that a web page could have sent is refused, or nullopt. Its Host
+// header must name loopback (a DNS-rebinding page's request names the page's
+// own domain), and an Origin header, when present, must be that same host
+// and port (a cross-site form or fetch carries the other site's). Clients
+// that send neither (curl, scripts) pass.
+std::optional<std::string> loopback_request_refusal(const std::string& host_header,
+                                                    const std::string& origin_header);
+
 // The bearer token from the `serve:` block: the environment variable it
 // names, else the file it names (first line, trailing whitespace removed).
 // Empty when neither is set; throws naming the variable or file when it is

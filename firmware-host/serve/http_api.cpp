@@ -138,7 +138,13 @@ void HttpApi::routes() {
   s.new_task_queue = [workers] { return new httplib::ThreadPool(workers); };
 
   s.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    if (options_.token.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    if (options_.token.empty()) {
+      const auto refused =
+          loopback_request_refusal(req.get_header_value("Host"), req.get_header_value("Origin"));
+      if (!refused) return httplib::Server::HandlerResponse::Unhandled;
+      reply_error(res, 403, *refused);
+      return httplib::Server::HandlerResponse::Handled;
+    }
     const auto given =
         bearer_token(req.get_header_value("Authorization"), req.get_param_value("access_token"));
     if (given && token_matches(options_.token, *given)) {

@@ -31,6 +31,30 @@ TEST(ListenAddress, RefusesWhatIsNotAnAddressAndPort) {
   }
 }
 
+TEST(LoopbackRequest, PassesLoopbackHostsAndTheirOwnOrigin) {
+  for (const char* host :
+       {"127.0.0.1:8080", "localhost:8080", "LOCALHOST", "[::1]:8080", "127.1.2.3:80", ""}) {
+    EXPECT_EQ(loopback_request_refusal(host, ""), std::nullopt) << host;
+  }
+  EXPECT_EQ(loopback_request_refusal("127.0.0.1:8080", "http://127.0.0.1:8080"), std::nullopt);
+  EXPECT_EQ(loopback_request_refusal("localhost:8443", "https://localhost:8443"), std::nullopt);
+}
+
+TEST(LoopbackRequest, RefusesARebindingHostAndAnotherSitesOrigin) {
+  // DNS rebinding: the page's own name, resolved to 127.0.0.1.
+  const auto rebound = loopback_request_refusal("attacker.example:8080", "");
+  ASSERT_TRUE(rebound);
+  EXPECT_NE(rebound->find("Host attacker.example:8080"), std::string::npos) << *rebound;
+  EXPECT_TRUE(loopback_request_refusal("192.168.1.20:8080", ""));
+  // A cross-site form or fetch from a page in the controller's browser.
+  for (const char* origin :
+       {"http://attacker.example", "http://127.0.0.1:9999", "null", "http://localhost:8080"}) {
+    const auto refused = loopback_request_refusal("127.0.0.1:8080", origin);
+    ASSERT_TRUE(refused) << origin;
+    EXPECT_NE(refused->find(std::string("Origin ") + origin), std::string::npos) << *refused;
+  }
+}
+
 TEST(AccessToken, ComparesWholeTokensOnly) {
   EXPECT_TRUE(token_matches("0123456789abcdef", "0123456789abcdef"));
   EXPECT_FALSE(token_matches("0123456789abcdef", "0123456789abcdeF"));

@@ -66,6 +66,28 @@ TEST(HttpApi, StateNamesTheSafetyState) {
   EXPECT_EQ(r->get_header_value("Content-Type"), "application/json");
 }
 
+TEST(HttpApi, WithoutATokenRefusesOtherSitesPagesAndLeavesTheHeadIdle) {
+  ServedApi api;
+  // A cross-site POST from a page open in a browser on the controller.
+  auto r = api.client().Post("/api/v1/enable", {{"Origin", "http://attacker.example"}}, "",
+                             "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 403);
+  EXPECT_NE(body(r)["error"].get<std::string>().find("Origin http://attacker.example"),
+            std::string::npos);
+  // A rebound name: the request reaches 127.0.0.1 but names the page's host.
+  r = api.client().Post("/api/v1/enable", {{"Host", "attacker.example"}}, "", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 403);
+  EXPECT_EQ(api.head().service().state(), SafetyState::kIdle);
+  // The console's own requests carry its origin.
+  r = api.client().Post("/api/v1/enable", {{"Origin", "http://" + api.address()}}, "",
+                        "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_TRUE(api.head().wait_for(SafetyState::kRunning));
+}
+
 TEST(HttpApi, EnableAndDisableMoveTheStateMachine) {
   ServedApi api;
   auto r = api.client().Post("/api/v1/enable", "", "application/json");
@@ -246,8 +268,8 @@ TEST(HttpApi, APostWithoutContentLengthIsToldWhy) {
   ServedApi api;
   const int port = std::stoi(api.address().substr(api.address().rfind(':') + 1));
   // As `curl -X POST` sends it: no body and no Content-Length.
-  const std::string answer =
-      raw_exchange(port, "POST /api/v1/enable HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  const std::string answer = raw_exchange(
+      port, "POST /api/v1/enable HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(answer.rfind("HTTP/1.1 400", 0), 0u) << answer;
   EXPECT_NE(answer.find("Content-Length header"), std::string::npos) << answer;
   EXPECT_EQ(api.head().service().state(), SafetyState::kIdle);

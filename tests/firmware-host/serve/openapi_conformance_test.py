@@ -191,6 +191,8 @@ def structural_check(doc):
                         fail("%s %s: expected the Error schema" % (where, status))
             if "401" not in responses:
                 fail(where + ": every operation can answer 401 when a token is configured")
+            if "403" not in responses:
+                fail(where + ": every operation can answer 403 to a foreign page without a token")
             for p in op.get("parameters", []):
                 p = resolve(doc, p)
                 if p.get("in") not in ("query", "header", "path", "cookie") or "name" not in p:
@@ -547,6 +549,18 @@ def check_telemetry(chk, port, rig):
     print("telemetry: the stream after %d open ones was refused" % len(streams), flush=True)
 
 
+def check_foreign_pages(chk, port):
+    """Without a token, every operation refuses what another web page could send."""
+    for method, path in sorted(chk.ops):
+        body = b"" if method == "POST" else None
+        for headers in ({"Origin": "http://attacker.example"}, {"Host": "attacker.example"}):
+            status, ctype, _, data = request(port, method, path, None, body, headers)
+            chk.check_response(method, path, status, ctype, data, 403)
+    call(chk, port, "GET", "/api/v1/state", 200,
+         headers={"Origin": "http://127.0.0.1:%d" % port})
+    print("foreign pages: %d operations answer 403" % len(chk.ops), flush=True)
+
+
 def check_token(chk, port):
     """With a token configured every operation needs it; header or query parameter."""
     for method, path in sorted(chk.ops):
@@ -623,6 +637,7 @@ def main():
         server = Server(facectl, os.path.join(source_dir, "config/facectl.yaml"), tmp)
         try:
             exercise(chk, server.port)
+            check_foreign_pages(chk, server.port)
         finally:
             rc = server.stop()
         if rc != 0:
