@@ -13,6 +13,23 @@ namespace {
 
 using nlohmann::json;
 
+// Rounded to `per_unit` steps so the documents stay small: the nearest double to a short
+// decimal prints as that decimal.
+json rounded(std::span<const double> values, double per_unit) {
+  json out = json::array();
+  for (double v : values) out.push_back(std::round(v * per_unit) / per_unit);
+  return out;
+}
+
+json named_points(const std::vector<std::string>& names, const std::vector<double>& mm) {
+  json out = json::array();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    out.push_back(
+        {{"name", names[i]}, {"position_mm", rounded(std::span(mm).subspan(3 * i, 3), 1e3)}});
+  }
+  return out;
+}
+
 }  // namespace
 
 json state_json(const HeadService& service) {
@@ -72,7 +89,8 @@ json rig_json(const LoadedConfig& config) {
           {"signals", signals}};
 }
 
-json telemetry_json(const TelemetryRecord& rec, const ControllerModel& m) {
+json telemetry_json(const TelemetryRecord& rec, const ControllerModel& m,
+                    std::span<const double> landmarks_mm) {
   json commands = json::array();
   json measured = json::array();
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
@@ -84,13 +102,26 @@ json telemetry_json(const TelemetryRecord& rec, const ControllerModel& m) {
   for (std::size_t i = 0; i < m.layout.size(); ++i) {
     face.push_back(rec.face[i] / yaml_to_si(m.layout.signal(i).kind));
   }
-  return {{"tick", rec.tick},
-          {"time_s", rec.time_s},
-          {"state", std::string(to_string(rec.state))},
-          {"input_stale", rec.input_stale},
-          {"commands", commands},
-          {"measured", measured},
-          {"face", face}};
+  json j{{"tick", rec.tick},
+         {"time_s", rec.time_s},
+         {"state", std::string(to_string(rec.state))},
+         {"input_stale", rec.input_stale},
+         {"commands", commands},
+         {"measured", measured},
+         {"face", face}};
+  if (!landmarks_mm.empty()) j["landmarks_mm"] = rounded(landmarks_mm, 1e4);
+  return j;
+}
+
+json face_geometry_json(const FaceGeometry& g) {
+  json edges = json::array();
+  for (const auto& [a, b] : g.edges) edges.push_back({a, b});
+  return {{"model", "reduced"},
+          {"landmarks", named_points(g.points, g.points_mm)},
+          {"anchors", named_points(g.anchors, g.anchors_mm)},
+          {"edges", edges},
+          {"skin", {{"vertices_mm", rounded(g.vertices_mm, 1e3)}, {"triangles", g.triangles}}},
+          {"weights", rounded(g.weights, 1e6)}};
 }
 
 json events_json(const EventLog& log, std::size_t limit) {

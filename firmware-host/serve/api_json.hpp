@@ -1,9 +1,11 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 
 #include "control/telemetry_record.hpp"
+#include "firmware-host/serve/face_geometry.hpp"
 #include "firmware-host/serve/head_service.hpp"
 
 namespace facectl {
@@ -12,7 +14,10 @@ namespace facectl {
 // the YAML files use: deg for rotary actuators and angles, mm for linear ones.
 nlohmann::json state_json(const HeadService& service);
 nlohmann::json rig_json(const LoadedConfig& config);
-nlohmann::json telemetry_json(const TelemetryRecord& rec, const ControllerModel& model);
+// `landmarks_mm`, when given: the control points' displacements (FaceLandmarks).
+nlohmann::json telemetry_json(const TelemetryRecord& rec, const ControllerModel& model,
+                              std::span<const double> landmarks_mm = {});
+nlohmann::json face_geometry_json(const FaceGeometry& geometry);
 nlohmann::json events_json(const EventLog& log, std::size_t limit);
 
 // The pose of POST /api/v1/pose: {"signals": {"jaw_pitch_deg": 6, ...}} over

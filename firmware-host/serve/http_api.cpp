@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "firmware-host/serve/api_json.hpp"
+#include "firmware-host/serve/face_landmarks.hpp"
 
 namespace facectl {
 namespace {
@@ -85,7 +86,11 @@ std::unique_ptr<httplib::Server> make_server(const HttpApi::Options& o) {
 }  // namespace
 
 HttpApi::HttpApi(HeadService& service, Options options)
-    : service_(service), options_(std::move(options)), server_(make_server(options_)) {
+    : service_(service),
+      options_(std::move(options)),
+      geometry_(load_face_geometry(*service.head().cfg)),
+      server_(make_server(options_)) {
+  if (geometry_.geometry) geometry_body_ = face_geometry_json(*geometry_.geometry).dump();
   routes();
 }
 
@@ -207,6 +212,10 @@ void HttpApi::routes() {
   s.Get("/api/v1/rig", [this](const httplib::Request&, httplib::Response& res) {
     reply(res, 200, rig_json(*service_.head().cfg));
   });
+  s.Get("/api/v1/face/geometry", [this](const httplib::Request&, httplib::Response& res) {
+    if (!geometry_.geometry) return reply_error(res, 404, geometry_.why_not);
+    res.set_content(geometry_body_, "application/json");
+  });
   s.Get("/api/v1/shows", [this](const httplib::Request&, httplib::Response& res) {
     json shows = json::array();
     for (const auto& l : service_.shows().list()) {
@@ -303,11 +312,14 @@ void HttpApi::routes() {
       return reply_error(res, 503, "too many telemetry streams (serve.max_streams)");
     }
     const auto period = std::chrono::duration<double>(1.0 / hz);
+    // This stream's own evaluation of the reduced model, off the tick.
+    std::shared_ptr<FaceLandmarks> landmarks;
+    if (geometry_.geometry) landmarks = std::make_shared<FaceLandmarks>(geometry_.geometry);
     res.set_header("Cache-Control", "no-cache");
     res.set_chunked_content_provider(
         "text/event-stream",
-        [this, period, next = std::chrono::steady_clock::now()](std::size_t,
-                                                                httplib::DataSink& sink) mutable {
+        [this, period, landmarks, next = std::chrono::steady_clock::now()](
+            std::size_t, httplib::DataSink& sink) mutable {
           if (stopping_.load()) {
             sink.done();
             return false;
@@ -316,8 +328,10 @@ void HttpApi::routes() {
           std::this_thread::sleep_until(next);
           TelemetryRecord rec;
           service_.latest(rec);
+          const auto moved =
+              landmarks ? landmarks->displacements_mm(rec.face) : std::span<const double>{};
           const std::string event =
-              "data: " + telemetry_json(rec, service_.head().model()).dump() + "\n\n";
+              "data: " + telemetry_json(rec, service_.head().model(), moved).dump() + "\n\n";
           return sink.write(event.data(), event.size());
         },
         [this](bool) { streams_.fetch_sub(1); });

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "firmware-host/serve/access_control.hpp"
+#include "firmware-host/serve/face_geometry.hpp"
 #include "firmware-host/serve/head_service.hpp"
 
 namespace httplib {
@@ -48,6 +49,8 @@ class HttpApi {
 
   HeadService& service_;
   Options options_;
+  FaceGeometryLoad geometry_;  // loaded once, here: GET /api/v1/face/geometry
+  std::string geometry_body_;
   std::unique_ptr<httplib::Server> server_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};

@@ -44,6 +44,11 @@ window.FaceCtl = window.FaceCtl || {};
   ns.api = {
     ApiError,
     get: (path) => request("GET", path),
+    // A resource the server may lack (404): null then.
+    getIfPresent: (path) => request("GET", path).catch((error) => {
+      if (error instanceof ApiError && error.status === 404) return null;
+      throw error;
+    }),
     // Commands send a JSON body ({} when there is nothing to say).
     post: (path, body) => request("POST", path, body === undefined ? {} : body),
     urlWithToken,

@@ -42,7 +42,7 @@ window.FaceCtl = window.FaceCtl || {};
     plots.setActuators(rig.actuators || []);
     sliders.setSignals(rig.signals || []);
     face.setSignals(rig.signals || []);
-    face.setGeometry(rig.face_geometry ? await ns.api.get(rig.face_geometry) : null);
+    face.setGeometry(await ns.api.getIfPresent("/api/v1/face/geometry"));
     shows.setShows(showList.shows || []);
     expressions.setExpressions(expressionList.expressions || []);
     telemetry.start(Number(rateInput.value));

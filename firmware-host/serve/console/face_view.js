@@ -1,8 +1,9 @@
 // The face, drawn in a canvas. Two sources:
-// - the reduced model's control points: when GET /api/v1/rig names a
-//   `face_geometry` endpoint, its neutral positions (mm) and edges, moved by
-//   each telemetry frame's `landmarks_mm` displacements (the proposed API);
-// - otherwise a schematic face drawn from the face signals alone.
+// - GET /api/v1/face/geometry: the skin mesh at rest, moved by each telemetry
+//   frame's `landmarks_mm` (the reduced model's control-point displacements)
+//   through the weights W, with the control points marked. Between the points
+//   the skin is an interpolation, not the full face model (docs/API.md);
+// - when the head has none (404): a schematic face drawn from the face signals.
 "use strict";
 window.FaceCtl = window.FaceCtl || {};
 
@@ -14,6 +15,8 @@ window.FaceCtl = window.FaceCtl || {};
       this.keys = new Map();  // signal key -> index in a frame's `face`
       this.neutral = [];
       this.geometry = null;
+      this.view = null;
+      this.moved = null;  // the skin's vertices this frame, x y z per vertex
     }
 
     setSignals(signals) {
@@ -21,11 +24,13 @@ window.FaceCtl = window.FaceCtl || {};
       this.neutral = signals.map((s) => s.neutral);
     }
 
-    // geometry: {landmarks: [{name, position_mm: [x, y, z]}], edges: [[i, j]]} or null.
+    // geometry: GET /api/v1/face/geometry's document, or null for the schematic.
     setGeometry(geometry) {
-      this.geometry = geometry && Array.isArray(geometry.landmarks) ? geometry : null;
+      this.geometry = isGeometry(geometry) ? geometry : null;
+      this.view = this.geometry ? frontView(this.geometry.skin.vertices_mm, this.canvas) : null;
+      this.moved = this.geometry ? new Float64Array(this.geometry.skin.vertices_mm.length) : null;
       this.modeLabel.textContent = this.geometry
-        ? `(reduced model: ${this.geometry.landmarks.length} points)`
+        ? `(reduced model: ${this.geometry.landmarks.length} control points, skin interpolated)`
         : "(schematic from the signals)";
     }
 
@@ -33,8 +38,14 @@ window.FaceCtl = window.FaceCtl || {};
       const ctx = this.canvas.getContext("2d");
       ctx.clearRect(0, 0, this.canvas.width, this.canvas.height);
       const colours = palette();
-      if (this.geometry) drawPoints(ctx, this.canvas, this.geometry, frame && frame.landmarks_mm, colours);
-      else drawSchematic(ctx, this.canvas, this.signalReader(frame), colours);
+      if (this.geometry) {
+        const d = frame && Array.isArray(frame.landmarks_mm) ? frame.landmarks_mm : null;
+        deform(this.geometry, d, this.moved);
+        drawSkin(ctx, this.view, this.geometry.skin.triangles, this.moved, colours);
+        drawPoints(ctx, this.view, this.geometry, d, colours);
+      } else {
+        drawSchematic(ctx, this.canvas, this.signalReader(frame), colours);
+      }
     }
 
     signalReader(frame) {
@@ -47,6 +58,12 @@ window.FaceCtl = window.FaceCtl || {};
     }
   }
 
+  function isGeometry(g) {
+    if (!g || !Array.isArray(g.landmarks) || !g.skin || !Array.isArray(g.weights)) return false;
+    const vertices = g.skin.vertices_mm.length / 3;
+    return vertices > 0 && g.weights.length === vertices * g.landmarks.length;
+  }
+
   function palette() {
     const style = getComputedStyle(document.documentElement);
     const get = (name) => style.getPropertyValue(name).trim();
@@ -54,34 +71,93 @@ window.FaceCtl = window.FaceCtl || {};
              point: get("--face-point"), dim: get("--text-dim") };
   }
 
-  // Front view of the control points: +x (the head's left) to the right of
-  // the picture, as one sees a face, +y up.
-  function drawPoints(ctx, canvas, geometry, displacements, c) {
-    const points = geometry.landmarks.map((l, i) => {
-      const p = l.position_mm;
-      const d = Array.isArray(displacements) ? displacements.slice(3 * i, 3 * i + 3) : [0, 0, 0];
-      return [p[0] + (d[0] || 0), p[1] + (d[1] || 0)];
-    });
-    const xs = geometry.landmarks.map((l) => l.position_mm[0]);
-    const ys = geometry.landmarks.map((l) => l.position_mm[1]);
-    const cx = (Math.min(...xs) + Math.max(...xs)) / 2, cy = (Math.min(...ys) + Math.max(...ys)) / 2;
-    const scale = 0.8 * Math.min(canvas.width / (Math.max(...xs) - Math.min(...xs) || 1),
-                                 canvas.height / (Math.max(...ys) - Math.min(...ys) || 1));
-    const sx = (p) => canvas.width / 2 + (p[0] - cx) * scale;
-    const sy = (p) => canvas.height / 2 - (p[1] - cy) * scale;
+  // Front view, fitted to the skin at rest: +x (the head's left) to the right
+  // of the picture, as one sees a face, +y up.
+  function frontView(vertices, canvas) {
+    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+    for (let i = 0; i < vertices.length; i += 3) {
+      x0 = Math.min(x0, vertices[i]); x1 = Math.max(x1, vertices[i]);
+      y0 = Math.min(y0, vertices[i + 1]); y1 = Math.max(y1, vertices[i + 1]);
+    }
+    const scale = 0.9 * Math.min(canvas.width / (x1 - x0 || 1), canvas.height / (y1 - y0 || 1));
+    const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+    return { x: (x) => canvas.width / 2 + (x - cx) * scale,
+             y: (y) => canvas.height / 2 - (y - cy) * scale };
+  }
+
+  // out = rest + W · d: each vertex moved by the weighted control-point displacements.
+  function deform(g, d, out) {
+    const rest = g.skin.vertices_mm, w = g.weights, points = g.landmarks.length;
+    out.set(rest);
+    if (!d || d.length !== 3 * points) return;
+    for (let v = 0, row = 0; v < out.length; v += 3, row += points) {
+      for (let p = 0; p < points; p++) {
+        const k = w[row + p];
+        out[v] += k * d[3 * p];
+        out[v + 1] += k * d[3 * p + 1];
+        out[v + 2] += k * d[3 * p + 2];
+      }
+    }
+  }
+
+  // Shaded triangles, farthest first; lit from the viewer, so a slope facing
+  // away from the picture plane is darker.
+  function drawSkin(ctx, view, triangles, v, c) {
+    const order = [];
+    for (let t = 0; t < triangles.length; t += 3) {
+      const [a, b, d] = [3 * triangles[t], 3 * triangles[t + 1], 3 * triangles[t + 2]];
+      order.push({ t, z: v[a + 2] + v[b + 2] + v[d + 2], light: facing(v, a, b, d) });
+    }
+    order.sort((p, q) => p.z - q.z);
+    ctx.lineWidth = 0.5;
     ctx.strokeStyle = c.line;
-    ctx.lineWidth = 2;
+    for (const { t, light } of order) {
+      ctx.beginPath();
+      for (let k = 0; k < 3; k++) {
+        const i = 3 * triangles[t + k];
+        ctx[k ? "lineTo" : "moveTo"](view.x(v[i]), view.y(v[i + 1]));
+      }
+      ctx.closePath();
+      ctx.fillStyle = c.skin;
+      ctx.globalAlpha = 1;
+      ctx.fill();
+      ctx.fillStyle = "#000";
+      ctx.globalAlpha = 0.65 * (1 - light);
+      ctx.fill();
+      ctx.globalAlpha = 0.35;
+      ctx.stroke();
+    }
+    ctx.globalAlpha = 1;
+  }
+
+  // |n_z| of the triangle's unit normal: 1 facing the viewer, 0 edge-on.
+  function facing(v, a, b, d) {
+    const ux = v[b] - v[a], uy = v[b + 1] - v[a + 1], uz = v[b + 2] - v[a + 2];
+    const wx = v[d] - v[a], wy = v[d + 1] - v[a + 1], wz = v[d + 2] - v[a + 2];
+    const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+    return Math.abs(nz) / (Math.hypot(nx, ny, nz) || 1);
+  }
+
+  // The control points where the model puts them, joined along the lips and brows.
+  function drawPoints(ctx, view, g, d, c) {
+    const points = g.landmarks.map((l, i) => {
+      const p = l.position_mm;
+      const o = d && d.length === 3 * g.landmarks.length ? d.slice(3 * i, 3 * i + 3) : [0, 0, 0];
+      return [view.x(p[0] + o[0]), view.y(p[1] + o[1])];
+    });
+    ctx.strokeStyle = c.point;
+    ctx.lineWidth = 1.5;
     ctx.beginPath();
-    for (const [a, b] of geometry.edges || []) {
+    for (const [a, b] of g.edges || []) {
       if (!points[a] || !points[b]) continue;
-      ctx.moveTo(sx(points[a]), sy(points[a]));
-      ctx.lineTo(sx(points[b]), sy(points[b]));
+      ctx.moveTo(points[a][0], points[a][1]);
+      ctx.lineTo(points[b][0], points[b][1]);
     }
     ctx.stroke();
     ctx.fillStyle = c.point;
-    for (const p of points) {
+    for (const [x, y] of points) {
       ctx.beginPath();
-      ctx.arc(sx(p), sy(p), 3, 0, 2 * Math.PI);
+      ctx.arc(x, y, 3, 0, 2 * Math.PI);
       ctx.fill();
     }
   }

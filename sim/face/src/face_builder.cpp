@@ -78,6 +78,20 @@ double smoothstep01(double x) {
   return x * x * (3 - 2 * x);
 }
 
+Vec3 mean_plus_offset(const std::vector<int>& vertices, const Vec3& offset, const Points& skin) {
+  Vec3 s = Vec3::Zero();
+  for (int v : vertices) s += skin.get(v);
+  return s / static_cast<double>(vertices.size()) + offset;
+}
+
+void check_landmark_vertices(const HeadSpec& spec, const LandmarkSpec& l, int nbase) {
+  for (int v : l.vertices)
+    if (v < 0 || v >= nbase)
+      throw InputError(spec.dir + "/landmarks.yaml: landmark '" + l.name + "': vertex " +
+                       std::to_string(v) + " is outside the skin's 0.." +
+                       std::to_string(nbase - 1));
+}
+
 }  // namespace
 
 int FaceModel::landmark_index(const std::string& name) const {
@@ -87,9 +101,16 @@ int FaceModel::landmark_index(const std::string& name) const {
 }
 
 Vec3 landmark_position(const FaceModel& m, const Points& skin, int l) {
-  Vec3 s = Vec3::Zero();
-  for (int v : m.landmark_vertices[l]) s += skin.get(v);
-  return s / static_cast<double>(m.landmark_vertices[l].size()) + m.landmark_offset[l];
+  return mean_plus_offset(m.landmark_vertices[l], m.landmark_offset[l], skin);
+}
+
+Vec3 landmark_position(const HeadSpec& spec, const LandmarkSpec& l, const Points& skin) {
+  check_landmark_vertices(spec, l, static_cast<int>(skin.size()));
+  return mean_plus_offset(l.vertices, l.offset, skin);
+}
+
+TriMesh read_base_skin(const HeadSpec& spec) {
+  return cut_openings(read_obj(spec.skin_file, spec.skin_scale), spec);
 }
 
 namespace {
@@ -108,11 +129,7 @@ struct Landmarks {
 
 void bind_landmarks(const HeadSpec& spec, int nbase, FaceModel& m) {
   for (const LandmarkSpec& l : spec.landmarks) {
-    for (int v : l.vertices)
-      if (v < 0 || v >= nbase)
-        throw InputError(spec.dir + "/landmarks.yaml: landmark '" + l.name + "': vertex " +
-                         std::to_string(v) + " is outside the skin's 0.." +
-                         std::to_string(nbase - 1));
+    check_landmark_vertices(spec, l, nbase);
     m.landmark_names.push_back(l.name);
     m.landmark_vertices.push_back(l.vertices);
     m.landmark_offset.push_back(l.offset);
@@ -380,7 +397,7 @@ void build_eyelids(const HeadSpec& spec, const Landmarks& L, const Adjacency& ad
 FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
   FaceModel m;
   m.spec = spec;
-  const TriMesh base = cut_openings(read_obj(spec.skin_file, spec.skin_scale), spec);
+  const TriMesh base = read_base_skin(spec);
   const int nbase = static_cast<int>(base.v.size());
   Points base_n;
   vertex_normals(base.v, base.tris, base_n);

@@ -138,6 +138,8 @@ def drive_console(browser, base, screenshot):
     if sent:
         raise Failure(f"the page sent commands on load: {sent}")
 
+    check_face_mode(browser, base)
+
     browser.click("#enable")
     seen = wait_for_state(browser, "RUNNING", 15)
     print("after ENABLE the page showed", " -> ".join(seen))
@@ -159,6 +161,21 @@ def drive_console(browser, base, screenshot):
     errors = browser_errors(browser)
     if errors:
         raise Failure("the browser's console had errors:\n  " + "\n  ".join(errors))
+
+
+def check_face_mode(browser, base):
+    """The face panel draws the reduced model's points and skin when the server
+    has a face geometry, else says it draws the schematic."""
+    try:
+        points = len(get_json(base + "/api/v1/face/geometry")["landmarks"])
+        expected = f"(reduced model: {points} control points"
+    except urllib.error.HTTPError as error:
+        if error.code != 404:
+            raise
+        expected = "(schematic from the signals)"
+    wait_for(f"the face panel to say {expected}", lambda: browser.evaluate(
+        "document.getElementById('face-mode').textContent").startswith(expected), 10)
+    print("face panel:", browser.evaluate("document.getElementById('face-mode').textContent"))
 
 
 def check_refusal_shown(browser, base):

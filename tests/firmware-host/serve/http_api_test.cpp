@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "control/face/reduced_face_model.hpp"
 #include "tests/firmware-host/serve/served_head.hpp"
 
 namespace facectl {
@@ -26,7 +27,10 @@ constexpr const char* kToken = "0123456789abcdef-token";
 // The API of a ServedHead on a free loopback port, with or without a token.
 class ServedApi {
  public:
-  explicit ServedApi(std::string token = "") {
+  explicit ServedApi(std::string token = "",
+                     const std::string& config = std::string(FACECTL_SOURCE_DIR) +
+                                                 "/config/facectl.yaml")
+      : head_(config) {
     HttpApi::Options o;
     o.listen = parse_listen_address("127.0.0.1:0");
     o.token = std::move(token);
@@ -158,7 +162,8 @@ TEST(HttpApi, AResetDoesNotEnableUnlessAskedTo) {
 
 TEST(HttpApi, EveryPathNeedsTheTokenWhenOneIsSet) {
   ServedApi api(kToken);
-  for (const char* path : {"/api/v1/state", "/api/v1/rig", "/", "/index.html", "/nope"}) {
+  for (const char* path :
+       {"/api/v1/state", "/api/v1/rig", "/api/v1/face/geometry", "/", "/index.html", "/nope"}) {
     const auto r = api.client().Get(path);
     ASSERT_TRUE(r) << path;
     EXPECT_EQ(r->status, 401) << path;
@@ -179,6 +184,9 @@ TEST(HttpApi, EveryPathNeedsTheTokenWhenOneIsSet) {
   EXPECT_EQ(right->status, 200);
   const auto param = api.client().Get(std::string("/api/v1/state?access_token=") + kToken);
   EXPECT_EQ(param->status, 200);
+  const auto geometry = api.client().Get("/api/v1/face/geometry",
+                                         {{"Authorization", std::string("Bearer ") + kToken}});
+  EXPECT_EQ(geometry->status, 200);
 }
 
 TEST(HttpApi, TheRigDescribesActuatorsAndSignalsInYamlUnits) {
@@ -244,6 +252,97 @@ TEST(HttpApi, TheTelemetryStreamSendsJsonEventsAtTheChosenRate) {
     EXPECT_EQ(j["face"].size(), m.layout.size());
     EXPECT_EQ(j["state"], "IDLE");
   }
+}
+
+TEST(HttpApi, TheFaceGeometryIsTheReducedModelsPointsAndTheSkin) {
+  ServedApi api;
+  const auto r = api.client().Get("/api/v1/face/geometry");
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json g = body(r);
+  const auto& reduced = *api.head().session().head.model().mapping.reduced;
+  ASSERT_EQ(g["landmarks"].size(), reduced.control_points.size());
+  EXPECT_EQ(g["landmarks"][0]["name"], reduced.control_points[0]);
+  EXPECT_EQ(g["landmarks"][0]["position_mm"].size(), 3u);
+  const std::size_t vertices = g["skin"]["vertices_mm"].size() / 3;
+  EXPECT_GT(vertices, 400u);
+  EXPECT_EQ(g["weights"].size(), vertices * reduced.control_points.size());
+}
+
+// A head without reduced_face.txt, on a rig that reads no control points: no geometry,
+// and the console keeps its schematic face.
+TEST(HttpApi, TheFaceGeometryIs404ForAHeadWithoutAReducedModel) {
+  testing::TempDir dir;
+  ServedApi api("", testing::copied_head_config(dir, "hobby.yaml", false));
+  const auto r = api.client().Get("/api/v1/face/geometry");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 404);
+  EXPECT_NE(body(r)["error"].get<std::string>().find("reduced face model"), std::string::npos);
+  // Its telemetry has no landmarks_mm.
+  httplib::Client c("http://" + api.address());
+  std::string first;
+  c.Get("/api/v1/telemetry?rate_hz=50", [&](const char* data, std::size_t n) {
+    first.append(data, n);
+    return first.find("\n\n") == std::string::npos;
+  });
+  ASSERT_EQ(first.rfind("data: ", 0), 0u) << first;
+  EXPECT_FALSE(json::parse(first.substr(6, first.find("\n\n") - 6)).contains("landmarks_mm"));
+}
+
+// Each telemetry frame carries the control points' displacements (mm) that face::evaluate
+// gives for the frame's face signals: a smile moves the left lip corner up and out.
+TEST(HttpApi, TelemetryCarriesTheReducedModelsDisplacements) {
+  ServedApi api;
+  const ControllerModel& m = api.head().session().head.model();
+  const std::size_t zyg = *m.layout.find("zygomaticus_major_l");
+  auto frame = [&] {
+    httplib::Client c("http://" + api.address());
+    std::string text;
+    c.Get("/api/v1/telemetry?rate_hz=50", [&](const char* data, std::size_t n) {
+      text.append(data, n);
+      return text.find("\n\n") == std::string::npos;
+    });
+    return json::parse(text.substr(6, text.find("\n\n") - 6));
+  };
+  const json neutral = frame();
+  ASSERT_EQ(
+      api.client()
+          .Post("/api/v1/pose", R"({"signals":{"zygomaticus_major_l":1}})", "application/json")
+          ->status,
+      200);
+  ASSERT_TRUE(testing::wait_until(
+      [&] {
+        TelemetryRecord rec;
+        api.head().service().latest(rec);
+        return std::abs(rec.face[zyg] - 1.0) < 1e-6;
+      },
+      3.0));
+  const json smile = frame();
+
+  const auto& reduced = *m.mapping.reduced;
+  ASSERT_EQ(smile["landmarks_mm"].size(), 3 * reduced.control_points.size());
+  // The frame's signals in SI, through the reduced model (muscles first, head.yaml order).
+  std::vector<double> contractions;
+  for (std::size_t k = 0; k < reduced.muscles.size(); ++k)
+    contractions.push_back(smile["face"][k].get<double>());
+  const auto yaml = [&](std::size_t i) {
+    return smile["face"][i].get<double>() * yaml_to_si(m.layout.signal(i).kind);
+  };
+  face::ReducedFaceWorkspace w = face::make_reduced_workspace(reduced);
+  std::vector<double> expected(3 * reduced.control_points.size());
+  face::evaluate(reduced, w, contractions, yaml(m.layout.jaw_pitch()), yaml(m.layout.jaw_yaw()),
+                 yaml(m.layout.jaw_protrusion()), expected);
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    EXPECT_NEAR(smile["landmarks_mm"][i].get<double>(), expected[i] * 1e3, 2e-4) << i;
+
+  const std::size_t corner =
+      std::find(reduced.control_points.begin(), reduced.control_points.end(), "fdp_8_3") -
+      reduced.control_points.begin();
+  const auto moved = [&](std::size_t axis) {
+    return smile["landmarks_mm"][3 * corner + axis].get<double>() -
+           neutral["landmarks_mm"][3 * corner + axis].get<double>();
+  };
+  EXPECT_GT(moved(0), 0.5);  // out: +x is the head's left
+  EXPECT_GT(moved(1), 0.5);  // up
 }
 
 // The whole answer to `request`, sent as it is over a plain TCP connection.

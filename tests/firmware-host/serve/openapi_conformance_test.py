@@ -416,6 +416,7 @@ def exercise(chk, port):
     """A request to every documented operation, in an order that leaves the head IDLE."""
     call(chk, port, "GET", "/api/v1/state", 200)
     rig = call(chk, port, "GET", "/api/v1/rig", 200)
+    geometry = call(chk, port, "GET", "/api/v1/face/geometry", 200)
     call(chk, port, "GET", "/api/v1/shows", 200)
     expressions = call(chk, port, "GET", "/api/v1/expressions", 200)
     call(chk, port, "GET", "/api/v1/events", 200)
@@ -450,7 +451,7 @@ def exercise(chk, port):
 
     call(chk, port, "GET", "/api/v1/telemetry", 400, query={"rate_hz": "5"}, valid=False)
     call(chk, port, "GET", "/api/v1/telemetry", 400, query={"rate_hz": "101"}, valid=False)
-    check_telemetry(chk, port, rig)
+    check_telemetry(chk, port, rig, geometry)
 
     call(chk, port, "GET", "/", 404 if not console_present(port) else 200)
     call(chk, port, "GET", "/console/", 404 if not console_present(port) else 200)
@@ -498,7 +499,7 @@ def console_present(port):
     return status == 200
 
 
-def check_telemetry(chk, port, rig):
+def check_telemetry(chk, port, rig, geometry):
     method, path = "GET", "/api/v1/telemetry"
     query = {"rate_hz": "50"}
     chk.check_request(method, path, query, None, True)
@@ -529,6 +530,9 @@ def check_telemetry(chk, port, rig):
                 if len(event.get(key, [])) != len(rig[of]):
                     fail("telemetry: %s has %d values, the rig %d %s" %
                          (key, len(event.get(key, [])), len(rig[of]), of))
+        if geometry and len(event.get("landmarks_mm", [])) != 3 * len(geometry["landmarks"]):
+            fail("telemetry: landmarks_mm has %d values, expected 3 per geometry landmark (%d)" %
+                 (len(event.get("landmarks_mm", [])), len(geometry["landmarks"])))
 
     # Open streams until one is refused (serve.max_streams is 1..64).
     streams = []

@@ -19,11 +19,11 @@ namespace facectl::testing {
 // shipped demo plus whatever a test writes into shows().
 class ServedHead {
  public:
-  ServedHead() {
+  explicit ServedHead(const std::string& config = std::string(FACECTL_SOURCE_DIR) +
+                                                  "/config/facectl.yaml") {
     std::filesystem::copy_file(std::string(FACECTL_SOURCE_DIR) + "/config/shows/demo.yaml",
                                shows_.file("demo.yaml"));
-    s_.head.cfg = std::make_unique<LoadedConfig>(
-        load_config(std::string(FACECTL_SOURCE_DIR) + "/config/facectl.yaml"));
+    s_.head.cfg = std::make_unique<LoadedConfig>(load_config(config));
     RuntimeConfig& rt = s_.head.cfg->runtime;
     // SCHED_FIFO where permitted (root, as in CI), as `facectl serve` runs:
     // at normal priority a busy machine (a sanitizer build) faults the loop
@@ -55,5 +55,23 @@ class ServedHead {
   TempDir logs_;
   ServeSession s_;
 };
+
+// A runtime file in `dir` for a copy of the default head (with or without its reduced
+// face model, reduced_face.txt) on the shipped rig `rig` (e.g. "hobby.yaml", which reads
+// no control points, so the head needs no reduced model).
+inline std::string copied_head_config(const TempDir& dir, const std::string& rig,
+                                      bool with_reduced_model) {
+  namespace fs = std::filesystem;
+  const std::string src = std::string(FACECTL_SOURCE_DIR) + "/config/";
+  fs::create_directory(dir.file("head"));
+  for (const auto& f : fs::directory_iterator(src + "heads/default")) {
+    if (!with_reduced_model && f.path().filename() == "reduced_face.txt") continue;
+    fs::copy_file(f.path(), fs::path(dir.file("head")) / f.path().filename());
+  }
+  dir.write("facectl.yaml", "head: " + dir.file("head/head.yaml") + "\nrig: " + src + "rigs/" +
+                                rig + "\nexpressions: " + src +
+                                "expressions/library.yaml\nshow: " + src + "shows/demo.yaml\n");
+  return dir.file("facectl.yaml");
+}
 
 }  // namespace facectl::testing

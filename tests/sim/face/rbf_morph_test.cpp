@@ -45,11 +45,30 @@ TEST(RbfMorph, RadiusIsDistanceToNearestOtherLandmark) {
   EXPECT_DOUBLE_EQ(g.radius[3], std::sqrt(1 + 1 + 4.0));
 }
 
+// The matrix form (facectl serve's skin weights) is the same interpolant, any values.
+TEST(RbfMorph, InterpolationMatrixIsTheMorphAsALinearMap) {
+  std::mt19937 rng(13);
+  const std::vector<Vec3> src = random_cloud(23, rng), dst = random_cloud(23, rng);
+  const std::vector<Vec3> queries = random_cloud(50, rng);
+  const Eigen::MatrixXd W = rbf_interpolation_matrix(src, queries);
+  const RbfMorph g = fit_rbf(src, dst);
+  Eigen::MatrixX3d values(23, 3);
+  for (int i = 0; i < 23; ++i) values.row(i) = dst[i].transpose();
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    const Vec3 got = (W.row(static_cast<Eigen::Index>(q)) * values).transpose();
+    EXPECT_LT((got - g.apply(queries[q])).norm(), 1e-10);
+    EXPECT_NEAR(W.row(static_cast<Eigen::Index>(q)).sum(), 1.0, 1e-10);
+  }
+  const Eigen::MatrixXd at_centers = rbf_interpolation_matrix(src, src);
+  EXPECT_LT((at_centers - Eigen::MatrixXd::Identity(23, 23)).cwiseAbs().maxCoeff(), 1e-10);
+}
+
 TEST(RbfMorph, RejectsTooFewOrMismatchedLandmarks) {
   std::vector<Vec3> three = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
   EXPECT_THROW(fit_rbf(three, three), std::invalid_argument);
   std::vector<Vec3> four = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
   EXPECT_THROW(fit_rbf(four, three), std::invalid_argument);
+  EXPECT_THROW(rbf_interpolation_matrix(three, four), std::invalid_argument);
 }
 
 }  // namespace

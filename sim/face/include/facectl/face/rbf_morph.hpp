@@ -24,4 +24,11 @@ struct RbfMorph {
 // singular system (e.g. coplanar landmarks, for which the affine part is undetermined).
 RbfMorph fit_rbf(const std::vector<Vec3>& source, const std::vector<Vec3>& target);
 
+// The same interpolation as a linear map of the values at `centers`: row q weighs them into
+// the value at queries[q] (queries × centers). Linear in the values, so one matrix serves
+// any displacement of the centres; each row reproduces affine functions, so sums to 1.
+// Throws as fit_rbf.
+Eigen::MatrixXd rbf_interpolation_matrix(const std::vector<Vec3>& centers,
+                                         const std::vector<Vec3>& queries);
+
 }  // namespace facectl::face
