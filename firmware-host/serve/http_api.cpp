@@ -167,7 +167,7 @@ void HttpApi::routes() {
     answer(res, service_.reset(who(req), enable));
   });
   s.Get("/api/v1/rig", [this](const httplib::Request&, httplib::Response& res) {
-    reply(res, 200, rig_json(*service_.head().cfg));
+    reply(res, 200, rig_json(service_));
   });
   s.Get("/api/v1/shows", [this](const httplib::Request&, httplib::Response& res) {
     json shows = json::array();
