@@ -57,18 +57,25 @@ json state_json(const HeadService& service) {
   return j;
 }
 
-json rig_json(const LoadedConfig& config) {
+json rig_json(const HeadService& service) {
+  const LoadedConfig& config = *service.head().cfg;
   const ControllerModel& m = config.built.model;
   json actuators = json::array();
-  for (const ActuatorModel& a : m.actuators) {
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    const ActuatorModel& a = m.actuators[i];
     const double k = yaml_per_si(a);
+    // Where POST /api/v1/jog may take it; a mandible strut is never jogged alone.
+    const HeadService::JogRange& r = service.jog_ranges()[i];
+    const json jog =
+        service.head().controller->is_strut(i) ? json(nullptr) : json{{"min", r.lo}, {"max", r.hi}};
     actuators.push_back({{"name", a.name},
                          {"unit", yaml_unit(a)},
                          {"min", a.limits.position_min * k},
                          {"max", a.limits.position_max * k},
                          {"soft_min", a.limits.soft_min * k},
                          {"soft_max", a.limits.soft_max * k},
-                         {"rest", a.rest * k}});
+                         {"rest", a.rest * k},
+                         {"jog", jog}});
   }
   const FaceBounds b = face_bounds(m);
   json signals = json::array();

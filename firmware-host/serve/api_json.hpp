@@ -13,7 +13,8 @@ namespace facectl {
 // The JSON documents of the HTTP API (docs/API.md). Values are in the units
 // the YAML files use: deg for rotary actuators and angles, mm for linear ones.
 nlohmann::json state_json(const HeadService& service);
-nlohmann::json rig_json(const LoadedConfig& config);
+// Each actuator's `jog` is its HeadService::JogRange, or null for a strut.
+nlohmann::json rig_json(const HeadService& service);
 // `landmarks_mm`, when given: the control points' displacements (FaceLandmarks).
 nlohmann::json telemetry_json(const TelemetryRecord& rec, const ControllerModel& model,
                               std::span<const double> landmarks_mm = {});

@@ -210,7 +210,7 @@ void HttpApi::routes() {
     answer(res, service_.reset(who(req), enable));
   });
   s.Get("/api/v1/rig", [this](const httplib::Request&, httplib::Response& res) {
-    reply(res, 200, rig_json(*service_.head().cfg));
+    reply(res, 200, rig_json(service_));
   });
   s.Get("/api/v1/face/geometry", [this](const httplib::Request&, httplib::Response& res) {
     if (!geometry_.geometry) return reply_error(res, 404, geometry_.why_not);

@@ -17,11 +17,12 @@ window.FaceCtl = window.FaceCtl || {};
   const shows = new ns.ShowsPanel();
   const expressions = new ns.ExpressionsPanel();
   const sliders = new ns.SignalSliders();
+  const jog = new ns.JogPanel();
   const events = new ns.EventsPanel();
   const face = new ns.FaceView(document.getElementById("face"), document.getElementById("face-mode"));
   const telemetry = new ns.Telemetry(
     (text, ok) => { ns.ui.setText(telemetryStatus, text); telemetryStatus.className = ok ? "ok" : "lost"; },
-    (frame) => sliders.showLive(frame.face));
+    (frame) => { sliders.showLive(frame.face); jog.showMeasured(frame); });
   const plots = new ns.ActuatorPlots(telemetry);
 
   let connected = false;
@@ -40,6 +41,7 @@ window.FaceCtl = window.FaceCtl || {};
       ns.api.get("/api/v1/rig"), ns.api.get("/api/v1/shows"), ns.api.get("/api/v1/expressions")]);
     document.title = `facectl · ${rig.head} on ${rig.rig}`;
     plots.setActuators(rig.actuators || []);
+    jog.setActuators(rig.actuators || []);
     sliders.setSignals(rig.signals || []);
     face.setSignals(rig.signals || []);
     face.setGeometry(await ns.api.getIfPresent("/api/v1/face/geometry"));
@@ -67,10 +69,13 @@ window.FaceCtl = window.FaceCtl || {};
       safety.render(state);
       shows.render(state);
       expressions.render(state);
+      sliders.render(state);
+      jog.render(state);
     } catch (error) {
       setConnected(false, ns.ui.describe(error));
       safety.render(null);
       shows.render(null);
+      jog.render(null);
     }
     polling = false;
     stateTimer = setTimeout(pollState, pollAgain ? 0 : STATE_EVERY_MS);

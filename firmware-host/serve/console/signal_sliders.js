@@ -15,7 +15,12 @@ window.FaceCtl = window.FaceCtl || {};
       this.inputs = [];
       this.live = [];
       this.pending = null;
-      document.getElementById("sliders-neutral").onclick = () => {
+      this.neutral = document.getElementById("sliders-neutral");
+      // In JOG the face input is ignored: a pose sent then would only show after the jog.
+      this.jogNote = el("p", { class: "hint jog-note", hidden: "",
+                               text: "Off in JOG: the face input is ignored. End jog to hold a pose again." });
+      this.box.before(this.jogNote);
+      this.neutral.onclick = () => {
         this.signals.forEach((s, i) => this.setValue(i, s.neutral));
         this.send();
       };
@@ -60,6 +65,14 @@ window.FaceCtl = window.FaceCtl || {};
       const signals = {};
       this.signals.forEach((s, i) => { signals[s.key] = Number(this.inputs[i].value); });
       await command("/api/v1/pose", { signals });
+    }
+
+    // GET /api/v1/state's answer: the sliders are off while the head is in JOG.
+    render(state) {
+      const jogging = Boolean(state && state.state === "JOG");
+      this.jogNote.hidden = !jogging;
+      this.neutral.disabled = jogging;
+      this.inputs.forEach((input) => { input.disabled = jogging; });
     }
 
     showLive(face) {

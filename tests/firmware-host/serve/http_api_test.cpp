@@ -208,6 +208,46 @@ TEST(HttpApi, TheRigDescribesActuatorsAndSignalsInYamlUnits) {
   }
 }
 
+// The rig names each actuator's jog range, and POST /api/v1/jog keeps to
+// exactly that range: its ends are accepted, a step past them is refused.
+TEST(HttpApi, TheRigGivesTheJogRangeThatJogKeepsTo) {
+  ServedApi api;
+  const json rig = body(api.client().Get("/api/v1/rig"));
+  ASSERT_EQ(api.client().Post("/api/v1/enable", "", "application/json")->status, 200);
+  ASSERT_TRUE(api.head().wait_for(SafetyState::kRunning));
+  ASSERT_EQ(api.client().Post("/api/v1/jog/start", "", "application/json")->status, 200);
+  const auto jog = [&](const json& a, double position) {
+    const json request{{"actuator", a["name"]}, {"position", position}};
+    return api.client().Post("/api/v1/jog", request.dump(), "application/json")->status;
+  };
+  int jogable = 0;
+  for (const json& a : rig["actuators"]) {
+    ASSERT_TRUE(a.contains("jog")) << a;
+    const std::string name = a["name"].get<std::string>();
+    if (name.starts_with("jaw_")) {  // the mandible's struts: refused, so no range
+      EXPECT_TRUE(a["jog"].is_null()) << a;
+      EXPECT_EQ(jog(a, a["rest"].get<double>()), 409) << a;
+      continue;
+    }
+    ASSERT_TRUE(a["jog"].is_object()) << a;
+    ++jogable;
+    const double lo = a["jog"]["min"].get<double>();
+    const double hi = a["jog"]["max"].get<double>();
+    EXPECT_LE(a["soft_min"].get<double>(), lo + 1e-9) << a;
+    EXPECT_LT(lo, hi) << a;
+    EXPECT_LE(hi, a["soft_max"].get<double>() + 1e-9) << a;
+    EXPECT_EQ(jog(a, lo - 0.01), 422) << a;
+    EXPECT_EQ(jog(a, hi + 0.01), 422) << a;
+    EXPECT_EQ(jog(a, hi), 200) << a;
+    EXPECT_EQ(jog(a, lo), 200) << a;
+    if (name == "cheek_l") {  // soft range -40..40 deg; no admissible face lowers it below 0
+      EXPECT_NEAR(lo, 0.0, 1e-6);
+      EXPECT_NEAR(hi, 37.0, 1e-6);
+    }
+  }
+  EXPECT_EQ(jogable, static_cast<int>(rig["actuators"].size()) - 3);
+}
+
 TEST(HttpApi, ThePoseHoldsTheGivenSignalsOverNeutral) {
   ServedApi api;
   const auto r =
