@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <numbers>
 #include <string>
 
 namespace facectl {
@@ -37,6 +38,18 @@ inline constexpr int kLimitFlagCount = 10;
 using LimitFlags = std::uint16_t;
 
 enum class ActuatorKind { kRotary, kLinear };
+
+// The rig file's unit for an actuator's positions (deg or mm, and per second),
+// and its factors to and from SI (rad or m): the one place that pairs them.
+constexpr const char* yaml_unit(ActuatorKind k) {
+  return k == ActuatorKind::kRotary ? "deg" : "mm";
+}
+constexpr double yaml_per_si(ActuatorKind k) {
+  return k == ActuatorKind::kRotary ? 180.0 / std::numbers::pi : 1e3;
+}
+constexpr double si_per_yaml(ActuatorKind k) {
+  return k == ActuatorKind::kRotary ? std::numbers::pi / 180.0 : 1e-3;
+}
 
 // What an actuator does when the controller faults (not on e-stop, which cuts
 // everything at once): see docs/SAFETY.md, "Fault reaction".

@@ -26,9 +26,8 @@ const std::array<LimitMarkRow, 4> kLimitMarkRows = {{{"position", kLimitPosition
                                                      {"approach", kLimitApproach, "#ea580c"}}};
 
 Plot actuator_plot_frame(const ActuatorModel& a, double& scale, std::string& unit) {
-  const bool rotary = a.kind == ActuatorKind::kRotary;
-  scale = rotary ? kDegPerRad : 1e3;
-  unit = rotary ? "deg" : "mm";
+  scale = yaml_per_si(a.kind);
+  unit = yaml_unit(a.kind);
   Plot plot;
   plot.title = a.name + " (" + a.bus + ") against its limits";
   plot.x_label = "time (s)";

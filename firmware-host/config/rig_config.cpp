@@ -17,7 +17,7 @@ struct Units {
 };
 
 Units units_of(ActuatorKind kind) {
-  return kind == ActuatorKind::kRotary ? Units{"deg", kDeg} : Units{"mm", 1e-3};
+  return {yaml_unit(kind), si_per_yaml(kind)};
 }
 
 Range parse_limit_range(const ConfigNode& node, double to_si) {

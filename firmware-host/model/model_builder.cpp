@@ -28,10 +28,6 @@ std::string describe(const MandibleEnvelope& e) {
   return buf;
 }
 
-std::string unit_name(ActuatorKind kind) {
-  return kind == ActuatorKind::kRotary ? "deg" : "mm";
-}
-
 // A rig axis wider than what it would narrow, stated without the override, is
 // silently narrowed at run time: the rig's author meant something else.
 void check_unmarked_widening(const EnvelopeSpec& spec, const MandibleEnvelope& before,
@@ -263,7 +259,7 @@ void check_mapping(std::size_t i, const ActuatorConfig& a, const std::string& wh
       out.problems.push_back(
           a.map.transform_where + ": " + who + ": a " + std::string(to_string(k)) +
           " linkage drives a " + (wants_linear ? "linear (mm)" : "rotary (deg)") +
-          " actuator, but this one is " + unit_name(a.model.kind) + " (inconsistent units)");
+          " actuator, but this one is " + yaml_unit(a.model.kind) + " (inconsistent units)");
     }
   }
   if (!map.drives(i)) {

@@ -46,8 +46,8 @@ void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
     }
     if (!actuator.has_encoding) e = custom_can::default_encoding(bus.can.width);
   }
-  const double per_unit = actuator.model.kind == ActuatorKind::kRotary ? kDeg : 1e-3;
-  const char* unit = actuator.model.kind == ActuatorKind::kRotary ? "deg" : "mm";
+  const double per_unit = si_per_yaml(actuator.model.kind);
+  const char* unit = yaml_unit(actuator.model.kind);
   // A CiA 402 drive counts with the actuator's int32 encoding or, without
   // one, the bus's counts_per_rev / counts_per_mm.
   const bool drive = bus.is_cia402();

@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "firmware-host/model/model_builder.hpp"
-#include "firmware-host/serve/actuator_units.hpp"
 
 namespace facectl {
 namespace {
@@ -63,13 +62,13 @@ json rig_json(const HeadService& service) {
   json actuators = json::array();
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
     const ActuatorModel& a = m.actuators[i];
-    const double k = yaml_per_si(a);
+    const double k = yaml_per_si(a.kind);
     // Where POST /api/v1/jog may take it; a mandible strut is never jogged alone.
     const HeadService::JogRange& r = service.jog_ranges()[i];
     const json jog =
         service.head().controller->is_strut(i) ? json(nullptr) : json{{"min", r.lo}, {"max", r.hi}};
     actuators.push_back({{"name", a.name},
-                         {"unit", yaml_unit(a)},
+                         {"unit", yaml_unit(a.kind)},
                          {"min", a.limits.position_min * k},
                          {"max", a.limits.position_max * k},
                          {"soft_min", a.limits.soft_min * k},
@@ -101,7 +100,7 @@ json telemetry_json(const TelemetryRecord& rec, const ControllerModel& m,
   json commands = json::array();
   json measured = json::array();
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
-    const double k = yaml_per_si(m.actuators[i]);
+    const double k = yaml_per_si(m.actuators[i].kind);
     commands.push_back(rec.command[i] * k);
     measured.push_back(rec.feedback[i] * k);
   }

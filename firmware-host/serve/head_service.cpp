@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "control/realtime/loop_timer.hpp"
-#include "firmware-host/serve/actuator_units.hpp"
 #include "firmware-host/serve/loop_watchdog.hpp"
 #include "firmware-host/serve/systemd_notify.hpp"
 #include "firmware-host/verify/static_proof.hpp"
@@ -36,7 +35,7 @@ HeadService::HeadService(HeadRuntime& head, FaceDirector& director, const ShowCa
   const verify::StaticProof proof = verify::prove(*head_.cfg);
   const ControllerModel& m = head_.model();
   for (const ActuatorModel& a : m.actuators) {
-    const double k = yaml_per_si(a);
+    const double k = yaml_per_si(a.kind);
     JogRange r{a.limits.soft_min * k, a.limits.soft_max * k};
     for (const verify::ActuatorRange& p : proof.actuators) {
       if (p.name == a.name) r = {std::max(r.lo, p.lo), std::min(r.hi, p.hi)};
@@ -240,7 +239,7 @@ HeadService::Result HeadService::jog(const std::string& who, const std::string& 
     return refuse(422, e.str());
   }
   log_.add("command", who, "jog " + actuator + " to " + std::to_string(position));
-  head_.controller->request_jog_target(i, std::clamp(position, r.lo, r.hi) / yaml_per_si(a));
+  head_.controller->request_jog_target(i, std::clamp(position, r.lo, r.hi) / yaml_per_si(a.kind));
   return {};
 }
 

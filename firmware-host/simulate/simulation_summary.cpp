@@ -56,8 +56,7 @@ SummaryJson make_summary(const LoadedConfig& cfg, const SimulationInput& input,
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
     const ActuatorModel& a = m.actuators[i];
     const SimulationStats::Actuator& st = stats.actuators()[i];
-    const bool rotary = a.kind == ActuatorKind::kRotary;
-    const double scale = rotary ? kDegPerRad : 1e3;
+    const double scale = yaml_per_si(a.kind);
     SummaryJson limits = SummaryJson::object();
     for (int b = 0; b < kLimitFlagCount; ++b) {
       const Tally& t = st.limits.bits[static_cast<std::size_t>(b)];
@@ -70,7 +69,7 @@ SummaryJson make_summary(const LoadedConfig& cfg, const SimulationInput& input,
     }
     SummaryJson j = {{"name", a.name},
                      {"bus", a.bus},
-                     {"unit", rotary ? "deg" : "mm"},
+                     {"unit", yaml_unit(a.kind)},
                      {"tracking_rms", r6(stats.rms(i) * scale)},
                      {"tracking_max", r6(st.max_abs * scale)},
                      {"tracking_max_at_s", r6(st.max_at_s)},

@@ -19,10 +19,6 @@ constexpr std::size_t kMaxReported = 40;
 
 enum class Mode { kUniform, kExtremes, kBangBang, kNeutral, kNaN };
 
-double to_yaml(ActuatorKind kind) {
-  return kind == ActuatorKind::kRotary ? kDegPerRad : 1e3;
-}
-
 // The search drives the controller with a million ticks of bang-bang and
 // extreme input, which no servo's thermal rating is meant to survive: it
 // checks the control law's limits, so the simulated servos keep their thermal
@@ -147,13 +143,13 @@ class Search {
     };
     for (std::size_t i = 0; i < m_.actuators.size(); ++i) {
       const ActuatorModel& a = m_.actuators[i];
-      const double s = to_yaml(a.kind), x = c.measured()[i];
-      const char* u = a.kind == ActuatorKind::kRotary ? " deg" : " mm";
+      const double s = yaml_per_si(a.kind), x = c.measured()[i];
+      const char* u = yaml_unit(a.kind);
       char buf[160];
       if (reason == TransitionReason::kFeedbackOutOfRange &&
           !(a.limits.position_min <= x && x <= a.limits.position_max)) {
         std::snprintf(buf, sizeof buf,
-                      "measured at %.4g%s, outside its hardware range %.4g..%.4g%s", x * s, u,
+                      "measured at %.4g %s, outside its hardware range %.4g..%.4g %s", x * s, u,
                       a.limits.position_min * s, a.limits.position_max * s, u);
         add(a, buf);
       }
@@ -234,7 +230,7 @@ class Search {
     const ActuatorModel& a = m_.actuators[i];
     const ActuatorLimits& l = a.limits;
     ActuatorMargins& mg = result_.actuators[i];
-    const double s = to_yaml(a.kind);
+    const double s = yaml_per_si(a.kind);
     const double hw = std::min(x - l.position_min, l.position_max - x) * s;
     if (hw < mg.hardware) {
       mg.hardware = hw;

@@ -156,10 +156,8 @@ ShowCheck check_show(const LoadedConfig& base, const std::string& show_path,
         const LimitFlags f = r->limits[i];
         if (f == 0) continue;
         const ActuatorModel& a = m.actuators[i];
-        const bool rotary = a.kind == ActuatorKind::kRotary;
-        const double scale = rotary ? kDegPerRad : 1e3;
-        const double gap = std::fabs(c.targets()[i] - r->command[i]) * scale;
-        const std::string unit = rotary ? "deg" : "mm";
+        const double gap = std::fabs(c.targets()[i] - r->command[i]) * yaml_per_si(a.kind);
+        const std::string unit = yaml_unit(a.kind);
         const std::pair<LimitFlags, const char*> kinds[] = {
             {kLimitPosition, "position"},         {kLimitVelocity, "velocity"},
             {kLimitAcceleration, "acceleration"}, {kLimitJerk, "jerk"},

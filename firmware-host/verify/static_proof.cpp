@@ -19,10 +19,6 @@ namespace {
 
 using Severity = Finding::Severity;
 
-double to_yaml(ActuatorKind kind) {
-  return kind == ActuatorKind::kRotary ? kDegPerRad : 1e3;
-}
-
 std::string fmt(const char* f, double a) {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, a);
@@ -132,7 +128,7 @@ const BusConfig* cia402_bus(const RigConfig& rig, const ActuatorModel& a) {
 // 402 drive counts in int32 with the actuator's encoding or the bus's counts.
 void check_encoding(const ActuatorModel& a, const BusConfig* drive_bus, const std::string& who,
                     std::vector<Finding>& findings) {
-  const double scale = to_yaml(a.kind);
+  const double scale = yaml_per_si(a.kind);
   const ActuatorEncoding& e = a.encoding;
   const ActuatorEncoding::Raw type = drive_bus ? ActuatorEncoding::Raw::kInt32 : e.raw;
   std::optional<cia402::DriveCounts> counts;
@@ -213,9 +209,8 @@ void check_capability(const LoadedConfig& cfg, std::vector<Finding>& findings) {
   for (const ActuatorConfig& ac : cfg.rig.actuators) {
     const ActuatorLimits& l = ac.model.limits;
     const sim::ServoPlantParams& servo = ac.plant;
-    const bool rotary = ac.model.kind == ActuatorKind::kRotary;
-    const double scale = to_yaml(ac.model.kind);
-    const std::string u = rotary ? "deg" : "mm";
+    const double scale = yaml_per_si(ac.model.kind);
+    const std::string u = yaml_unit(ac.model.kind);
     auto check = [&](double rig, double can, const std::string& key, const std::string& unit) {
       if (can <= 0.0 || rig <= can * (1.0 + 1e-12)) return;  // 0: the servo has no such limit
       findings.push_back({Severity::kFail, "capability", ac.model.name,
@@ -243,8 +238,8 @@ void check_directions(const LoadedConfig& cfg, const Polytope& set,
   for (std::size_t k = 0; k < cfg.rig.actuators.size(); ++k) {
     const ActuatorConfig& ac = cfg.rig.actuators[k];
     const std::size_t i = cfg.built.file_order[k];
-    const double scale = to_yaml(ac.model.kind);
-    const std::string unit = ac.model.kind == ActuatorKind::kRotary ? "deg" : "mm";
+    const double scale = yaml_per_si(ac.model.kind);
+    const std::string unit = yaml_unit(ac.model.kind);
     for (const DirectionExpectation& e : ac.expect_direction) {
       for (std::size_t j = 0; j < set.size(); ++j) {
         face[j] = std::clamp(m.neutral[j], set.lo[j], set.hi[j]);
@@ -364,10 +359,10 @@ StaticProof prove(const LoadedConfig& cfg) {
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
     const ActuatorModel& a = m.actuators[i];
     const std::string who = a.name;
-    const double scale = to_yaml(a.kind);
+    const double scale = yaml_per_si(a.kind);
     ActuatorRange r;
     r.name = a.name;
-    r.unit = a.kind == ActuatorKind::kRotary ? "deg" : "mm";
+    r.unit = yaml_unit(a.kind);
     r.hardware_min = a.limits.position_min * scale;
     r.hardware_max = a.limits.position_max * scale;
     r.soft_min = a.limits.soft_min * scale;
