@@ -2,12 +2,18 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <set>
+#include <string>
+#include <type_traits>
 
 #include "facectl/face/input_error.hpp"
 
 namespace facectl::face {
 namespace {
+
+constexpr int kMaxSkinIterations = 100;
+constexpr int kMaxGrid = 64;  // grid points per side of a muscle; the shipped ones use 2..16
 
 struct Doc {
   std::string file;
@@ -47,12 +53,19 @@ YAML::Node need(const Doc& d, const YAML::Node& parent, const std::string& key) 
 
 template <class T>
 T as(const Doc& d, const YAML::Node& n, const std::string& key, const std::string& expected) {
+  T v{};
   try {
     if (!n.IsScalar()) fail(d, n, key, expected);
-    return n.as<T>();
+    v = n.as<T>();
   } catch (const YAML::Exception&) {
     fail(d, n, key, expected);
   }
+  // yaml-cpp reads .nan and .inf as numbers; no length, stiffness or count of
+  // the face model means anything there, and a NaN would blank every render.
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!std::isfinite(v)) fail(d, n, key, "a finite number");
+  }
+  return v;
 }
 
 double num(const Doc& d, const YAML::Node& parent, const std::string& key, double fallback) {
@@ -149,9 +162,14 @@ HeadSpec load_head_spec(const std::string& dir) {
   }
   YAML::Node solver = f["solver"];
   if (solver.IsDefined()) {
-    h.skin_iterations = static_cast<int>(num(face, solver, "skin_iterations", 1));
-    if (h.skin_iterations < 1)
-      fail(face, solver["skin_iterations"], "skin_iterations", "an integer ≥ 1");
+    // Each iteration is a full constraint sweep per frame; 100 is far past the
+    // point where more change nothing (docs/FACE_MODEL.md, "Solver").
+    const double iterations = num(face, solver, "skin_iterations", 1);
+    if (!(iterations >= 1 && iterations <= kMaxSkinIterations &&
+          iterations == std::floor(iterations)))
+      fail(face, solver["skin_iterations"], "skin_iterations",
+           "an integer in 1.." + std::to_string(kMaxSkinIterations));
+    h.skin_iterations = static_cast<int>(iterations);
     h.influence_falloff = num(face, solver, "influence_falloff_mm", 25) * 1e-3;
     YAML::Node sk = solver["skin"];
     if (sk.IsDefined()) {
@@ -214,8 +232,10 @@ HeadSpec load_head_spec(const std::string& dir) {
     if (!g.IsSequence() || g.size() != 2) fail(mu, g, "grid", "[rows, cols]");
     m.rows = as<int>(mu, g[0], "grid", "an integer");
     m.cols = as<int>(mu, g[1], "grid", "an integer");
-    if (m.rows < 2 || m.cols < 2 || (m.kind == MuscleKind::kSphincter && m.rows != 2))
-      fail(mu, g, "grid", "rows, cols ≥ 2 (a sphincter has rows = 2)");
+    if (m.rows < 2 || m.cols < 2 || m.rows > kMaxGrid || m.cols > kMaxGrid ||
+        (m.kind == MuscleKind::kSphincter && m.rows != 2))
+      fail(mu, g, "grid",
+           "rows, cols in 2.." + std::to_string(kMaxGrid) + " (a sphincter has rows = 2)");
     m.thickness = as<double>(mu, need(mu, n, "thickness_mm"), "thickness_mm", "a number") * 1e-3;
     if (m.kind == MuscleKind::kSheet) {
       m.origin = refs(mu, need(mu, n, "origin"), "origin", 2, names);

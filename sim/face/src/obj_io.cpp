@@ -1,6 +1,7 @@
 #include "facectl/face/obj_io.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -16,8 +17,9 @@ double parse_double(const std::string& tok, const std::string& path, int line) {
   char* end = nullptr;
   errno = 0;
   double d = std::strtod(s, &end);
-  if (end == s || *end != '\0' || errno == ERANGE)
-    throw InputError(path, line, 0, "expected a number, found '" + tok + "'");
+  // strtod takes "nan" and "inf"; a vertex there has no place on a face.
+  if (end == s || *end != '\0' || errno == ERANGE || !std::isfinite(d))
+    throw InputError(path, line, 0, "expected a finite number, found '" + tok + "'");
   return d;
 }
 

@@ -198,6 +198,11 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
     if (!(s >> tag >> n) || tag != key)
       throw InputError(path, ln, 0,
                        std::string("expected '") + key + " N ...', found '" + line + "'");
+    // Bounded before allocating: a count is checked against what the line can hold.
+    if (n > line.size() / 2)
+      throw InputError(
+          path, ln, 0,
+          std::string("'") + key + " " + std::to_string(n) + "': more names than the line holds");
     out.resize(n);
     for (auto& x : out)
       if (!(s >> x))
@@ -217,6 +222,12 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
     std::size_t n = 0;
     if (!(ps >> tag >> n) || tag != "pairs")
       throw InputError(path, ln, 0, "expected 'pairs N i j ...', found '" + line + "'");
+    const std::size_t most = m.muscles.size() * (m.muscles.size() - 1) / 2;
+    if (n > most)
+      throw InputError(path, ln, 0,
+                       "'pairs " + std::to_string(n) + "': expected at most " +
+                           std::to_string(most) + ", the pairs of " +
+                           std::to_string(m.muscles.size()) + " muscles");
     m.pairs.resize(n);
     for (auto& pr : m.pairs)
       if (!(ps >> pr[0] >> pr[1]) || pr[0] < 0 || pr[1] < 0 ||

@@ -4,11 +4,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "default_head.hpp"
 #include "facectl/face/expression_library.hpp"
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/obj_io.hpp"
+#include "facectl/face/reduced_model_fit.hpp"
 
 namespace facectl::face {
 namespace {
@@ -40,12 +42,21 @@ TEST(ObjInput, ShortVertexNamesFileAndLine) {
 
 TEST(ObjInput, BadNumberAndIndexAreNamed) {
   const std::string p = write_temp("bad.obj", "v 1 2 x\n");
-  EXPECT_NE(error_of([&] { read_obj(p, 1); }).find(":1: expected a number, found 'x'"),
+  EXPECT_NE(error_of([&] { read_obj(p, 1); }).find(":1: expected a finite number, found 'x'"),
             std::string::npos);
   const std::string q = write_temp("idx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
   const std::string e = error_of([&] { read_obj(q, 1); });
   EXPECT_NE(e.find(q + ":4:"), std::string::npos) << e;
   EXPECT_NE(e.find("out of range 1..3"), std::string::npos) << e;
+}
+
+TEST(ObjInput, NonFiniteCoordinatesAreRefused) {
+  for (const char* bad : {"nan", "inf", "-INF", "1e999"}) {
+    const std::string p = write_temp("nonfinite.obj", std::string("v 0 0 0\nv 1 ") + bad + " 0\n");
+    const std::string e = error_of([&] { read_obj(p, 1); });
+    EXPECT_NE(e.find(p + ":2: expected a finite number, found '" + bad + "'"), std::string::npos)
+        << e;
+  }
 }
 
 TEST(ObjInput, RoundTripsTheDefaultSkin) {
@@ -69,6 +80,78 @@ std::string head_with(const std::string& file, const std::string& text) {
   fs::copy(FACECTL_DEFAULT_HEAD_DIR, dir);
   std::ofstream(dir / file) << text;
   return dir.string();
+}
+
+// The default head with `from` replaced by `to` in one of its files.
+std::string head_edited(const std::string& file, const std::string& from, const std::string& to) {
+  std::ifstream in(fs::path(FACECTL_DEFAULT_HEAD_DIR) / file);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << file << " has no '" << from << "'";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return head_with(file, text);
+}
+
+TEST(HeadInput, NonFiniteNumbersAreRefusedWhereTheyAre) {
+  struct Case {
+    const char* file;
+    const char* from;
+    const char* to;
+    const char* expected;
+  };
+  for (const Case& c : {
+           Case{"face.yaml", "tissue_depth_mm: 8", "tissue_depth_mm: .nan",
+                "face.yaml:15:29: key 'tissue_depth_mm': expected a finite number, found '.nan'"},
+           Case{"face.yaml", "skin_iterations: 1 ", "skin_iterations: .inf ",
+                "face.yaml:25:22: key 'skin_iterations': expected a finite number"},
+           Case{"landmarks.yaml", "offset_mm: [-25, -5, 5]", "offset_mm: [.NaN, -5, 5]",
+                "landmarks.yaml:17:"},
+       }) {
+    const std::string dir = head_edited(c.file, c.from, c.to);
+    const std::string e = error_of([&] { load_head_spec(dir); });
+    EXPECT_NE(e.find(c.expected), std::string::npos) << c.file << ": " << e;
+  }
+  const std::string dir =
+      head_edited("landmarks.yaml", "offset_mm: [-25, -5, 5]", "offset_mm: [.NaN, -5, 5]");
+  EXPECT_NE(
+      error_of([&] { load_head_spec(dir); }).find("key 'offset_mm': expected a finite number"),
+      std::string::npos);
+}
+
+TEST(HeadInput, CountsThatSetTheWorkAreBounded) {
+  std::string dir = head_edited("face.yaml", "skin_iterations: 1 ", "skin_iterations: 1000000000 ");
+  std::string e = error_of([&] { load_head_spec(dir); });
+  EXPECT_NE(e.find("face.yaml:25:22: key 'skin_iterations': expected an integer in 1..100, found "
+                   "'1000000000'"),
+            std::string::npos)
+      << e;
+  dir = head_edited("muscles.yaml", "grid: [4, 2]", "grid: [4, 100000]");
+  e = error_of([&] { load_head_spec(dir); });
+  EXPECT_NE(e.find("key 'grid': expected rows, cols in 2..64"), std::string::npos) << e;
+}
+
+TEST(ReducedInput, CountsAreCheckedBeforeAllocating) {
+  const HeadSpec spec = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  std::ifstream in(fs::path(FACECTL_DEFAULT_HEAD_DIR) / "reduced_face.txt");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto pairs = text.find("\npairs ");
+  ASSERT_NE(pairs, std::string::npos);
+  // "pairs 2000000000" used to allocate 15.3 GB before failing.
+  std::string bad = text;
+  bad.replace(pairs + 7, bad.find(' ', pairs + 7) - (pairs + 7), "2000000000");
+  std::string p = write_temp("pairs.txt", bad);
+  std::string e = error_of([&] { load_reduced_model(p, spec); });
+  EXPECT_NE(e.find(p + ":4: 'pairs 2000000000': expected at most 406, the pairs of 29 muscles"),
+            std::string::npos)
+      << e;
+  bad = text;
+  const auto points = bad.find("\ncontrol_points ");
+  bad.replace(points + 16, 2, "4000000000");
+  p = write_temp("points.txt", bad);
+  e = error_of([&] { load_reduced_model(p, spec); });
+  EXPECT_NE(e.find(p + ":3: 'control_points 4000000000': more names than the line holds"),
+            std::string::npos)
+      << e;
 }
 
 TEST(HeadInput, BadMuscleKeyNamesFileLineAndKey) {
