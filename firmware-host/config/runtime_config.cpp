@@ -6,14 +6,18 @@ namespace facectl {
 
 RuntimeConfig load_runtime_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path, "");
-  root.expect_keys({"runtime", "head", "rig", "expressions", "show", "hardware", "safety_io",
-                    "gamepad", "serve"});
+  root.expect_keys({"runtime", "head", "rig", "expressions", "show", "visemes", "hardware",
+                    "safety_io", "gamepad", "serve"});
   RuntimeConfig cfg;
   cfg.file = path;
   cfg.head_path = resolve_path(path, root["head"].string());
   cfg.rig_path = resolve_path(path, root["rig"].string());
   cfg.expressions_path = resolve_path(path, root["expressions"].string());
   if (auto show = root.get("show")) cfg.show_path = resolve_path(path, show->string());
+  // Beside the runtime file like every other data file, so that --config and
+  // an installed /etc/facectl each find their own.
+  const auto visemes = root.get("visemes");
+  cfg.visemes_path = resolve_path(path, visemes ? visemes->string() : "fap/visemes.yaml");
   if (auto n = root.get("hardware")) cfg.hardware = parse_hardware_mode(*n);
   if (auto n = root.get("safety_io")) cfg.safety_io = parse_safety_io(*n);
   if (auto n = root.get("gamepad")) cfg.gamepad = parse_gamepad(*n);

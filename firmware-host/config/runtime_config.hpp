@@ -34,6 +34,7 @@ struct RuntimeConfig {
   std::string rig_path;
   std::string expressions_path;
   std::string show_path;
+  std::string visemes_path;  // `visemes:`, default fap/visemes.yaml beside this file
   HardwareMode hardware = HardwareMode::kSim;  // `hardware:`; `facectl run --hardware` overrides
   std::optional<SafetyIoConfig> safety_io;     // required by hardware: real
   std::optional<GamepadConfig> gamepad;        // puppeteering (`facectl run --gamepad`)

@@ -8,7 +8,6 @@
 
 #include "control/units.hpp"
 #include "facectl/face/input_error.hpp"
-#include "firmware-host/config/config_location.hpp"
 
 namespace facectl {
 namespace {
@@ -447,10 +446,6 @@ std::vector<FapRouteInfo> FapMapping::describe_routes() const {
   std::sort(out.begin(), out.end(),
             [](const FapRouteInfo& a, const FapRouteInfo& b) { return a.fap < b.fap; });
   return out;
-}
-
-std::string default_visemes_path() {
-  return shipped_dirs().config + "/fap/visemes.yaml";
 }
 
 FapMapping load_fap_mapping(const HeadConfig& head, const ExpressionLibrary& expressions,

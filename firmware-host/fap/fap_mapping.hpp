@@ -97,13 +97,9 @@ class FapMapping {
               eye_pitch_r_ = 0, neck_pan_ = 0, neck_tilt_ = 0, neck_roll_ = 0;
 };
 
-// The shipped viseme table: fap/visemes.yaml in the shipped config folder
-// (shipped_dirs(): the source tree's config/ or the installed one).
-std::string default_visemes_path();
-
 // Builds the mapping for a loaded head: its feature points and reduced face
 // model from the head's folder (face.yaml, landmarks.yaml, reduced_face.txt).
 FapMapping load_fap_mapping(const HeadConfig& head, const ExpressionLibrary& expressions,
-                            const std::string& visemes_path = default_visemes_path());
+                            const std::string& visemes_path);
 
 }  // namespace facectl

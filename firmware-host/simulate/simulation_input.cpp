@@ -19,7 +19,8 @@ SimulationInput SimulationInput::from_show(Show show) {
 SimulationInput SimulationInput::load_fap(const LoadedConfig& cfg, const std::string& path) {
   const FapSequence sequence = load_fap_file(path);  // parse first: a bad file costs nothing
   SimulationInput in;
-  in.fap_ = FapShow::build(sequence, load_fap_mapping(cfg.head, cfg.expressions));
+  in.fap_ = FapShow::build(sequence,
+                           load_fap_mapping(cfg.head, cfg.expressions, cfg.runtime.visemes_path));
   in.name_ = in.fap_->name();
   return in;
 }

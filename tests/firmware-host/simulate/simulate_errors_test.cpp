@@ -74,5 +74,26 @@ INSTANTIATE_TEST_SUITE_P(
                  "    - { t: 1.0, expression: glee }\n",
                  5}));
 
+// An installed program reads every data file beside its runtime file, not
+// from the source tree: here a copy whose viseme table is broken.
+TEST(SimulateConfig, ReadsTheVisemeTableBesideItsRuntimeFile) {
+  TempDir tmp;
+  std::string text = testing::read_text(source_path("config/facectl.yaml"));
+  for (const std::string key : {"head: ", "rig: ", "expressions: ", "show: "}) {
+    const auto at = text.find("\n" + key);
+    ASSERT_NE(at, std::string::npos) << key;
+    text.insert(at + 1 + key.size(), source_path("config").string() + "/");
+  }
+  testing::write_text(tmp / "facectl.yaml", text);
+  std::filesystem::create_directories(tmp.path() / "fap");
+  testing::write_text(tmp / "fap/visemes.yaml", "visemes: [\n");
+  const auto r = run_facectl(
+      {"simulate", "--rig", source_path("config/rigs/default.yaml"), "--config",
+       tmp / "facectl.yaml", "--fap", source_path("config/fap/demo.fap"), "--out", tmp / "out"},
+      tmp / "log");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(tmp / "fap/visemes.yaml:"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace facectl
