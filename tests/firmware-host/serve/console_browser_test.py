@@ -413,13 +413,10 @@ def main():
 
         browser = None
         try:
-            # Chromium first: its start-up (processes, shared memory) is the
-            # heaviest moment of the test, and on an unisolated 2-core VM it
-            # has stalled serve's loop past its overrun limit into FAULT.
-            browser = HeadlessChromium(args.chromium, os.path.join(work, "profile"), WIDTH, HEIGHT)
             serve = start()
             if token:
                 check_token_required(base)
+            browser = HeadlessChromium(args.chromium, os.path.join(work, "profile"), WIDTH, HEIGHT)
             drive_console(browser, base, args.screenshot)
             check_refusal_shown(browser, base)
             serve = restart_and_reconnect(browser, serve, start)
