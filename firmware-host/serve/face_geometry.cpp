@@ -50,11 +50,10 @@ std::shared_ptr<const face::ReducedFaceModel> reduced_model(const LoadedConfig& 
       face::load_reduced_model(file.string(), spec));
 }
 
-const face::LandmarkSpec& landmark(const face::HeadSpec& spec, const std::string& name) {
+const face::LandmarkSpec* find_landmark(const face::HeadSpec& spec, const std::string& name) {
   for (const face::LandmarkSpec& l : spec.landmarks)
-    if (l.name == name) return l;
-  throw NoGeometry{spec.dir + "/landmarks.yaml: no landmark '" + name +
-                   "' for the reduced model's control point"};
+    if (l.name == name) return &l;
+  return nullptr;
 }
 
 void append_mm(const Vec3& p, std::vector<double>& out) {
@@ -64,15 +63,19 @@ void append_mm(const Vec3& p, std::vector<double>& out) {
 void add_landmarks(const face::HeadSpec& spec, const face::TriMesh& skin, FaceGeometry& g,
                    std::vector<Vec3>& centers_mm) {
   for (const std::string& name : g.points) {
-    const Vec3 p = face::landmark_position(spec, landmark(spec, name), skin.v);
+    const face::LandmarkSpec* l = find_landmark(spec, name);
+    if (l == nullptr) {
+      throw NoGeometry{spec.dir + "/landmarks.yaml: no landmark '" + name +
+                       "' for the reduced model's control point"};
+    }
+    const Vec3 p = face::landmark_position(spec, *l, skin.v);
     append_mm(p, g.points_mm);
     centers_mm.push_back(p * kMmPerM);
   }
   for (const char* name : kAnchors) {
     const bool is_point = std::find(g.points.begin(), g.points.end(), name) != g.points.end();
-    const auto l = std::find_if(spec.landmarks.begin(), spec.landmarks.end(),
-                                [&](const face::LandmarkSpec& s) { return s.name == name; });
-    if (is_point || l == spec.landmarks.end()) continue;
+    const face::LandmarkSpec* l = find_landmark(spec, name);
+    if (is_point || l == nullptr) continue;
     const Vec3 p = face::landmark_position(spec, *l, skin.v);
     g.anchors.emplace_back(name);
     append_mm(p, g.anchors_mm);
