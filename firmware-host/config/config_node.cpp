@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
+
+#include "facectl/face/input_error.hpp"
+#include "facectl/face/yaml_file.hpp"
 
 namespace facectl {
 namespace {
@@ -22,17 +24,14 @@ ConfigNode::ConfigNode(const YAML::Node& node, std::shared_ptr<const std::string
     : node_(node), file_(std::move(file)), path_(std::move(path)), mark_(mark) {}
 
 ConfigNode ConfigNode::load_file(const std::string& path, std::string root_name) {
-  auto file = std::make_shared<const std::string>(path);
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open file (expected a readable YAML file)");
+  YAML::Node root;
   try {
-    YAML::Node root = YAML::Load(in);
-    ConfigNode node(root, file, std::move(root_name), root.Mark());
-    if (!root.IsMap()) node.fail("a YAML mapping at the top level");
-    return node;
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(position(path, e.mark) + ": YAML syntax error: " + e.msg);
+    root = face::load_yaml_file(path);
+  } catch (const face::InputError& e) {
+    throw ConfigError(e.what());
   }
+  return ConfigNode(root, std::make_shared<const std::string>(path), std::move(root_name),
+                    root.Mark());
 }
 
 std::string ConfigNode::where() const {
@@ -69,7 +68,7 @@ void ConfigNode::expect_keys(std::initializer_list<std::string_view> allowed) co
 void ConfigNode::expect_keys(const std::vector<std::string>& allowed) const {
   if (!node_.IsMap()) fail("a mapping");
   for (const auto& kv : node_) {
-    const std::string key = key_name(kv.first);
+    const std::string key = kv.first.Scalar();  // plain: load_file checked every key
     bool known = false;
     for (const auto& a : allowed) known = known || key == a;
     if (known) continue;
@@ -78,15 +77,6 @@ void ConfigNode::expect_keys(const std::vector<std::string>& allowed) const {
     ConfigNode at = child(kv.first, path_.empty() ? key : path_ + "." + key);
     at.fail("one of: " + list, "unknown key '" + key + "'");
   }
-}
-
-std::string ConfigNode::key_name(const YAML::Node& key) const {
-  // YAML lets a key be a sequence or a mapping (`? [a, b]`, `{ [a]: 1 }`);
-  // every key of facectl's files is a name.
-  if (key.IsSequence() || key.IsMap()) {
-    child(key, path_).fail("a name as the key", key.IsMap() ? "a mapping" : "a sequence");
-  }
-  return key.as<std::string>();
 }
 
 std::vector<ConfigNode> ConfigNode::items() const {
@@ -102,7 +92,7 @@ std::vector<std::pair<std::string, ConfigNode>> ConfigNode::entries() const {
   if (!node_.IsMap()) fail("a mapping");
   std::vector<std::pair<std::string, ConfigNode>> out;
   for (const auto& kv : node_) {
-    const std::string key = key_name(kv.first);
+    const std::string key = kv.first.Scalar();  // plain: load_file checked every key
     ConfigNode value = child(kv.second, path_.empty() ? key : path_ + "." + key);
     if (kv.second.IsNull()) value.mark_ = kv.first.Mark();
     out.emplace_back(key, value);

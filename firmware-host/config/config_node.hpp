@@ -59,8 +59,6 @@ class ConfigNode {
   ConfigNode(const YAML::Node& node, std::shared_ptr<const std::string> file, std::string path,
              YAML::Mark mark);
   ConfigNode child(const YAML::Node& node, std::string path) const;
-  // A mapping key as text; fails naming where when it is a sequence or mapping.
-  std::string key_name(const YAML::Node& key) const;
 
   YAML::Node node_;
   std::shared_ptr<const std::string> file_;

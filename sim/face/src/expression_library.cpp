@@ -7,6 +7,7 @@
 #include "control/envelope/mandible_envelope.hpp"
 #include "control/units.hpp"
 #include "facectl/face/input_error.hpp"
+#include "facectl/face/yaml_file.hpp"
 
 namespace facectl::face {
 namespace {
@@ -35,14 +36,7 @@ const Expression* ExpressionLibrary::find(const std::string& name) const {
 }
 
 ExpressionLibrary load_expression_library(const std::string& path, const HeadSpec& head) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path + ": cannot open file");
-  } catch (const YAML::ParserException& e) {
-    throw InputError(path, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
-  }
+  const YAML::Node root = load_yaml_file(path);
   ExpressionLibrary lib;
   const YAML::Node ex = root["expressions"];
   if (!ex.IsMap())

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "facectl/face/input_error.hpp"
+#include "facectl/face/yaml_file.hpp"
 
 namespace facectl::face {
 namespace {
@@ -21,13 +22,7 @@ struct Doc {
 };
 
 Doc load(const std::string& file) {
-  try {
-    return {file, YAML::LoadFile(file)};
-  } catch (const YAML::BadFile&) {
-    throw InputError(file + ": cannot open file");
-  } catch (const YAML::ParserException& e) {
-    throw InputError(file, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
-  }
+  return {file, load_yaml_file(file)};
 }
 
 [[noreturn]] void fail(const Doc& d, const YAML::Node& n, const std::string& key,

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 
 #include "firmware-host/config/expression_library.hpp"
@@ -62,6 +64,16 @@ std::string rig_error(const std::string& text) {
   return "no error";
 }
 
+// The ConfigError that `load` throws.
+std::string load_error(const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 TEST(ConfigErrors, AGoodRigLoads) {
   EXPECT_EQ(rig_error(rig(kGoodActuator)), "no error");
 }
@@ -104,8 +116,8 @@ TEST(ConfigErrors, ASequenceAsAKeyNamesWhereItIs) {
   std::string a = kGoodActuator;
   a.replace(a.find("max: 20 }"), 9, "max: 20, [6, 7] }");
   EXPECT_EQ(rig_error(rig(a)),
-            "RIG:10:41: rig.actuators[0].position_deg: expected a name as the key, found a "
-            "sequence");
+            "RIG:10:41: rig.actuators[0].position_deg: a mapping key must be a plain name, found "
+            "a sequence");
 }
 
 TEST(ConfigErrors, AMappingAsAKeyNamesWhereItIs) {
@@ -115,8 +127,38 @@ TEST(ConfigErrors, AMappingAsAKeyNamesWhereItIs) {
     FAIL() << "no error";
   } catch (const ConfigError& e) {
     EXPECT_EQ(std::string(e.what()),
-              f.path() + ":3:5: expressions: expected a name as the key, found a mapping");
+              f.path() + ":3:5: expressions: a mapping key must be a plain name, found a mapping");
   }
+}
+
+// Issue 21: yaml-cpp keeps both copies of a repeated key. Lookups took the
+// first (a second soft_position_deg was ignored, `rate_hz: 1000` then
+// `rate_hz: 5` ran at 1000 Hz), iteration the last (a repeated term won).
+TEST(ConfigErrors, ARepeatedKeyNamesBothLines) {
+  EXPECT_EQ(rig_error(rig(kGoodActuator + "      soft_position_deg: { min: -5, max: 19 }\n" +
+                          "      soft_position_deg: { min: -1, max: 1 }\n")),
+            "RIG:16:7: duplicate key 'rig.actuators[0].soft_position_deg' (first at line 15)");
+  std::string a = kGoodActuator;
+  a.replace(a.find("jaw_pitch_deg: 1 }"), 18, "jaw_pitch_deg: 1, jaw_pitch_deg: 50 }");
+  EXPECT_EQ(rig_error(rig(a)),
+            "RIG:14:41: duplicate key 'rig.actuators[0].map.terms.jaw_pitch_deg' (first at line "
+            "14)");
+  TempFile f("runtime:\n  rate_hz: 1000\n  rate_hz: 5\nhead: h\nrig: r\nexpressions: e\n");
+  EXPECT_EQ(load_error([&] { load_runtime_config(f.path()); }),
+            f.path() + ":3:3: duplicate key 'runtime.rate_hz' (first at line 2)");
+}
+
+// Issue 21: a directory as a file gave "basic_filebuf::underflow", naming no
+// file; an empty file named no line.
+TEST(ConfigErrors, ADirectoryOrAnEmptyFileIsNamed) {
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  EXPECT_EQ(load_error([&] { load_runtime_config(dir); }),
+            dir + ": is a directory, expected a YAML file");
+  EXPECT_EQ(load_error([&] { load_rig_config(dir, head().layout); }),
+            dir + ": is a directory, expected a YAML file");
+  TempFile f("");
+  EXPECT_EQ(load_error([&] { load_runtime_config(f.path()); }),
+            f.path() + ":1:1: expected a YAML mapping at the top level, found nothing");
 }
 
 TEST(ConfigErrors, UnitsMustMatchTheActuatorKind) {

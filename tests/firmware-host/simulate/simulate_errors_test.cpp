@@ -72,7 +72,28 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"--show", "unknown_expression.yaml",
                  "show:\n  name: bad\n  keyframes:\n    - { t: 0.0, expression: neutral }\n"
                  "    - { t: 1.0, expression: glee }\n",
-                 5}));
+                 5},
+        // Issue 21: yaml-cpp kept both copies of a repeated key.
+        BadInput{"--show", "repeated_key.yaml",
+                 "show:\n  name: dup\n  keyframes:\n"
+                 "    - { t: 0.0, expression: neutral, t: 1.0 }\n",
+                 4, "duplicate key 'show.keyframes[0].t' (first at line 4)"},
+        BadInput{"--show", "sequence_key.yaml", "show:\n  name: bad\n  ? [a, b]\n  : 1\n", 3,
+                 "a mapping key must be a plain name"}));
+
+// Issue 21: a directory as the show gave "basic_filebuf::underflow", naming
+// no file.
+TEST(SimulateDirectoryInput, IsNamed) {
+  TempDir tmp;
+  const auto r = run_facectl({"simulate", "--rig", source_path("config/rigs/default.yaml"),
+                              "--show", tmp.path().string(), "--out", tmp / "new"},
+                             tmp / "log");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(tmp.path().string() + ": is a directory, expected a YAML file"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "new"));
+}
 
 // An installed program reads every data file beside its runtime file, not
 // from the source tree: here a copy whose viseme table is broken.

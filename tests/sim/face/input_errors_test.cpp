@@ -183,6 +183,29 @@ TEST(HeadInput, YamlSyntaxErrorIsLocated) {
   EXPECT_NE(error_of([&] { load_head_spec(dir); }).find("landmarks.yaml:"), std::string::npos);
 }
 
+// Issue 21: yaml-cpp kept both copies of a repeated landmark and the loop
+// took the last; a sequence as a key escaped as "yaml-cpp: bad conversion";
+// an empty file was placed at line 0.
+TEST(HeadInput, RepeatedOrNonPlainKeysAndEmptyFilesAreNamed) {
+  const struct {
+    const char* file;
+    const char* text;
+    const char* says;
+  } cases[] = {
+      {"landmarks.yaml", "landmarks:\n  fdp_2_1: { vertex: 152 }\n  fdp_2_1: { vertex: 13 }\n",
+       "landmarks.yaml:3:3: duplicate key 'landmarks.fdp_2_1' (first at line 2)"},
+      {"landmarks.yaml", "landmarks:\n  ? [a, b]\n  : { vertex: 1 }\n",
+       "landmarks.yaml:2:5: landmarks: a mapping key must be a plain name, found a sequence"},
+      {"muscles.yaml", "",
+       "muscles.yaml:1:1: expected a YAML mapping at the top level, found nothing"},
+  };
+  for (const auto& c : cases) {
+    const std::string dir = head_with(c.file, c.text);
+    const std::string e = error_of([&] { load_head_spec(dir); });
+    EXPECT_NE(e.find(c.says), std::string::npos) << e;
+  }
+}
+
 TEST(ExpressionInput, UnknownMuscleAndRangeAreNamed) {
   const std::string p =
       write_temp("lib.yaml", "expressions:\n  joy:\n    muscles: { zygomaticus_l: 0.5 }\n");
@@ -194,6 +217,16 @@ TEST(ExpressionInput, UnknownMuscleAndRangeAreNamed) {
       write_temp("lib2.yaml", "expressions:\n  jaw:\n    mandible: { pitch_deg: 30 }\n");
   e = error_of([&] { load_expression_library(q, testing::default_spec()); });
   EXPECT_NE(e.find(q + ":3:28: key 'pitch_deg': expected -4"), std::string::npos) << e;
+}
+
+TEST(ExpressionInput, ARepeatedMuscleOrADirectoryIsNamed) {
+  const std::string p =
+      write_temp("dup.yaml", "expressions:\n  joy:\n    muscles: { a: 0.5, a: 1 }\n");
+  EXPECT_EQ(error_of([&] { load_expression_library(p, testing::default_spec()); }),
+            p + ":3:24: duplicate key 'expressions.joy.muscles.a' (first at line 3)");
+  const std::string dir = fs::temp_directory_path().string();
+  EXPECT_EQ(error_of([&] { load_expression_library(dir, testing::default_spec()); }),
+            dir + ": is a directory, expected a YAML file");
 }
 
 }  // namespace

@@ -1,0 +1,20 @@
+// The one way facectl reads a YAML file: its own files, the face model's,
+// shows, expressions and FAP tables alike.
+#pragma once
+
+#include <string>
+
+namespace YAML {
+class Node;
+}
+
+namespace facectl::face {
+
+// Loads `path` as a YAML mapping with plain, unique keys (check_yaml_keys).
+// Throws InputError naming the file, and line:column where there is one, for
+// a directory, an unreadable file, a syntax error, an empty file or a top
+// level that is not a mapping, so that no yaml-cpp or stream error escapes
+// without the file's name.
+YAML::Node load_yaml_file(const std::string& path);
+
+}  // namespace facectl::face
