@@ -13,32 +13,56 @@
 namespace facectl::face {
 namespace {
 
-using Pending = std::pair<YAML::Node, std::string>;  // a node and its key path
+// A mapping or sequence still to walk. Its key path is built only for a
+// report, from the chain of parents: copying it into every entry would cost
+// as much memory again as a large document.
+struct Pending {
+  YAML::Node node;
+  std::size_t parent;  // index into KeyWalk::seen_, or kRoot
+  YAML::Node key;      // its key, if its parent is a mapping
+  std::size_t index;   // its place, if its parent is a sequence
+  bool keyed;          // which of the two
+};
+constexpr std::size_t kRoot = static_cast<std::size_t>(-1);
 
 struct Problem {
   YAML::Mark at;
   std::string what;
 };
 
+std::string describe(const YAML::Node& node) {
+  if (node.IsSequence()) return "a sequence";
+  if (node.IsMap()) return "a mapping";
+  return "nothing";
+}
+
 // A walk over every mapping and sequence of a document, without recursion
 // (nesting is as deep as yaml-cpp's parser allows).
 class KeyWalk {
  public:
-  explicit KeyWalk(const YAML::Node& root) { todo_.emplace_back(root, ""); }
+  explicit KeyWalk(const YAML::Node& root) {
+    todo_.push_back({root, kRoot, YAML::Node(), 0, false});
+  }
 
   // The problem earliest in the file, if any.
   std::optional<Problem> run() {
+    std::vector<Pending> children;
     while (!todo_.empty()) {
-      auto [node, path] = std::move(todo_.back());
+      Pending entry = std::move(todo_.back());
       todo_.pop_back();
-      if (!(node.IsMap() || node.IsSequence()) || !first_visit(node)) continue;
-      std::vector<Pending> children;
-      if (node.IsMap()) {
-        check_map(node, path, children);
+      if (!first_visit(entry.node)) continue;
+      seen_.push_back(entry);
+      const std::size_t self = seen_.size() - 1;
+      children.clear();
+      if (entry.node.IsMap()) {
+        check_map(entry.node, self, children);
       } else {
         std::size_t i = 0;
-        for (const auto& item : node)
-          children.emplace_back(item, path + "[" + std::to_string(i++) + "]");
+        for (const auto& item : entry.node) {
+          if (item.IsMap() || item.IsSequence())
+            children.push_back({item, self, YAML::Node(), i, false});
+          ++i;
+        }
       }
       // Walked in file order, so that an alias is named by its anchor's path.
       // (Pushed, never swapped: assigning a YAML::Node writes into the node.)
@@ -48,27 +72,47 @@ class KeyWalk {
   }
 
  private:
-  void check_map(const YAML::Node& map, const std::string& path, std::vector<Pending>& children) {
+  void check_map(const YAML::Node& map, std::size_t self, std::vector<Pending>& children) {
     std::unordered_map<std::string, YAML::Mark> seen_keys;
     for (const auto& kv : map) {
       YAML::Mark at = kv.first.Mark();
       if (at.line < 0) at = map.Mark();  // an empty key (`? : 1`) has no place of its own
       if (!kv.first.IsScalar()) {
-        const char* found = kv.first.IsSequence() ? "a sequence"
-                            : kv.first.IsMap()    ? "a mapping"
-                                                  : "nothing";
-        report(at, (path.empty() ? "<top>" : path) +
-                       ": a mapping key must be a plain name, found " + found);
+        report(at, path_of(self) + ": expected a plain name as mapping key, found " +
+                       describe(kv.first));
         continue;
       }
-      const std::string key = path.empty() ? kv.first.Scalar() : path + "." + kv.first.Scalar();
+      // yaml-cpp reads `<<` as an ordinary key, not as a merge: the keys it
+      // means to bring in would be silently missing.
+      if (kv.first.Scalar() == "<<" && kv.first.Tag() != "!") {
+        report(at, path_of(self) + ": YAML merge keys (<<) are not supported; write the keys out");
+        continue;
+      }
       const auto [first, fresh] = seen_keys.emplace(kv.first.Scalar(), at);
       if (!fresh) {
-        report(at, "duplicate key '" + key + "' (first at line " +
-                       std::to_string(first->second.line + 1) + ")");
+        report(at, "duplicate key '" + joined(path_of(self), kv.first.Scalar()) +
+                       "' (first at line " + std::to_string(first->second.line + 1) + ")");
       }
-      children.emplace_back(kv.second, key);
+      if (kv.second.IsMap() || kv.second.IsSequence())
+        children.push_back({kv.second, self, kv.first, 0, true});
     }
+  }
+
+  static std::string joined(const std::string& path, const std::string& key) {
+    return path == "<top>" ? key : path + "." + key;
+  }
+
+  // The key path of seen_[at], e.g. `actuators[2].limits`; `<top>` for the root.
+  std::string path_of(std::size_t at) const {
+    std::vector<std::string> parts;
+    for (std::size_t i = at; i != kRoot && seen_[i].parent != kRoot; i = seen_[i].parent) {
+      const Pending& p = seen_[i];
+      parts.push_back(p.keyed ? "." + p.key.Scalar() : "[" + std::to_string(p.index) + "]");
+    }
+    if (parts.empty()) return "<top>";
+    std::string path;
+    for (auto part = parts.rbegin(); part != parts.rend(); ++part) path += *part;
+    return path[0] == '.' ? path.substr(1) : path;
   }
 
   // An alias is the very node it names: walk it once, not once per use.
@@ -86,6 +130,7 @@ class KeyWalk {
   }
 
   std::vector<Pending> todo_;
+  std::vector<Pending> seen_;  // every node walked, for the paths of reports
   std::unordered_map<int, std::vector<YAML::Node>> visited_;  // by position in the file
   std::optional<Problem> first_;
 };

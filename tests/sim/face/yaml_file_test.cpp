@@ -5,6 +5,7 @@
 #include "facectl/face/yaml_file.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
@@ -51,12 +52,14 @@ TEST(YamlFile, TheFirstProblemInTheFileIsNamed) {
 
 TEST(YamlFile, AKeyThatIsNotAPlainNameIsNamed) {
   EXPECT_EQ(error_for("? [a, b]\n: 1\n"),
-            "F:1:3: <top>: a mapping key must be a plain name, found a sequence");
+            "F:1:3: <top>: expected a plain name as mapping key, found a sequence");
   EXPECT_EQ(error_for("m:\n  ? { x: 1 }\n  : 2\n"),
-            "F:2:5: m: a mapping key must be a plain name, found a mapping");
+            "F:2:5: m: expected a plain name as mapping key, found a mapping");
+  EXPECT_EQ(error_for("m:\n  - a: 1\n  - ? [x]\n    : 2\n"),
+            "F:3:7: m[1]: expected a plain name as mapping key, found a sequence");
 }
 
-TEST(YamlFile, AliasesAreWalkedOnceAndMergeKeysStillLoad) {
+TEST(YamlFile, AliasesAreWalkedOnce) {
   // Ten levels of ten aliases: 10^10 paths, each node walked once.
   std::string text = "l0: &l0 { a: 1 }\n";
   for (int i = 1; i <= 10; ++i) {
@@ -68,9 +71,42 @@ TEST(YamlFile, AliasesAreWalkedOnceAndMergeKeysStillLoad) {
   EXPECT_EQ(error_for(text), "no error");
   EXPECT_EQ(error_for("base: &b { x: 1, x: 2 }\nuse: [*b, *b]\n"),
             "F:1:18: duplicate key 'base.x' (first at line 1)");
-  // yaml-cpp reads `<<` as a key like any other: the same key in the base and
-  // in the mapping that names it is no repeat.
-  EXPECT_EQ(error_for("base: &b { x: 1 }\nuse:\n  <<: *b\n  x: 2\n"), "no error");
+}
+
+TEST(YamlFile, AMergeKeyIsRefusedNotReadAsAKey) {
+  // yaml-cpp would keep `<<` as a key and never bring x into `use`.
+  EXPECT_EQ(error_for("base: &b { x: 1 }\nuse:\n  <<: *b\n  y: 2\n"),
+            "F:3:3: use: YAML merge keys (<<) are not supported; write the keys out");
+  // Quoted, it is a plain name.
+  EXPECT_EQ(error_for("\"<<\": 1\n"), "no error");
+}
+
+TEST(YamlFile, ASecondDocumentIsRefused) {
+  EXPECT_EQ(error_for("a: 1\n---\na: 2\n"),
+            "F:3:1: expected one YAML document, found 2 (a second begins here)");
+  EXPECT_EQ(error_for("---\na: 1\n...\n"), "no error");
+}
+
+TEST(YamlFile, AFileOverTheBoundIsRefusedBeforeParsing) {
+  std::string text = "a: 1\n# ";
+  text.resize(kMaxYamlFileBytes + 1, 'x');
+  EXPECT_EQ(error_for(text), "F: file is " + std::to_string(kMaxYamlFileBytes + 1) +
+                                 " bytes, expected at most " + std::to_string(kMaxYamlFileBytes) +
+                                 " for a YAML file");
+  text.resize(kMaxYamlFileBytes);
+  EXPECT_EQ(error_for(text), "no error");
+}
+
+TEST(YamlFile, AFifoIsRefusedWithoutOpeningIt) {
+  const fs::path p = fs::temp_directory_path() / ("facectl_fifo_" + std::to_string(getpid()));
+  ASSERT_EQ(mkfifo(p.c_str(), 0600), 0);
+  try {
+    load_yaml_file(p.string());  // would block forever in open() if it were opened
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), p.string() + ": is not a regular file, expected a YAML file");
+  }
+  fs::remove(p);
 }
 
 TEST(YamlFile, ADirectoryAnEmptyFileOrNoMappingIsNamed) {

@@ -2,6 +2,7 @@
 // shows, expressions and FAP tables alike.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace YAML {
@@ -10,9 +11,13 @@ class Node;
 
 namespace facectl::face {
 
+// The largest YAML file facectl reads (docs/CONFIG.md, "Limits").
+inline constexpr std::uintmax_t kMaxYamlFileBytes = 16u << 20;
+
 // Loads `path` as a YAML mapping with plain, unique keys (check_yaml_keys).
 // Throws InputError naming the file, and line:column where there is one, for
-// a directory, an unreadable file, a syntax error, an empty file or a top
+// a directory or other non-regular file, a file over kMaxYamlFileBytes,
+// a second document, an unreadable file, a syntax error, an empty file or a top
 // level that is not a mapping, so that no yaml-cpp or stream error escapes
 // without the file's name.
 YAML::Node load_yaml_file(const std::string& path);
