@@ -116,7 +116,7 @@ TEST(ConfigErrors, ASequenceAsAKeyNamesWhereItIs) {
   std::string a = kGoodActuator;
   a.replace(a.find("max: 20 }"), 9, "max: 20, [6, 7] }");
   EXPECT_EQ(rig_error(rig(a)),
-            "RIG:10:41: rig.actuators[0].position_deg: a mapping key must be a plain name, found "
+            "RIG:10:41: rig.actuators[0].position_deg: expected a plain name as mapping key, found "
             "a sequence");
 }
 
@@ -126,8 +126,9 @@ TEST(ConfigErrors, AMappingAsAKeyNamesWhereItIs) {
     ExpressionLibrary::load(f.path(), head().layout);
     FAIL() << "no error";
   } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              f.path() + ":3:5: expressions: a mapping key must be a plain name, found a mapping");
+    EXPECT_EQ(
+        std::string(e.what()),
+        f.path() + ":3:5: expressions: expected a plain name as mapping key, found a mapping");
   }
 }
 

@@ -79,7 +79,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "    - { t: 0.0, expression: neutral, t: 1.0 }\n",
                  4, "duplicate key 'show.keyframes[0].t' (first at line 4)"},
         BadInput{"--show", "sequence_key.yaml", "show:\n  name: bad\n  ? [a, b]\n  : 1\n", 3,
-                 "a mapping key must be a plain name"}));
+                 "expected a plain name as mapping key"}));
 
 // Issue 21: a directory as the show gave "basic_filebuf::underflow", naming
 // no file.

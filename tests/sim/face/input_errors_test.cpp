@@ -195,7 +195,7 @@ TEST(HeadInput, RepeatedOrNonPlainKeysAndEmptyFilesAreNamed) {
       {"landmarks.yaml", "landmarks:\n  fdp_2_1: { vertex: 152 }\n  fdp_2_1: { vertex: 13 }\n",
        "landmarks.yaml:3:3: duplicate key 'landmarks.fdp_2_1' (first at line 2)"},
       {"landmarks.yaml", "landmarks:\n  ? [a, b]\n  : { vertex: 1 }\n",
-       "landmarks.yaml:2:5: landmarks: a mapping key must be a plain name, found a sequence"},
+       "landmarks.yaml:2:5: landmarks: expected a plain name as mapping key, found a sequence"},
       {"muscles.yaml", "",
        "muscles.yaml:1:1: expected a YAML mapping at the top level, found nothing"},
   };
