@@ -142,6 +142,8 @@ void add_simulate_command(CLI::App& app, CliOptions& o) {
                            "Simulated seconds (default: the input's length; longer loops it)");
   simulate_cmd->add_option("--telemetry-rate", o.simulate.telemetry_rate_hz,
                            "Rows per simulated second in telemetry.csv (default 100)");
+  simulate_cmd->add_option("--max-output-mb", o.simulate.max_output_mb,
+                           "Refuse a run whose outputs could exceed this many MB (default 1024)");
   simulate_cmd->add_flag("--quiet", o.simulate.quiet, "No progress bar");
   simulate_cmd->callback([&o] { o.exit_code = facectl::simulate_command(o.simulate); });
 }

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "firmware-host/inputs/input_limits.hpp"
+
 namespace facectl {
 namespace {
 
@@ -51,6 +53,12 @@ std::optional<double> to_double(std::string_view s) {
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return std::nullopt;
   return v;
+}
+
+// The shortest text that reads back as v: 25, 2160000, 1e-300.
+std::string shortest(double v) {
+  char buf[32];
+  return {buf, std::to_chars(buf, buf + sizeof buf, v).ptr};
 }
 
 std::string quoted(std::string_view s) {
@@ -244,6 +252,15 @@ FapSequence parse_fap_text(std::string_view text, const std::string& source) {
                     "no more frames: the header at line " + std::to_string(header_line) +
                         " declares " + std::to_string(seq.header.frame_count),
                     "frame " + std::to_string(frame->number) + " beyond them");
+      }
+      // A file's length bounds what `simulate` computes and writes; a stream
+      // (FapReader alone) may run for days.
+      if (seq.time_of(*frame) > kMaxShowSeconds) {
+        reader.fail(line_number, 1,
+                    "a frame at most " + shortest(kMaxShowSeconds) + " s in (frame " +
+                        shortest(std::floor(kMaxShowSeconds * seq.header.frame_rate)) + " at " +
+                        shortest(seq.header.frame_rate) + " fps)",
+                    "frame " + std::to_string(frame->number));
       }
       seq.used |= frame->mask;
       seq.frames.push_back(*frame);

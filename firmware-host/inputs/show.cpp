@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "firmware-host/inputs/input_limits.hpp"
+
 namespace facectl {
 
 double ease(Ease curve, double u) {
@@ -47,7 +49,7 @@ Show Show::load(const std::string& path, const FaceLayout& layout,
   out.signal_count_ = layout.size();
   for (const ConfigNode& k : show["keyframes"].items()) {
     Keyframe kf;
-    kf.t = k["t"].non_negative();
+    kf.t = k["t"].number_in(0.0, kMaxShowSeconds);
     if (!out.keyframes_.empty() && kf.t <= out.keyframes_.back().t) {
       k["t"].fail("a time after the previous keyframe's " +
                   std::to_string(out.keyframes_.back().t) + " s");

@@ -51,7 +51,8 @@ struct RenderSequence::State {
   std::filesystem::path out_dir;
   RenderOptions options;
   std::vector<std::string> frames;
-  ControllerModel model;  // a copy: the sequence may outlive the caller's config
+  std::uint64_t bytes = 0;  // of the frames written
+  ControllerModel model;    // a copy: the sequence may outlive the caller's config
   face::FaceModel face;
   FaceView left, right;
   MappingInverse inverse;
@@ -154,6 +155,16 @@ void RenderSequence::add_frame(std::span<const double> face_values,
   std::snprintf(name, sizeof name, "frames/frame_%05zu.png", s.frames.size());
   face::write_png((s.out_dir / name).string(), pair);
   s.frames.emplace_back(name);
+  s.bytes += std::filesystem::file_size(s.out_dir / name);
+  if (s.bytes > s.options.max_bytes) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "render: %zu frames take %.1f MB, above the %.1f MB that --max-output-mb leaves "
+                  "them; raise it, or lower --duration",
+                  s.frames.size(), static_cast<double>(s.bytes) / 1e6,
+                  static_cast<double>(s.options.max_bytes) / 1e6);
+    throw std::runtime_error(text);
+  }
 }
 
 const std::vector<std::string>& RenderSequence::frames() const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -14,6 +15,9 @@ struct RenderOptions {
   double fps = 25;
   int width = 400;
   int height = 400;
+  // add_frame throws once the frames written take more (simulate's
+  // --max-output-mb, less what the rest of its outputs may take).
+  std::uint64_t max_bytes = UINT64_MAX;
 };
 
 // The face render sequence of `facectl simulate --render` (docs/SIMULATE.md,
@@ -31,7 +35,8 @@ class RenderSequence {
 
   // face_values: the face command given to the controller (SI, layout order,
   // as OfflineHead::send takes it); positions: simulated actuator positions
-  // (actuator order, SI). Writes out_dir/frames/frame_NNNNN.png.
+  // (actuator order, SI). Writes out_dir/frames/frame_NNNNN.png; throws
+  // std::runtime_error if the frames now exceed options.max_bytes.
   void add_frame(std::span<const double> face_values, std::span<const double> positions);
   const std::vector<std::string>& frames() const;  // paths relative to out_dir
 

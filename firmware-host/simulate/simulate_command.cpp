@@ -6,9 +6,11 @@
 #include <fstream>
 #include <memory>
 
+#include "firmware-host/inputs/input_limits.hpp"
 #include "firmware-host/report/html_report.hpp"
 #include "firmware-host/simulate/actuator_plots.hpp"
 #include "firmware-host/simulate/decimated_telemetry.hpp"
+#include "firmware-host/simulate/output_size.hpp"
 #include "firmware-host/simulate/progress_bar.hpp"
 #include "firmware-host/simulate/render_sequence.hpp"
 #include "firmware-host/simulate/simulation_run.hpp"
@@ -23,6 +25,11 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
   if (!out) throw std::runtime_error(path.filename().string() + ": cannot write");
+}
+
+// Ticks per telemetry.csv row.
+std::uint64_t telemetry_every(const SimulateOptions& o, const ControllerModel& m) {
+  return static_cast<std::uint64_t>(std::max(1.0, std::round(m.rate_hz / o.telemetry_rate_hz)));
 }
 
 // The rig with the runtime config, and the show or FAP file: everything that
@@ -63,6 +70,33 @@ Inputs load_inputs(const SimulateOptions& o) {
   return in;
 }
 
+// Refuses, before anything is written, a run that is longer than any input
+// may be or whose outputs could outgrow what the user allowed.
+// Returns the bytes left to render frames.
+std::uint64_t check_run_size(const SimulateOptions& o, const Inputs& in, double duration_s) {
+  if (duration_s > kMaxShowSeconds) {
+    throw ConfigError("--duration: expected at most " + std::to_string(kMaxShowSeconds) +
+                      " s of show, found " + std::to_string(duration_s));
+  }
+  if (!(o.max_output_mb > 0.0) || !std::isfinite(o.max_output_mb)) {
+    throw ConfigError("--max-output-mb: expected a size above 0, found " +
+                      std::to_string(o.max_output_mb));
+  }
+  const ControllerModel& m = in.cfg.built.model;
+  const double mb =
+      static_cast<double>(simulate_output_bytes_at_most(m, duration_s, telemetry_every(o, m))) /
+      1e6;
+  if (mb > o.max_output_mb) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "--out: the outputs of %.0f s of show could take up to %.0f MB, above "
+                  "--max-output-mb %.0f; raise it, or lower --duration or --telemetry-rate",
+                  duration_s, mb, o.max_output_mb);
+    throw ConfigError(text);
+  }
+  return static_cast<std::uint64_t>((o.max_output_mb - mb) * 1e6);
+}
+
 }  // namespace
 
 int simulate_command(const SimulateOptions& o) {
@@ -75,20 +109,27 @@ int simulate_command(const SimulateOptions& o) {
   }
   const SimulationInput& input = *in.input;
   const double duration = o.duration_s > 0.0 ? o.duration_s : input.duration();
+  std::uint64_t frame_bytes = 0;
+  try {
+    frame_bytes = check_run_size(o, in, duration);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "facectl simulate: %s\n", e.what());
+    return 2;
+  }
   try {
     StagedDir dir(o.out);
     OfflineHead head(in.cfg, 8);
     const ControllerModel& m = head.model();
     SimulationStats stats(m);
-    const auto every =
-        static_cast<std::uint64_t>(std::max(1.0, std::round(m.rate_hz / o.telemetry_rate_hz)));
-    DecimatedTelemetry telemetry(m, (dir.path() / "telemetry.csv").string(), every);
+    DecimatedTelemetry telemetry(m, (dir.path() / "telemetry.csv").string(), telemetry_every(o, m));
     ActuatorPlots plots(m, duration);
     ProgressBar progress(duration, !o.quiet && ProgressBar::stderr_is_terminal());
     SimulationSinks sinks{&stats, &telemetry, &plots, &progress, {}, 25.0};
     std::unique_ptr<RenderSequence> render;
     if (o.render) {
-      render = std::make_unique<RenderSequence>(in.cfg, dir.path());
+      RenderOptions options;
+      options.max_bytes = frame_bytes;
+      render = std::make_unique<RenderSequence>(in.cfg, dir.path(), options);
       sinks.frame_rate_hz = RenderOptions{}.fps;
       sinks.frame = [&](std::span<const double> face, std::span<const double> positions) {
         render->add_frame(face, positions);

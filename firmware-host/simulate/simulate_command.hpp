@@ -13,7 +13,8 @@ struct SimulateOptions {
   bool render = false;      // face render frames
   double duration_s = 0.0;  // 0: the input's length
   double telemetry_rate_hz = 100.0;
-  bool quiet = false;  // no progress bar even on a terminal
+  bool quiet = false;             // no progress bar even on a terminal
+  double max_output_mb = 1024.0;  // refuse a run whose outputs could be larger
 };
 
 // `facectl simulate` (docs/SIMULATE.md). Exit 0 when the head ran the input

@@ -39,12 +39,11 @@ SimulationRun run_simulation(OfflineHead& head, const SimulationInput& input, do
   SimulationRun run;
   const ControllerModel& m = head.model();
   const double period = head.period();
-  const double enable_timeout_s = 30.0;
   head.send(m.neutral);
   head.controller().request_enable();
   const double start = head.time();
   while (head.controller().state() != SafetyState::kRunning &&
-         head.time() - start < enable_timeout_s) {
+         head.time() - start < kSimulateEnableTimeoutS) {
     head.step(period);
     drain(head);
   }

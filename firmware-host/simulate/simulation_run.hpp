@@ -9,6 +9,9 @@
 
 namespace facectl {
 
+// How long run_simulation waits for the head to reach RUNNING.
+inline constexpr double kSimulateEnableTimeoutS = 30.0;
+
 class SimulationStats;
 class DecimatedTelemetry;
 class ActuatorPlots;

@@ -99,7 +99,12 @@ INSTANTIATE_TEST_SUITE_P(
         Malformed{"truncated_values.fap", 5, {"values line", "mask is at line 4", "truncated"}},
         Malformed{"too_many_frames.fap", 5, {"declares 1", "frame 1 beyond"}},
         Malformed{"viseme_range.fap", 3, {"viseme_select1", "0..14", "'15'"}},
-        Malformed{"empty.fap", 2, {"a header", "end of the input"}}),
+        Malformed{"empty.fap", 2, {"a header", "end of the input"}},
+        Malformed{
+            "beyond_a_day.fap",
+            6,
+            {"at most 86400 s in (frame 2160000 at 25 fps)", "found frame 9000000000000000000"}},
+        Malformed{"slow_rate.fap", 6, {"(frame 0 at 1e-300 fps)", "found frame 1"}}),
     [](const ::testing::TestParamInfo<Malformed>& p) {
       std::string n = p.param.file;
       return n.substr(0, n.find('.'));

@@ -81,6 +81,11 @@ TEST_F(ShowTest, BadShowsNameTheirPositionKeyAndWhatWasWrong) {
           "show:\n  name: t\n  keyframes: [ { t: 0, muscles: { zygomaticus_major_l: 1.5 } } ]\n"),
       "SHOW:3:56: show.keyframes[0].muscles.zygomaticus_major_l: expected a value of "
       "zygomaticus_major_l in [0.000000, 1.000000], found '1.5'");
+  // One number must not buy a run of 30 years (issue 21).
+  EXPECT_EQ(error_of("show:\n  name: t\n  keyframes:\n    - { t: 0 }\n    - { t: 1e9 }\n"),
+            "SHOW:5:12: show.keyframes[1].t: expected a number in [0, 86400], found '1e9'");
+  EXPECT_EQ(error_of("show:\n  name: t\n  keyframes:\n    - { t: 0 }\n    - { t: 86400 }\n"),
+            "no error");
 }
 
 }  // namespace

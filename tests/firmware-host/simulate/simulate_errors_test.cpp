@@ -56,7 +56,9 @@ INSTANTIATE_TEST_SUITE_P(Fap, SimulateBadInput,
                                            BadInput{"--fap", "non_numeric.fap", "", 4},
                                            BadInput{"--fap", "out_of_order.fap", "", 7},
                                            BadInput{"--fap", "truncated_frames.fap", "", 6},
-                                           BadInput{"--fap", "truncated_values.fap", "", 5}));
+                                           BadInput{"--fap", "truncated_values.fap", "", 5},
+                                           BadInput{"--fap", "beyond_a_day.fap", "", 6},
+                                           BadInput{"--fap", "slow_rate.fap", "", 6}));
 
 INSTANTIATE_TEST_SUITE_P(
     Show, SimulateBadInput,
@@ -93,6 +95,45 @@ TEST(SimulateDirectoryInput, IsNamed) {
             std::string::npos)
       << r.output;
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / "new"));
+}
+
+// One number must not fill the disk (issue 21): a day of show at the default
+// telemetry rate could take gigabytes, so it is refused before anything is
+// written, and the message names the flag that allows it.
+TEST(SimulateOutputSize, ALongRunIsRefusedUnlessTheUserAllowsIt) {
+  TempDir tmp;
+  const std::string show = tmp / "day.yaml";
+  testing::write_text(show,
+                      "show:\n  name: day\n  keyframes:\n    - { t: 0 }\n    - { t: 86400 }\n");
+  const auto r = run_facectl({"simulate", "--rig", source_path("config/rigs/default.yaml"),
+                              "--show", show, "--out", tmp / "new"},
+                             tmp / "log");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--out: the outputs of 86400 s of show could take up to "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("above --max-output-mb 1024; raise it"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "new"));
+  // Render frames count as they are written: 2 s of them take about 3.6 MB,
+  // against the 7 MB less 5.4 MB of telemetry bound.
+  const auto rendered =
+      run_facectl({"simulate", "--rig", source_path("config/rigs/default.yaml"), "--show",
+                   source_path("config/shows/demo.yaml"), "--out", tmp / "new", "--duration", "2",
+                   "--render", "--max-output-mb", "7", "--quiet"},
+                  tmp / "log");
+  EXPECT_EQ(rendered.exit_code, 2) << rendered.output;
+  EXPECT_NE(rendered.output.find(" MB that --max-output-mb leaves them; raise it"),
+            std::string::npos)
+      << rendered.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "new"));
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / ".new.partial"));
+  const auto longer =
+      run_facectl({"simulate", "--rig", source_path("config/rigs/default.yaml"), "--show", show,
+                   "--out", tmp / "new", "--duration", "90000", "--max-output-mb", "1e9"},
+                  tmp / "log");
+  EXPECT_EQ(longer.exit_code, 2) << longer.output;
+  EXPECT_NE(longer.output.find("--duration: expected at most 86400"), std::string::npos)
+      << longer.output;
 }
 
 // An installed program reads every data file beside its runtime file, not

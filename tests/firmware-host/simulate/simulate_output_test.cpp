@@ -5,6 +5,7 @@
 
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/report/telemetry_csv.hpp"
+#include "firmware-host/simulate/output_size.hpp"
 #include "simulate_process.hpp"
 
 namespace facectl {
@@ -41,6 +42,12 @@ TEST(Simulate, TwoRunsGiveByteIdenticalOutputs) {
     ASSERT_TRUE(fb.count(name)) << name;
     EXPECT_TRUE(bytes == fb.at(name)) << name << " differs between runs";
   }
+  // The bound `simulate` checks before writing (--max-output-mb) holds.
+  std::uint64_t total = 0;
+  for (const auto& [name, bytes] : fa) total += bytes.size();
+  const ControllerModel m = load_config(default_config_path()).built.model;
+  const std::uint64_t bound = simulate_output_bytes_at_most(m, 4.0, 10);
+  EXPECT_LE(total, bound);
   // The output names no temporary path (it would differ between the two folders).
   for (const auto& [name, bytes] : fa) {
     EXPECT_EQ(bytes.find(tmp.path().string()), std::string::npos) << name;
