@@ -106,7 +106,11 @@ HeadConfig load_head_config(const std::string& path) {
   }
   if (auto env = head.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);
   cfg.layout = FaceLayout(cfg.muscles);
-  if (auto neutral = head.get("neutral")) parse_pose(*neutral, cfg.layout).apply_to(cfg.neutral);
+  cfg.neutral_where = head.where();
+  if (auto neutral = head.get("neutral")) {
+    parse_pose(*neutral, cfg.layout).apply_to(cfg.neutral);
+    cfg.neutral_where = neutral->where();
+  }
   if (auto pairs = head.get("antagonists")) {
     for (const ConfigNode& p : pairs->items()) {
       p.expect_keys({"muscles", "max_sum"});

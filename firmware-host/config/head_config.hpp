@@ -41,6 +41,7 @@ struct HeadConfig {
   std::vector<AntagonistPair> antagonists;
   FaceLayout layout{{}};
   std::array<double, kMaxFaceSignals> neutral{};  // SI, full pose
+  std::string neutral_where;  // file:line:column of `neutral:`, or of `head:` without one
 };
 
 HeadConfig load_head_config(const std::string& path);

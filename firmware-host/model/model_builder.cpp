@@ -158,7 +158,7 @@ void set_face_constraints(const HeadConfig& head, const RigConfig& rig, const Fa
                           ControllerModel& m) {
   for (std::size_t i = 0; i < m.layout.size(); ++i) {
     if (m.neutral[i] < b.lo[i] || m.neutral[i] > b.hi[i]) {
-      throw ConfigError(head.file +
+      throw ConfigError(head.neutral_where +
                         ": head.neutral: expected a pose inside the envelope and the "
                         "admissible ranges, found " +
                         m.layout.signal(i).name + " = " + std::to_string(m.neutral[i]) +
@@ -168,6 +168,16 @@ void set_face_constraints(const HeadConfig& head, const RigConfig& rig, const Fa
   }
   for (const CoupledLimitConfig& c : rig.coupled_limits) {
     if (c.over_actuators) continue;
+    // Checked here, not only in finalize, to name the limit's own line.
+    const double at_neutral = c.constraint.value(m.neutral.data());
+    if (at_neutral > c.constraint.bound + 1e-12) {  // finalize's tolerance
+      throw ConfigError(c.where +
+                        ": rig.coupled_limits: expected a limit that the head's neutral pose "
+                        "satisfies, found '" +
+                        c.constraint.name + "' = " + std::to_string(at_neutral) +
+                        " at the neutral pose, above its max " +
+                        std::to_string(c.constraint.bound));
+    }
     try {
       m.face_constraints.add(c.constraint);
     } catch (const std::invalid_argument& e) {

@@ -68,7 +68,7 @@ void add_landmarks(const face::HeadSpec& spec, const face::TriMesh& skin, FaceGe
       throw NoGeometry{spec.dir + "/landmarks.yaml: no landmark '" + name +
                        "' for the reduced model's control point"};
     }
-    const Vec3 p = face::landmark_position(spec, *l, skin.v);
+    const Vec3 p = face::landmark_position(*l, skin.v);
     append_mm(p, g.points_mm);
     centers_mm.push_back(p * kMmPerM);
   }
@@ -76,7 +76,7 @@ void add_landmarks(const face::HeadSpec& spec, const face::TriMesh& skin, FaceGe
     const bool is_point = std::find(g.points.begin(), g.points.end(), name) != g.points.end();
     const face::LandmarkSpec* l = find_landmark(spec, name);
     if (is_point || l == nullptr) continue;
-    const Vec3 p = face::landmark_position(spec, *l, skin.v);
+    const Vec3 p = face::landmark_position(*l, skin.v);
     g.anchors.emplace_back(name);
     append_mm(p, g.anchors_mm);
     centers_mm.push_back(p * kMmPerM);

@@ -84,12 +84,12 @@ Vec3 mean_plus_offset(const std::vector<int>& vertices, const Vec3& offset, cons
   return s / static_cast<double>(vertices.size()) + offset;
 }
 
-void check_landmark_vertices(const HeadSpec& spec, const LandmarkSpec& l, int nbase) {
+void check_landmark_vertices(const LandmarkSpec& l, int nbase) {
   for (int v : l.vertices)
     if (v < 0 || v >= nbase)
-      throw InputError(spec.dir + "/landmarks.yaml: landmark '" + l.name + "': vertex " +
-                       std::to_string(v) + " is outside the skin's 0.." +
-                       std::to_string(nbase - 1));
+      throw InputError(l.file, l.line, l.column,
+                       "landmark '" + l.name + "': expected vertices of the skin, 0.." +
+                           std::to_string(nbase - 1) + ", found vertex " + std::to_string(v));
 }
 
 }  // namespace
@@ -104,8 +104,8 @@ Vec3 landmark_position(const FaceModel& m, const Points& skin, int l) {
   return mean_plus_offset(m.landmark_vertices[l], m.landmark_offset[l], skin);
 }
 
-Vec3 landmark_position(const HeadSpec& spec, const LandmarkSpec& l, const Points& skin) {
-  check_landmark_vertices(spec, l, static_cast<int>(skin.size()));
+Vec3 landmark_position(const LandmarkSpec& l, const Points& skin) {
+  check_landmark_vertices(l, static_cast<int>(skin.size()));
   return mean_plus_offset(l.vertices, l.offset, skin);
 }
 
@@ -129,7 +129,7 @@ struct Landmarks {
 
 void bind_landmarks(const HeadSpec& spec, int nbase, FaceModel& m) {
   for (const LandmarkSpec& l : spec.landmarks) {
-    check_landmark_vertices(spec, l, nbase);
+    check_landmark_vertices(l, nbase);
     m.landmark_names.push_back(l.name);
     m.landmark_vertices.push_back(l.vertices);
     m.landmark_offset.push_back(l.offset);

@@ -192,10 +192,14 @@ HeadSpec load_head_spec(const std::string& dir) {
     s.name = kv.first.as<std::string>();
     const YAML::Node& n = kv.second;
     if (!n.IsMap()) fail(lm, n, s.name, "{ vertex: N } or { vertices: [..] }");
+    const YAML::Node at = n["vertex"].IsDefined() ? n["vertex"] : need(lm, n, "vertices");
     if (n["vertex"].IsDefined())
-      s.vertices = {as<int>(lm, n["vertex"], "vertex", "a vertex index")};
+      s.vertices = {as<int>(lm, at, "vertex", "a vertex index")};
     else
-      s.vertices = int_list(lm, need(lm, n, "vertices"), "vertices");
+      s.vertices = int_list(lm, at, "vertices");
+    s.file = lm.file;
+    s.line = at.Mark().line + 1;
+    s.column = at.Mark().column + 1;
     if (n["offset_mm"].IsDefined()) s.offset = vec_mm(lm, n["offset_mm"], "offset_mm");
     names.insert(s.name);
     h.landmarks.push_back(s);

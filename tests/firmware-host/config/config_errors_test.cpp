@@ -325,6 +325,40 @@ TEST(ConfigErrors, AnActuatorCoupledLimitOverAMandibleStrutIsRefused) {
   EXPECT_NE(msg.find("found strut 'jaw_digastric'"), std::string::npos) << msg;
 }
 
+// Issue 21: these named the file but not the line.
+TEST(ConfigErrors, ACoupledLimitTheNeutralPoseBreaksNamesItsLine) {
+  const std::string text = rig(kGoodActuator) +
+                           "  coupled_limits:\n"
+                           "    - name: open\n"
+                           "      face: { jaw_pitch_deg: 1 }\n"
+                           "      max: -1\n";
+  EXPECT_EQ(rig_error(text),
+            "RIG:16:7: rig.coupled_limits: expected a limit that the head's neutral pose "
+            "satisfies, found 'open' = 0.000000 at the neutral pose, above its max -1.000000");
+}
+
+TEST(ConfigErrors, ANeutralPoseOutsideTheEnvelopeNamesItsLine) {
+  std::ifstream in(std::string(FACECTL_SOURCE_DIR) + "/config/heads/default/head.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string at = "  neutral: {}\n";
+  ASSERT_NE(text.find(at), std::string::npos);
+  text.replace(text.find(at), at.size(), "  neutral:\n    mandible: { pitch_deg: 25 }\n");
+  // Relative paths (the face model) resolve beside the copy as beside the original.
+  const std::string copy =
+      std::string(FACECTL_SOURCE_DIR) + "/config/heads/default/.neutral_test.yaml";
+  std::ofstream(copy) << text;
+  RigConfig r;
+  std::string msg = load_error([&] {
+    const HeadConfig h = load_head_config(copy);
+    r = load_rig_config(std::string(FACECTL_SOURCE_DIR) + "/config/rigs/default.yaml", h.layout);
+    RuntimeConfig rt;
+    (void)build_model(h, r, rt);
+  });
+  std::filesystem::remove(copy);
+  EXPECT_EQ(msg.rfind(copy + ":69:5: head.neutral: expected a pose inside the envelope", 0), 0u)
+      << msg;
+}
+
 TEST(ConfigErrors, TheShippedConfigurationLoads) {
   const LoadedConfig cfg = load_config(default_config_path());
   EXPECT_EQ(cfg.built.model.actuators.size(), 26u);

@@ -178,6 +178,18 @@ TEST(HeadInput, UnknownLandmarkIsNamed) {
       << e;
 }
 
+// Issue 21: the skin's size is known only once it is read, and this error
+// named the file but not the line.
+TEST(HeadInput, ALandmarkVertexBeyondTheSkinNamesItsLine) {
+  const std::string dir =
+      head_edited("landmarks.yaml", "fdp_2_1: { vertex: 152 }", "fdp_2_1: { vertex: 99999 }");
+  const std::string e = error_of([&] { build_face_model(load_head_spec(dir)); });
+  EXPECT_NE(e.find("landmarks.yaml:7:22: landmark 'fdp_2_1': expected vertices of the skin, "
+                   "0..467, found vertex 99999"),
+            std::string::npos)
+      << e;
+}
+
 TEST(HeadInput, YamlSyntaxErrorIsLocated) {
   const std::string dir = head_with("landmarks.yaml", "landmarks:\n  fdp_2_1: { vertex: 152\n");
   EXPECT_NE(error_of([&] { load_head_spec(dir); }).find("landmarks.yaml:"), std::string::npos);

@@ -125,7 +125,7 @@ void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in
 Vec3 landmark_position(const FaceModel& m, const Points& skin, int landmark);
 // A landmark of the spec on `skin` (base vertex numbering) without building the model:
 // its vertices' mean plus its offset. Throws InputError for a vertex outside the skin.
-Vec3 landmark_position(const HeadSpec& spec, const LandmarkSpec& l, const Points& skin);
+Vec3 landmark_position(const LandmarkSpec& l, const Points& skin);
 // The head's skin as face.yaml names it (metres), openings cut out: the model's base mesh.
 TriMesh read_base_skin(const HeadSpec& spec);
 // Counts skin vertices strictly inside a teeth hull (by `margin` m).

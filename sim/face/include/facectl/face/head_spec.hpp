@@ -17,6 +17,9 @@ struct LandmarkSpec {
   std::string name;
   std::vector<int> vertices;  // skin vertices averaged
   Vec3 offset = Vec3::Zero();
+  // Where its vertices are written, for errors found once the skin is read.
+  std::string file;
+  int line = 0, column = 0;  // 1-based
 };
 
 struct PointRef {
