@@ -49,7 +49,11 @@ seed head_config "$src"/config/heads/*/head.yaml
 seed rig_config "$src"/config/rigs/*.yaml "$src"/tests/firmware-host/verify/rigs/*.yaml
 seed expressions "$src"/config/expressions/*.yaml
 seed show "$src"/config/shows/*.yaml
-seed fap_file "$src"/config/fap/*.fap "$src"/tests/firmware-host/fap/files/*.fap
+# Other players' files too (files/real/PRODUCER/; files/*.fap has Greta's and
+# VREng's layouts): what the parser's leniencies are for.
+fap_files=("$src"/config/fap/*.fap "$src"/tests/firmware-host/fap/files/*.fap
+           "$src"/tests/firmware-host/fap/files/real/*/*.fap)
+seed fap_file "${fap_files[@]}"
 seed hid_report  # none: the repository holds no captured reports (libFuzzer starts empty)
 seed custom_can  # none: no recorded CAN traffic in the repository
 seed cia402_can
@@ -61,7 +65,7 @@ done
 # The FAP files again as datagrams (fap_udp splits its input at 0xFF bytes):
 # the header, then one frame (mask and values lines) per datagram.
 mkdir -p "$out/fap_udp/seeds"
-python3 - "$out/fap_udp/seeds" "$src"/config/fap/*.fap "$src"/tests/firmware-host/fap/files/*.fap <<'PY'
+python3 - "$out/fap_udp/seeds" "${fap_files[@]}" <<'PY'
 import os, sys
 out = sys.argv[1]
 for path in sys.argv[2:]:
@@ -71,7 +75,8 @@ for path in sys.argv[2:]:
         continue
     grams = [lines[0]] + ["\n".join(lines[i:i + 2]) for i in range(1, len(lines), 2)]
     data = b"\xff".join(g.encode("latin-1") + b"\n" for g in grams[:40])
-    open(os.path.join(out, os.path.basename(path) + ".udp"), "wb").write(data)
+    name = "_".join(path.split("/")[-2:])  # two players may both have a fear.fap
+    open(os.path.join(out, name + ".udp"), "wb").write(data)
 PY
 # Telemetry as `facectl simulate` records it for the demo show (2 s of it).
 sim_out="$out/telemetry_csv/simulate"

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "firmware-host/inputs/input_limits.hpp"
@@ -72,11 +73,23 @@ std::string fap_label(int number) {
   return "FAP " + std::to_string(number) + " " + std::string(fap_info(number).name);
 }
 
-// The number of values FAP n takes on a values line.
-int fields_of(int number) {
+// Greta writes its frames' 70 slots from index 1: FAP 1..68, then slot 69,
+// which no FAP uses and which it writes as 0 (docs/FAP.md, leniencies).
+constexpr std::size_t kGretaMaskEntries = kFapCount + 1;
+
+// The number of values FAP n takes on a values line. Greta writes one value
+// for every FAP, FAP 1 and 2 included.
+int fields_of(int number, bool greta) {
+  if (greta) return 1;
   if (number == 1) return 4;
   if (number == 2) return 6;
   return 1;
+}
+
+// A line that starts a new sequence in a stream: a mask starts with 0 or 1,
+// a header with its version; the name may add fields (Greta).
+bool looks_like_header(const std::vector<Token>& t) {
+  return t.size() >= 4 && t[0].text != "0" && t[0].text != "1";
 }
 
 }  // namespace
@@ -99,7 +112,7 @@ std::optional<FapFrame> FapReader::feed(std::string_view raw, int line_number) {
       return std::nullopt;
     case State::kMask:
       // A stream may restart with a new header; a file has exactly one.
-      if (allow_new_header_ && split(line).size() == 4) {
+      if (allow_new_header_ && looks_like_header(split(line))) {
         read_header(line, line_number);
         last_number_.reset();
         return std::nullopt;
@@ -119,7 +132,7 @@ std::optional<FapFrame> FapReader::feed(std::string_view raw, int line_number) {
 void FapReader::read_header(std::string_view line, int n) {
   const auto t = split(line);
   const char* layout = "a header 'version name frame_rate frame_count' (e.g. '2.1 demo 25 100')";
-  if (t.size() != 4) {
+  if (t.size() < 4) {
     fail(n, 1, layout, std::to_string(t.size()) + " field" + (t.size() == 1 ? "" : "s"));
   }
   FapHeader h;
@@ -127,15 +140,22 @@ void FapReader::read_header(std::string_view line, int n) {
     fail(n, t[0].column, "FAP file version 2.0 or 2.1 in the header", quoted(t[0].text));
   }
   h.version = std::string(t[0].text);
-  h.name = std::string(t[1].text);
-  const auto rate = to_double(t[2].text);
+  // The rate and count are the last two fields; the name is everything
+  // between, as written: Greta puts its file path there, spaces and all.
+  const Token& rate_field = t[t.size() - 2];
+  const Token& count_field = t.back();
+  const Token& last_word = t[t.size() - 3];
+  const auto name_start = static_cast<std::size_t>(t[1].column - 1);
+  const auto name_end = static_cast<std::size_t>(last_word.column - 1) + last_word.text.size();
+  h.name = std::string(line.substr(name_start, name_end - name_start));
+  const auto rate = to_double(rate_field.text);
   if (!rate || !std::isfinite(*rate) || *rate <= 0.0) {
-    fail(n, t[2].column, "a frame rate > 0 (frames per second)", quoted(t[2].text));
+    fail(n, rate_field.column, "a frame rate > 0 (frames per second)", quoted(rate_field.text));
   }
   h.frame_rate = *rate;
-  const auto count = to_long(t[3].text);
+  const auto count = to_long(count_field.text);
   if (!count || *count < 0) {
-    fail(n, t[3].column, "a frame count (an integer >= 0)", quoted(t[3].text));
+    fail(n, count_field.column, "a frame count (an integer >= 0)", quoted(count_field.text));
   }
   h.frame_count = *count;
   header_ = h;
@@ -143,12 +163,18 @@ void FapReader::read_header(std::string_view line, int n) {
 
 void FapReader::read_mask(std::string_view line, int n) {
   const auto t = split(line);
-  if (t.size() != kFapCount) {
-    fail(n, 1, "a mask line of 68 entries (0 or 1, one per FAP)",
+  if (t.size() != kFapCount && t.size() != kGretaMaskEntries) {
+    fail(n, 1, "a mask line of 68 entries (0 or 1, one per FAP), or Greta's 69",
          std::to_string(t.size()) + " entries");
   }
+  const bool greta = t.size() == kGretaMaskEntries;
+  // Greta's slot 69 is no FAP: only its 0 has a meaning.
+  if (greta && t.back().text != "0") {
+    fail(n, t.back().column, "0 as mask entry 69 (Greta's unused slot after FAP 68)",
+         quoted(t.back().text));
+  }
   FapMask mask;
-  for (std::size_t i = 0; i < t.size(); ++i) {
+  for (std::size_t i = 0; i < kFapCount; ++i) {
     if (t[i].text == "1") {
       mask.set(i);
     } else if (t[i].text != "0") {
@@ -159,6 +185,7 @@ void FapReader::read_mask(std::string_view line, int n) {
     }
   }
   mask_ = mask;
+  greta_mask_ = greta;
   mask_line_ = n;
 }
 
@@ -166,14 +193,18 @@ FapFrame FapReader::read_values(std::string_view line, int n) {
   const auto t = split(line);
   std::size_t expected = 1;
   for (int f = 1; f <= kFapCount; ++f) {
-    if (mask_[static_cast<std::size_t>(f - 1)]) expected += static_cast<std::size_t>(fields_of(f));
+    if (mask_[static_cast<std::size_t>(f - 1)]) {
+      expected += static_cast<std::size_t>(fields_of(f, greta_mask_));
+    }
   }
   if (t.size() != expected) {
     fail(n, 1,
          std::to_string(expected) + " fields: the frame number and " +
              std::to_string(expected - 1) + " value" + (expected == 2 ? "" : "s") + " for the " +
              std::to_string(mask_.count()) + " FAPs the mask at line " +
-             std::to_string(mask_line_) + " selects (FAP 1 takes 4, FAP 2 takes 6)",
+             std::to_string(mask_line_) + " selects" +
+             (greta_mask_ ? " (its 69 entries are Greta's: one value each)"
+                          : " (FAP 1 takes 4, FAP 2 takes 6)"),
          std::to_string(t.size()) + " fields");
   }
   FapFrame frame;
@@ -202,8 +233,17 @@ FapFrame FapReader::read_values(std::string_view line, int n) {
     return static_cast<int>(*v);
   };
   for (int f = 1; f <= kFapCount; ++f) {
-    if (!mask_[static_cast<std::size_t>(f - 1)]) continue;
-    if (f == 1) {
+    const auto bit = static_cast<std::size_t>(f - 1);
+    if (!mask_[bit]) continue;
+    if (greta_mask_ && f <= 2) {
+      // Greta's one value has a meaning of its own (its LipBlender divides
+      // FAP 1 by 1000 as a blend factor), not the standard's fields: checked,
+      // kept out of play.
+      (void)integer(f, "Greta's one value", std::numeric_limits<int>::min(),
+                    std::numeric_limits<int>::max());
+      frame.mask.reset(bit);
+      frame.unplayed.set(bit);
+    } else if (f == 1) {
       frame.viseme.select1 = integer(1, "viseme_select1", 0, 14);
       frame.viseme.select2 = integer(1, "viseme_select2", 0, 14);
       frame.viseme.blend = integer(1, "viseme_blend", 0, 63);
@@ -263,6 +303,7 @@ FapSequence parse_fap_text(std::string_view text, const std::string& source) {
                     "frame " + std::to_string(frame->number));
       }
       seq.used |= frame->mask;
+      seq.unplayed |= frame->unplayed;
       seq.frames.push_back(*frame);
     }
     pos = end + 1;

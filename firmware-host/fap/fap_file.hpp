@@ -41,12 +41,15 @@ struct FapFrame {
   std::array<double, kFapCount> values{};  // FAPU units, index n-1; only masked ones are set
   VisemeParams viseme;                     // valid when mask[0]
   ExpressionParams expression;             // valid when mask[1]
-  int line = 0;                            // line of the values
+  // Read but not played: Greta's one-value FAP 1 and 2 (bit 0, 1), which are
+  // not the standard's viseme and expression fields (docs/FAP.md, leniencies).
+  FapMask unplayed;
+  int line = 0;  // line of the values
 };
 
 struct FapHeader {
-  std::string version;  // "2.0" or "2.1"
-  std::string name;
+  std::string version;      // "2.0" or "2.1"
+  std::string name;         // may hold spaces (Greta writes its file path there)
   double frame_rate = 0.0;  // frames per second
   long frame_count = 0;
 };
@@ -56,7 +59,8 @@ struct FapSequence {
   std::string source;
   FapHeader header;
   std::vector<FapFrame> frames;
-  FapMask used;  // FAPs that some frame transmits
+  FapMask used;      // FAPs that some frame transmits
+  FapMask unplayed;  // FAPs that some frame carries in a form that is not played
   double time_of(const FapFrame& f) const {
     return static_cast<double>(f.number) / header.frame_rate;
   }
@@ -66,6 +70,8 @@ struct FapSequence {
 // then per frame a mask line of 68 0/1 entries and a values line "frame v...",
 // FAP 1 taking 4 integers and FAP 2 six. Lines starting with '#' and blank lines
 // are skipped. One reader serves files and the UDP stream, line by line.
+// It also reads what Greta writes: a name with spaces, and masks of 69 entries
+// whose last is 0 and whose FAP 1 and 2 take one value each.
 class FapReader {
  public:
   explicit FapReader(std::string source) : source_(std::move(source)) {}
@@ -98,6 +104,7 @@ class FapReader {
   State state_ = State::kHeader;
   std::optional<FapHeader> header_;
   FapMask mask_;
+  bool greta_mask_ = false;  // the mask had Greta's 69 entries
   int mask_line_ = 0;
   long frames_ = 0;
   std::optional<long> last_number_;

@@ -19,6 +19,7 @@ FapShow FapShow::build(const FapSequence& sequence, const FapMapping& mapping) {
   for (int f = 1; f <= kFapCount; ++f) {
     const auto bit = static_cast<std::size_t>(f - 1);
     if (sequence.used[bit] && !mapping.supported()[bit]) show.ignored_.push_back(f);
+    if (sequence.unplayed[bit]) show.unplayed_.push_back(f);
   }
   return show;
 }
@@ -43,16 +44,19 @@ void FapShow::evaluate(double t, std::array<double, kMaxFaceSignals>& out) const
 std::vector<std::string> FapShow::report() const {
   std::vector<std::string> lines;
   for (const FapClamp& c : clamps_) lines.push_back("clamped: " + describe(c));
-  if (!ignored_.empty()) {
-    std::string s = "ignored (no counterpart on this head):";
-    for (std::size_t i = 0; i < ignored_.size(); ++i) {
+  auto list = [&lines](const char* what, const std::vector<int>& faps) {
+    if (faps.empty()) return;
+    std::string s = what;
+    for (std::size_t i = 0; i < faps.size(); ++i) {
       s.append(i == 0 ? " " : ", ");
-      s.append(std::to_string(ignored_[i]));
+      s.append(std::to_string(faps[i]));
       s.push_back(' ');
-      s.append(fap_info(ignored_[i]).name);
+      s.append(fap_info(faps[i]).name);
     }
     lines.push_back(s);
-  }
+  };
+  list("ignored (no counterpart on this head):", ignored_);
+  list("ignored (Greta's one-value form, not the standard's fields):", unplayed_);
   return lines;
 }
 

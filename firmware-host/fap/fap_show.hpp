@@ -26,7 +26,10 @@ class FapShow {
 
   const std::vector<FapClamp>& clamps() const { return clamps_; }
   const std::vector<int>& ignored_faps() const { return ignored_; }
-  // One line per clamp and one for the ignored FAPs; empty when there is nothing to say.
+  // FAPs the file carries in a form that is not played (Greta's one-value FAP 1, 2).
+  const std::vector<int>& unplayed_faps() const { return unplayed_; }
+  // One line per clamp, one for the ignored FAPs and one for the unplayed;
+  // empty when there is nothing to say.
   std::vector<std::string> report() const;
 
  private:
@@ -36,6 +39,7 @@ class FapShow {
   std::size_t signal_count_ = 0;
   std::vector<FapClamp> clamps_;
   std::vector<int> ignored_;
+  std::vector<int> unplayed_;
 };
 
 }  // namespace facectl
