@@ -1,0 +1,39 @@
+#include "firmware-host/config/fap_stream_config.hpp"
+
+namespace facectl {
+
+FapUdpOptions parse_fap_stream_config(const ConfigNode& node) {
+  node.expect_keys({"bind", "port", "allow_remote", "allow", "max_peers", "peer_idle_s",
+                    "takeover_ms", "max_frame_jump"});
+  FapUdpOptions o;
+  if (auto n = node.get("allow_remote")) o.allow_remote = n->boolean();
+  const char* remote_hint = ", or allow_remote: true to go beyond loopback";
+  if (auto n = node.get("bind")) {
+    o.bind_address = n->string();
+    const auto address = parse_ipv4_address(o.bind_address);
+    if (!address) n->fail("an IPv4 address to bind to");
+    if (!kIpv4Loopback.contains(*address) && !o.allow_remote) {
+      n->fail(std::string("a loopback address (127.0.0.0/8)") + remote_hint);
+    }
+  }
+  if (auto n = node.get("port")) o.port = static_cast<std::uint16_t>(n->integer_in(0, 65535));
+  if (auto n = node.get("allow")) {
+    o.allow.clear();
+    for (const ConfigNode& item : n->items()) {
+      const auto cidr = parse_ipv4_cidr(item.string());
+      if (!cidr) item.fail("an IPv4 address or network (a.b.c.d or a.b.c.d/prefix)");
+      if (!cidr->within(kIpv4Loopback) && !o.allow_remote) {
+        item.fail(std::string("senders within loopback (127.0.0.0/8)") + remote_hint);
+      }
+      o.allow.push_back(*cidr);
+    }
+    if (o.allow.empty()) n->fail("at least one address or network");
+  }
+  if (auto n = node.get("max_peers")) o.max_peers = static_cast<std::size_t>(n->integer_in(1, 64));
+  if (auto n = node.get("peer_idle_s")) o.peer_idle_s = n->number_in(0.01, 3600.0);
+  if (auto n = node.get("takeover_ms")) o.takeover_s = n->number_in(0.0, 60'000.0) * 1e-3;
+  if (auto n = node.get("max_frame_jump")) o.limits.frame_jump = n->integer_in(1, 1'000'000);
+  return o;
+}
+
+}  // namespace facectl
