@@ -7,6 +7,7 @@
 
 #include "firmware-host/config/config_node.hpp"
 #include "firmware-host/config/ipv4_cidr.hpp"
+#include "firmware-host/config/udp_sender_rule.hpp"
 
 namespace facectl {
 
@@ -18,8 +19,10 @@ struct FapUdpLimits {
   double min_frame_rate = 1.0;     // header frame rate, frames per second
   double max_frame_rate = 1000.0;  //
   long frame_count = 100'000'000;  // header frame count (a day at 1000 fps)
-  // A frame's number may be at most this far above the sender's previous one,
-  // and the first frame after a header at most this: 40 s at 25 fps.
+  // A frame's number may be at most this far above the sender's previous one
+  // (40 s at 25 fps), plus the frames of the time since that one was accepted
+  // (a sender that numbers by time skips what it did not send); the first
+  // frame after a header at most this.
   long frame_jump = 1000;
   std::size_t frames_per_datagram = 64;
   double value = 100'000.0;  // |FAP value| in FAPU; the face envelope clamps far below it
@@ -30,10 +33,13 @@ struct FapUdpOptions {
   std::string bind_address = "127.0.0.1";  // beyond loopback only with allow_remote
   std::uint16_t port = 0;                  // 0: the system picks one
   bool allow_remote = false;
-  std::vector<Ipv4Cidr> allow = {kIpv4Loopback};  // senders heard; others counted and dropped
-  std::size_t max_peers = 8;                      // senders with state at once
-  double peer_idle_s = 5.0;  // a sender silent this long gives up its slot to a new one
-  double takeover_s = 0.5;   // the playing sender silent this long: another may play
+  // Senders heard; others are counted and dropped. Pin the port
+  // (127.0.0.1:5005) to shut out the other processes on this host.
+  std::vector<UdpSenderRule> allow = {{kIpv4Loopback, 0}};
+  // Senders with state at once, at least 2: a new one takes the slot of the
+  // one heard least recently other than the one playing.
+  std::size_t max_peers = 8;
+  double takeover_s = 0.5;  // the playing sender silent this long: another may play
   FapUdpLimits limits;
 };
 

@@ -19,9 +19,11 @@ class FapBoundError : public FapFormatError {
 // where it fails is the header's).
 void check_header_bounds(const FapReader& reader, const FapUdpLimits& limits, int line);
 // A frame just read; `previous` is the sender's frame number before it
-// (none after a header).
+// (none after a header). The number may be limits.frame_jump + `skipped`
+// above it: `skipped` is how many frames the sender's clock ran on while it
+// was silent (0 within a datagram).
 void check_frame_bounds(const FapReader& reader, const FapFrame& frame,
-                        std::optional<long> previous, const FapUdpLimits& limits);
+                        std::optional<long> previous, long skipped, const FapUdpLimits& limits);
 // The datagram's frames so far, `count`, read up to `line`.
 void check_frame_count(const FapReader& reader, std::size_t count, const FapUdpLimits& limits,
                        int line);

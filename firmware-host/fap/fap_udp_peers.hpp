@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,34 +22,44 @@ struct FapUdpPeerStats {
   std::string last_error;
 };
 
-// A sender address:port and what the stream keeps of it: its own numbering
-// (a header from one sender restarts only its own) and the FAPs in force.
-struct FapUdpPeer {
-  std::uint32_t address = 0;  // host byte order
+// A sender: address and port, host byte order.
+struct FapUdpSender {
+  std::uint32_t address = 0;
   std::uint16_t port = 0;
-  std::int64_t last_seen_ns = 0;
+  bool operator==(const FapUdpSender&) const = default;
+};
+
+// A sender and what the stream keeps of it: its own numbering (a header
+// from one sender restarts only its own) and the FAPs in force.
+struct FapUdpPeer {
+  FapUdpSender sender;
+  std::int64_t last_seen_ns = 0;  // its last datagram
+  std::int64_t accepted_ns = 0;   // its last datagram with frames taken
   FapReader reader{""};
   FapState state;
   FapUdpPeerStats stats;
 };
 
-// At most `capacity` senders. A new one takes the slot of the sender heard
-// least recently if that one has been silent for `idle_ns`; otherwise it
-// gets none (the caller counts and drops its datagram), so a flood of new
-// ports cannot push out a sender that is still talking.
+// At most `capacity` senders, at least 2. When full, a new one takes the
+// slot of the sender heard least recently, never that of the one playing:
+// a flood from new ports can churn the other slots but cannot push out the
+// sender that plays, and a real sender that restarts on a new port always
+// gets a slot (nobody is refused for want of room).
 class FapUdpPeerTable {
  public:
-  FapUdpPeerTable(std::size_t capacity, std::int64_t idle_ns);
+  explicit FapUdpPeerTable(std::size_t capacity);
 
-  // The sender's entry (new ones with a reader that allows new headers), or
-  // nullptr when the table is full of senders heard within idle_ns.
-  FapUdpPeer* find_or_add(std::uint32_t address, std::uint16_t port, std::int64_t now_ns);
+  // The sender's entry, new ones with a reader that allows new headers;
+  // marks it heard at now_ns. `playing` is never evicted.
+  FapUdpPeer& find_or_add(const FapUdpSender& sender, std::int64_t now_ns,
+                          const std::optional<FapUdpSender>& playing);
   std::size_t size() const { return peers_.size(); }
+  std::uint64_t evicted() const { return evicted_; }
   std::vector<FapUdpPeerStats> stats() const;
 
  private:
   std::size_t capacity_;
-  std::int64_t idle_ns_;
+  std::uint64_t evicted_ = 0;
   std::vector<FapUdpPeer> peers_;  // never above capacity_: entries stay put
 };
 

@@ -9,11 +9,11 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "control/clock.hpp"
 #include "firmware-host/fap/fap_udp_bounds.hpp"
-#include "firmware-host/fap/udp_receive.hpp"
 
 namespace facectl {
 namespace {
@@ -25,10 +25,11 @@ std::int64_t to_ns(double s) {
   return static_cast<std::int64_t>(s * 1e9);
 }
 
-// The frames of one datagram, read on `reader` with every field bounded.
-// Line numbers count within the datagram (the reader's source names it).
-// Throws FapFormatError, or FapBoundError for a field past `limits`.
-std::vector<FapFrame> read_datagram(FapReader& reader, std::string_view datagram,
+// The frames of one datagram, read on `reader` with every field bounded;
+// `skipped` frames of silence widen the first frame's jump. Line numbers
+// count within the datagram (the reader's source names it). Throws
+// FapFormatError, or FapBoundError for a field past `limits`.
+std::vector<FapFrame> read_datagram(FapReader& reader, std::string_view datagram, long skipped,
                                     const FapUdpLimits& limits) {
   std::vector<FapFrame> frames;
   int line = 0;
@@ -40,7 +41,8 @@ std::vector<FapFrame> read_datagram(FapReader& reader, std::string_view datagram
     const auto f = reader.feed(datagram.substr(pos, end - pos), line);
     check_header_bounds(reader, limits, line);
     if (f) {
-      check_frame_bounds(reader, *f, previous, limits);
+      check_frame_bounds(reader, *f, previous, skipped, limits);
+      skipped = 0;
       frames.push_back(*f);
       check_frame_count(reader, frames.size(), limits, line);
     }
@@ -59,6 +61,14 @@ std::vector<FapFrame> read_datagram(FapReader& reader, std::string_view datagram
   return frames;
 }
 
+// The frames a sender's clock ran on since its last frame was taken, at
+// its header's frame rate (bounded by FapUdpLimits).
+long skipped_frames(const FapUdpPeer& peer, std::int64_t now_ns) {
+  if (!peer.reader.has_header() || !peer.reader.last_frame_number()) return 0;
+  const double silent_s = static_cast<double>(now_ns - peer.accepted_ns) * 1e-9;
+  return static_cast<long>(std::min(silent_s * peer.reader.header().frame_rate, 1e12));
+}
+
 }  // namespace
 
 FapUdpStream::FapUdpStream(const FapMapping& mapping, const FapUdpOptions& options,
@@ -67,7 +77,8 @@ FapUdpStream::FapUdpStream(const FapMapping& mapping, const FapUdpOptions& optio
       options_(options),
       mailbox_(mailbox),
       buffer_(kMaxDatagram),
-      peers_(options.max_peers, to_ns(options.peer_idle_s)) {
+      // Too few slots is a ConfigError below, with the address.
+      peers_(std::max<std::size_t>(options.max_peers, 2)) {
   const std::string where =
       "FAP stream " + options.bind_address + ":" + std::to_string(options.port);
   const auto address = parse_ipv4_address(options.bind_address);
@@ -80,8 +91,8 @@ FapUdpStream::FapUdpStream(const FapMapping& mapping, const FapUdpOptions& optio
                       ": expected a loopback address (127.0.0.0/8), found one beyond loopback: "
                       "binding it needs allow_remote (fap_stream.allow_remote: true)");
   }
-  if (options.allow.empty() || options.max_peers == 0) {
-    throw ConfigError(where + ": expected at least one allowed sender and one peer slot");
+  if (options.allow.empty() || options.max_peers < 2) {
+    throw ConfigError(where + ": expected at least one allowed sender and two peer slots");
   }
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
@@ -99,6 +110,12 @@ FapUdpStream::FapUdpStream(const FapMapping& mapping, const FapUdpOptions& optio
   ::getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len);
   port_ = ntohs(addr.sin_port);
   bound_ = options.bind_address + ":" + std::to_string(port_);
+  if (!kIpv4Loopback.contains(*address)) {
+    std::fprintf(stderr,
+                 "facectl: warning: FAP stream %s listens beyond loopback: its datagrams are "
+                 "not authenticated, only the allow list (fap_stream.allow) keeps others out\n",
+                 bound_.c_str());
+  }
 }
 
 FapUdpStream::~FapUdpStream() {
@@ -107,18 +124,11 @@ FapUdpStream::~FapUdpStream() {
 }
 
 std::size_t FapUdpStream::poll() {
-  std::size_t played_before = 0;
-  {
-    std::lock_guard lock(mutex_);
-    played_before = stats_.frames;
-  }
+  std::size_t played = 0;
   while (const auto d = receive_datagram(fd_, buffer_)) {
-    std::lock_guard lock(mutex_);
-    if (d->kernel_drops) count_kernel_drops(*d->kernel_drops);
-    handle(std::string_view(buffer_.data(), d->size), d->address, d->port);
+    played += handle(*d, std::string_view(buffer_.data(), d->size));
   }
-  std::lock_guard lock(mutex_);
-  return stats_.frames - played_before;
+  return played;
 }
 
 std::size_t FapUdpStream::wait_and_poll(int timeout_ms) {
@@ -139,85 +149,91 @@ void FapUdpStream::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-void FapUdpStream::count_kernel_drops(std::uint32_t running_count) {
+// Called with mutex_ held.
+void FapUdpStream::count_arrival(const UdpDatagram& d) {
+  ++stats_.datagrams;
+  if (!d.kernel_drops) return;
   // A running count since the socket opened, 32 bits wide: add what it grew.
-  stats_.kernel_drops += static_cast<std::uint32_t>(running_count - last_drop_count_);
-  last_drop_count_ = running_count;
+  stats_.kernel_drops += static_cast<std::uint32_t>(*d.kernel_drops - last_drop_count_);
+  last_drop_count_ = *d.kernel_drops;
 }
 
-bool FapUdpStream::allowed(std::uint32_t address) const {
+bool FapUdpStream::allowed(const UdpDatagram& d) const {
   return std::any_of(options_.allow.begin(), options_.allow.end(),
-                     [&](const Ipv4Cidr& c) { return c.contains(address); });
-}
-
-void FapUdpStream::reject(FapUdpPeer* peer, const std::string& error, bool out_of_bounds) {
-  ++(out_of_bounds ? stats_.out_of_bounds : stats_.malformed);
-  stats_.last_error = error;
-  if (peer == nullptr) return;
-  ++(out_of_bounds ? peer->stats.out_of_bounds : peer->stats.malformed);
-  peer->stats.last_error = error;
+                     [&](const UdpSenderRule& r) { return r.admits(d.address, d.port); });
 }
 
 // Called with mutex_ held.
-void FapUdpStream::handle(std::string_view datagram, std::uint32_t address, std::uint16_t port) {
-  const std::uint64_t number = ++stats_.datagrams;
-  const std::string source = "udp " + bound_ + " datagram " + std::to_string(number) + " from " +
-                             ipv4_text(address) + ":" + std::to_string(port);
-  if (!allowed(address)) {
+void FapUdpStream::reject(FapUdpPeer& peer, const std::string& error, bool out_of_bounds) {
+  ++(out_of_bounds ? stats_.out_of_bounds : stats_.malformed);
+  ++(out_of_bounds ? peer.stats.out_of_bounds : peer.stats.malformed);
+  stats_.last_error = error;
+  peer.stats.last_error = error;
+}
+
+std::size_t FapUdpStream::handle(const UdpDatagram& d, std::string_view text) {
+  // A sender off the allow list is counted before anything of its datagram
+  // is parsed or anything allocated for it.
+  if (!allowed(d)) {
+    std::lock_guard lock(mutex_);
+    count_arrival(d);
     ++stats_.refused_senders;
-    stats_.last_error = source + ": sender not on the allow list (fap_stream.allow)";
-    return;
+    last_refused_ = FapUdpSender{d.address, d.port};
+    return 0;
   }
   const std::int64_t now = monotonic_ns();
-  FapUdpPeer* peer = peers_.find_or_add(address, port, now);
-  stats_.peers = peers_.size();
-  if (peer == nullptr) {
-    ++stats_.peers_full;
-    stats_.last_error = source + ": no room for another sender (" +
-                        std::to_string(options_.max_peers) + " heard within the last " +
-                        std::to_string(std::llround(options_.peer_idle_s * 1000)) + " ms)";
-    return;
+  const FapUdpSender sender{d.address, d.port};
+  FapUdpPeer* peer = nullptr;
+  std::uint64_t number = 0;
+  {
+    std::lock_guard lock(mutex_);
+    count_arrival(d);
+    number = stats_.datagrams;
+    peer = &peers_.find_or_add(sender, now, playing_);
+    ++peer->stats.datagrams;
+    stats_.peers = peers_.size();
+    stats_.evicted = peers_.evicted();
   }
-  peer->last_seen_ns = now;
-  ++peer->stats.datagrams;
-  // Parsed on a copy of the sender's reader, committed only if the whole
-  // datagram is good.
+  // Parsed without the lock (only this thread touches readers) on a copy of
+  // the sender's reader, committed only if the whole datagram is good.
   FapReader trial = peer->reader;
-  trial.set_source(source);
+  trial.set_source("udp " + bound_ + " datagram " + std::to_string(number) + " from " +
+                   peer->stats.peer);
   std::vector<FapFrame> frames;
   try {
-    frames = read_datagram(trial, datagram, options_.limits);
-  } catch (const FapBoundError& e) {
-    reject(peer, e.what(), true);
-    return;
+    frames = read_datagram(trial, text, skipped_frames(*peer, now), options_.limits);
   } catch (const FapFormatError& e) {
-    reject(peer, e.what(), false);
-    return;
+    std::lock_guard lock(mutex_);
+    reject(*peer, e.what(), dynamic_cast<const FapBoundError*>(&e) != nullptr);
+    return 0;
   }
-  peer->reader = trial;
-  if (frames.empty()) return;  // a header alone
-  const auto who = std::make_pair(address, port);
-  if (playing_ && *playing_ != who && now - played_ns_ <= to_ns(options_.takeover_s)) {
-    // Kept in the sender's own state, so that it plays on from there once
-    // it takes over.
-    for (const FapFrame& f : frames) peer->state.apply(f);
-    stats_.held_back += frames.size();
-    peer->stats.held_back += frames.size();
-    return;
-  }
-  playing_ = who;
-  play(*peer, frames, now);
+  peer->reader = std::move(trial);
+  if (frames.empty()) return 0;  // a header alone
+  peer->accepted_ns = now;
+  return take(*peer, frames, now);
 }
 
-// Called with mutex_ held.
-void FapUdpStream::play(FapUdpPeer& peer, const std::vector<FapFrame>& frames,
-                        std::int64_t now_ns) {
+// The good frames of an allowed sender: played, or kept in its own state
+// while another sender plays (so that it plays on from there once it takes
+// over). Returns the number played.
+std::size_t FapUdpStream::take(FapUdpPeer& peer, const std::vector<FapFrame>& frames,
+                               std::int64_t now_ns) {
+  const bool plays =
+      !playing_ || *playing_ == peer.sender || now_ns - played_ns_ > to_ns(options_.takeover_s);
   std::vector<FapClamp> clamps;
   std::array<double, kMaxFaceSignals> pose{};
   for (const FapFrame& f : frames) {
     peer.state.apply(f);
-    mapping_.map(peer.state, f.number, pose, &clamps);
+    if (plays) mapping_.map(peer.state, f.number, pose, &clamps);
   }
+  if (!plays) {
+    std::lock_guard lock(mutex_);
+    stats_.held_back += frames.size();
+    peer.stats.held_back += frames.size();
+    return 0;
+  }
+  playing_ = peer.sender;
+  played_ns_ = now_ns;
   if (mailbox_ != nullptr) {
     FaceCommand cmd;
     cmd.values = pose;
@@ -225,7 +241,7 @@ void FapUdpStream::play(FapUdpPeer& peer, const std::vector<FapFrame>& frames,
     cmd.stamp_ns = monotonic_ns();
     mailbox_->publish(cmd);
   }
-  played_ns_ = now_ns;
+  std::lock_guard lock(mutex_);
   pose_ = pose;
   has_pose_ = true;
   stats_.frames += frames.size();
@@ -234,6 +250,7 @@ void FapUdpStream::play(FapUdpPeer& peer, const std::vector<FapFrame>& frames,
   for (const FapClamp& c : clamps) {
     if (clamps_.size() < kMaxKeptClamps) clamps_.push_back(c);
   }
+  return frames.size();
 }
 
 bool FapUdpStream::latest(std::array<double, kMaxFaceSignals>& out) const {
@@ -245,7 +262,11 @@ bool FapUdpStream::latest(std::array<double, kMaxFaceSignals>& out) const {
 
 FapUdpStats FapUdpStream::stats() const {
   std::lock_guard lock(mutex_);
-  return stats_;
+  FapUdpStats st = stats_;
+  if (last_refused_) {
+    st.last_refused = ipv4_text(last_refused_->address) + ":" + std::to_string(last_refused_->port);
+  }
+  return st;
 }
 
 std::vector<FapUdpPeerStats> FapUdpStream::peer_stats() const {

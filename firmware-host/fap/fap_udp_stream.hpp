@@ -6,8 +6,8 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
-#include <utility>
 #include <vector>
 
 #include "control/command/face_command.hpp"
@@ -16,6 +16,7 @@
 #include "firmware-host/fap/fap_file.hpp"
 #include "firmware-host/fap/fap_mapping.hpp"
 #include "firmware-host/fap/fap_udp_peers.hpp"
+#include "firmware-host/fap/udp_receive.hpp"
 
 namespace facectl {
 
@@ -25,12 +26,13 @@ struct FapUdpStats {
   std::uint64_t malformed = 0;        // rejected datagrams: not the file format
   std::uint64_t out_of_bounds = 0;    // rejected datagrams: a field past FapUdpLimits
   std::uint64_t refused_senders = 0;  // datagrams from senders off the allow list
-  std::uint64_t peers_full = 0;       // datagrams from new senders while every slot was busy
+  std::uint64_t evicted = 0;          // senders whose state a new sender took
   std::uint64_t held_back = 0;        // good frames of a sender while another was playing
   std::uint64_t kernel_drops = 0;     // dropped by the kernel, receive buffer full (SO_RXQ_OVFL)
   std::uint64_t clamps = 0;           // values clamped to the envelope
   std::size_t peers = 0;              // senders with state now
-  std::string last_error;             // of the last rejected or dropped datagram
+  std::string last_error;             // of the last rejected datagram of an allowed sender
+  std::string last_refused;           // "address:port" of the last sender refused
 };
 
 // A live FAP stream over UDP (docs/FAP.md). Each datagram carries complete
@@ -43,13 +45,14 @@ struct FapUdpStats {
 // Every sender address:port has its own numbering and counters; only
 // senders on the allow list are heard, at most max_peers at once, and one
 // of them plays at a time (another takes over once it has been silent for
-// takeover_s). Reading never blocks the real-time tick: either poll() from a
-// non-real-time thread, or start() a receiver thread; played poses go to the
-// latest-value mailbox the tick reads.
+// takeover_s). Reading never blocks the real-time tick: either poll() from
+// one non-real-time thread, or start() a receiver thread; played poses go to
+// the latest-value mailbox the tick reads.
 class FapUdpStream {
  public:
   // Binds the socket. Throws ConfigError naming the address when it cannot,
-  // or when the address is beyond loopback without allow_remote.
+  // or when the address is beyond loopback without allow_remote; warns on
+  // stderr when it binds beyond loopback.
   FapUdpStream(const FapMapping& mapping, const FapUdpOptions& options,
                LatestValueMailbox<FaceCommand>* mailbox = nullptr);
   ~FapUdpStream();
@@ -61,7 +64,7 @@ class FapUdpStream {
   int fd() const { return fd_; }
 
   // Handles every datagram already queued, without blocking. Returns the
-  // number of frames played.
+  // number of frames played. From one thread at a time.
   std::size_t poll();
   // Waits up to timeout_ms for a datagram, then poll()s.
   std::size_t wait_and_poll(int timeout_ms);
@@ -77,11 +80,11 @@ class FapUdpStream {
   std::vector<FapClamp> take_clamps();
 
  private:
-  void handle(std::string_view datagram, std::uint32_t address, std::uint16_t port);
-  bool allowed(std::uint32_t address) const;
-  void reject(FapUdpPeer* peer, const std::string& error, bool out_of_bounds);
-  void play(FapUdpPeer& peer, const std::vector<FapFrame>& frames, std::int64_t now_ns);
-  void count_kernel_drops(std::uint32_t running_count);
+  std::size_t handle(const UdpDatagram& d, std::string_view text);
+  bool allowed(const UdpDatagram& d) const;
+  void count_arrival(const UdpDatagram& d);
+  void reject(FapUdpPeer& peer, const std::string& error, bool out_of_bounds);
+  std::size_t take(FapUdpPeer& peer, const std::vector<FapFrame>& frames, std::int64_t now_ns);
 
   const FapMapping& mapping_;
   const FapUdpOptions options_;
@@ -89,17 +92,21 @@ class FapUdpStream {
   int fd_ = -1;
   std::uint16_t port_ = 0;
   std::string bound_;
+
+  // The receiver's alone (the thread that polls): the buffer, the readers
+  // and FAP states in peers_, and who plays.
   std::vector<char> buffer_;
   std::uint64_t sequence_ = 0;
-  std::uint32_t last_drop_count_ = 0;  // SO_RXQ_OVFL's last running count
+  std::uint32_t last_drop_count_ = 0;    // SO_RXQ_OVFL's last running count
+  std::optional<FapUdpSender> playing_;  // the sender that plays
+  std::int64_t played_ns_ = 0;           // when it last played a frame
 
-  // Guards what other threads read (pose, stats, clamps, the senders); held
-  // while one datagram is handled. The tick never takes it: it reads the
-  // mailbox.
+  // Guards what other threads read: the counters, pose, clamps and the
+  // sender table's entries. Held only to update them, never while parsing;
+  // the tick never takes it (it reads the mailbox).
   mutable std::mutex mutex_;
   FapUdpPeerTable peers_;
-  std::optional<std::pair<std::uint32_t, std::uint16_t>> playing_;  // the sender that plays
-  std::int64_t played_ns_ = 0;                                      // when it last played a frame
+  std::optional<FapUdpSender> last_refused_;
   bool has_pose_ = false;
   std::array<double, kMaxFaceSignals> pose_{};
   FapUdpStats stats_;

@@ -18,7 +18,8 @@ namespace facectl::testing {
 
 class Sender {
  public:
-  // From `from` (any address of 127.0.0.0/8) and a port of its own.
+  // To 127.0.0.1:`port`, from `from` (any address of 127.0.0.0/8) and a port
+  // of its own.
   explicit Sender(std::uint16_t port, const char* from = "127.0.0.1")
       : fd_(::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0)) {
     sockaddr_in self{};
@@ -26,7 +27,7 @@ class Sender {
     inet_pton(AF_INET, from, &self.sin_addr);
     EXPECT_EQ(::bind(fd_, reinterpret_cast<sockaddr*>(&self), sizeof self), 0) << from;
     to_.sin_family = AF_INET;
-    to_.sin_port = htons(port);
+    aim(port);
     inet_pton(AF_INET, "127.0.0.1", &to_.sin_addr);
   }
   ~Sender() { ::close(fd_); }
@@ -38,17 +39,27 @@ class Sender {
         ::sendto(fd_, text.data(), text.size(), 0, reinterpret_cast<sockaddr*>(&to_), sizeof to_),
         static_cast<ssize_t>(text.size()));
   }
+  // Sends to another port from now on (a sender made before the stream, so
+  // that the stream's allow list can pin its port).
+  void aim(std::uint16_t port) { to_.sin_port = htons(port); }
+  // The port it sends from.
+  std::uint16_t own_port() const { return ntohs(self().sin_port); }
   // "address:port" as the stream names this sender.
   std::string name() const {
-    sockaddr_in self{};
-    socklen_t len = sizeof self;
-    ::getsockname(fd_, reinterpret_cast<sockaddr*>(&self), &len);
+    const sockaddr_in me = self();
     char ip[INET_ADDRSTRLEN] = "?";
-    inet_ntop(AF_INET, &self.sin_addr, ip, sizeof ip);
-    return std::string(ip) + ":" + std::to_string(ntohs(self.sin_port));
+    inet_ntop(AF_INET, &me.sin_addr, ip, sizeof ip);
+    return std::string(ip) + ":" + std::to_string(ntohs(me.sin_port));
   }
 
  private:
+  sockaddr_in self() const {
+    sockaddr_in me{};
+    socklen_t len = sizeof me;
+    ::getsockname(fd_, reinterpret_cast<sockaddr*>(&me), &len);
+    return me;
+  }
+
   int fd_;
   sockaddr_in to_{};
 };
