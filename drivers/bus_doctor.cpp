@@ -14,6 +14,7 @@
 #include "control/clock.hpp"
 #include "drivers/can/cia402_bus.hpp"
 #include "drivers/can/custom_can_bus.hpp"
+#include "drivers/modbus/modbus_timeouts.hpp"
 #include "drivers/protocol/cia402_frames.hpp"
 #include "drivers/protocol/custom_can_frames.hpp"
 #include "drivers/protocol/modbus_register_map.hpp"
@@ -89,8 +90,8 @@ DoctorReport diagnose_modbus(const std::string& bus, const ModbusEndpoint& ep,
             timing.response_timeout_s * 1000));
   } else {
     add(r, Level::kOk,
-        fmt("response timeout %.0f ms, %.0f retries", timing.response_timeout_s * 1000,
-            timing.max_retries));
+        fmt("response timeout %.0f ms, byte timeout %.3g ms, %.0f retries",
+            timing.response_timeout_s * 1000, timing.byte_timeout_s * 1000, timing.max_retries));
   }
   if (!ep.tcp) {
     const auto lt = usb_serial_latency_timer_ms(ep.device);
@@ -113,13 +114,13 @@ DoctorReport diagnose_modbus(const std::string& bus, const ModbusEndpoint& ep,
   }
   modbus_t* ctx = ep.tcp ? modbus_new_tcp(ep.host.c_str(), ep.port)
                          : modbus_new_rtu(ep.device.c_str(), ep.baud, 'N', 8, 1);
+  // Before connecting: libmodbus's TCP connect waits the response timeout.
+  if (ctx != nullptr) set_modbus_timeouts(ctx, timing);
   if (ctx == nullptr || modbus_connect(ctx) != 0) {
     add(r, Level::kProblem, std::string("cannot connect: ") + modbus_strerror(errno));
     if (ctx != nullptr) modbus_free(ctx);
     return r;
   }
-  const auto us = static_cast<std::uint32_t>(timing.response_timeout_s * 1e6);
-  modbus_set_response_timeout(ctx, us / 1'000'000, us % 1'000'000);
   double cycle_ms = 0.0;
   for (const auto& [unit, used] : channels) {
     modbus_set_slave(ctx, unit);

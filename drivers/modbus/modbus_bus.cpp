@@ -9,16 +9,11 @@
 #include <stdexcept>
 
 #include "control/clock.hpp"
+#include "drivers/modbus/modbus_timeouts.hpp"
 
 namespace facectl {
 
 namespace {
-
-void split_seconds(double s, std::uint32_t& sec, std::uint32_t& usec) {
-  const auto us = static_cast<std::uint64_t>(std::llround(s * 1e6));
-  sec = static_cast<std::uint32_t>(us / 1'000'000);
-  usec = static_cast<std::uint32_t>(us % 1'000'000);
-}
 
 // Baud rates libmodbus 3.1.6 maps to termios constants. Any other value makes
 // it print a warning and silently use 9600 baud, so we refuse it up front.
@@ -247,12 +242,7 @@ bool ModbusBus::connect(std::int64_t now_ns) {
                       ? modbus_new_tcp(endpoint_.host.c_str(), endpoint_.port)
                       : modbus_new_rtu(endpoint_.device.c_str(), endpoint_.baud, 'N', 8, 1);
   if (ctx == nullptr) return false;
-  std::uint32_t sec = 0;
-  std::uint32_t usec = 0;
-  split_seconds(timing_.response_timeout_s, sec, usec);
-  modbus_set_response_timeout(ctx, sec, usec);
-  split_seconds(timing_.byte_timeout_s, sec, usec);
-  modbus_set_byte_timeout(ctx, sec, usec);
+  set_modbus_timeouts(ctx, timing_);
   // No libmodbus recovery: it would sleep a whole response timeout and
   // reconnect inside a transaction. We recover ourselves, with bounds.
   modbus_set_error_recovery(ctx, MODBUS_ERROR_RECOVERY_NONE);

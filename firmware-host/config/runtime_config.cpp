@@ -7,7 +7,7 @@ namespace facectl {
 RuntimeConfig load_runtime_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path, "");
   root.expect_keys({"runtime", "head", "rig", "expressions", "show", "visemes", "hardware",
-                    "safety_io", "gamepad", "serve"});
+                    "safety_io", "gamepad", "serve", "fap_stream"});
   RuntimeConfig cfg;
   cfg.file = path;
   cfg.head_path = resolve_path(path, root["head"].string());
@@ -22,6 +22,7 @@ RuntimeConfig load_runtime_config(const std::string& path) {
   if (auto n = root.get("safety_io")) cfg.safety_io = parse_safety_io(*n);
   if (auto n = root.get("gamepad")) cfg.gamepad = parse_gamepad(*n);
   if (auto n = root.get("serve")) cfg.serve = parse_serve_config(*n, path);
+  if (auto n = root.get("fap_stream")) cfg.fap_stream = parse_fap_stream_config(*n);
 
   if (auto rt = root.get("runtime")) {
     rt->expect_keys({"rate_hz", "realtime", "input_timeout_ms", "overrun_fault_count",

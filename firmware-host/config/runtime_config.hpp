@@ -5,6 +5,7 @@
 
 #include "control/command/command_shaper.hpp"
 #include "control/safety/safety_state_machine.hpp"
+#include "firmware-host/config/fap_stream_config.hpp"
 #include "firmware-host/config/hardware_config.hpp"
 #include "firmware-host/config/serve_config.hpp"
 
@@ -39,6 +40,7 @@ struct RuntimeConfig {
   std::optional<SafetyIoConfig> safety_io;     // required by hardware: real
   std::optional<GamepadConfig> gamepad;        // puppeteering (`facectl run --gamepad`)
   ServeConfig serve;                           // `facectl serve`
+  std::optional<FapUdpOptions> fap_stream;     // the live FAP stream (no command opens it yet)
 };
 
 RuntimeConfig load_runtime_config(const std::string& path);

@@ -6,11 +6,14 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
-#include <ctime>
 
 #include "control/clock.hpp"
+#include "firmware-host/fap/fap_udp_bounds.hpp"
 
 namespace facectl {
 namespace {
@@ -18,23 +21,87 @@ namespace {
 constexpr std::size_t kMaxDatagram = 65536;
 constexpr std::size_t kMaxKeptClamps = 1024;
 
+std::int64_t to_ns(double s) {
+  return static_cast<std::int64_t>(s * 1e9);
+}
+
+// The frames of one datagram, read on `reader` with every field bounded;
+// `skipped` frames of silence widen the first frame's jump. Line numbers
+// count within the datagram (the reader's source names it). Throws
+// FapFormatError, or FapBoundError for a field past `limits`.
+std::vector<FapFrame> read_datagram(FapReader& reader, std::string_view datagram, long skipped,
+                                    const FapUdpLimits& limits) {
+  std::vector<FapFrame> frames;
+  int line = 0;
+  std::size_t pos = 0;
+  while (pos < datagram.size()) {
+    const std::size_t end = std::min(datagram.find('\n', pos), datagram.size());
+    ++line;
+    const std::optional<long> previous = reader.last_frame_number();
+    const auto f = reader.feed(datagram.substr(pos, end - pos), line);
+    check_header_bounds(reader, limits, line);
+    if (f) {
+      check_frame_bounds(reader, *f, previous, skipped, limits);
+      skipped = 0;
+      frames.push_back(*f);
+      check_frame_count(reader, frames.size(), limits, line);
+    }
+    pos = end + 1;
+  }
+  if (reader.mid_frame()) {
+    reader.fail(line + 1, 0,
+                "the values line of the frame whose mask is at line " +
+                    std::to_string(reader.mask_line()) + ", in the same datagram",
+                "the end of the datagram");
+  }
+  if (!reader.has_header()) {
+    reader.fail(1, 0, "a header 'version name frame_rate frame_count' before any frame",
+                "a datagram without one");
+  }
+  return frames;
+}
+
+// The frames a sender's clock ran on since its last frame was taken, at
+// its header's frame rate (bounded by FapUdpLimits).
+long skipped_frames(const FapUdpPeer& peer, std::int64_t now_ns) {
+  if (!peer.reader.has_header() || !peer.reader.last_frame_number()) return 0;
+  const double silent_s = static_cast<double>(now_ns - peer.accepted_ns) * 1e-9;
+  return static_cast<long>(std::min(silent_s * peer.reader.header().frame_rate, 1e12));
+}
+
 }  // namespace
 
 FapUdpStream::FapUdpStream(const FapMapping& mapping, const FapUdpOptions& options,
                            LatestValueMailbox<FaceCommand>* mailbox)
-    : mapping_(mapping), mailbox_(mailbox), reader_("udp"), buffer_(kMaxDatagram) {
+    : mapping_(mapping),
+      options_(options),
+      mailbox_(mailbox),
+      buffer_(kMaxDatagram),
+      // Too few slots is a ConfigError below, with the address.
+      peers_(std::max<std::size_t>(options.max_peers, 2)) {
   const std::string where =
       "FAP stream " + options.bind_address + ":" + std::to_string(options.port);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(options.port);
-  if (inet_pton(AF_INET, options.bind_address.c_str(), &addr.sin_addr) != 1) {
+  const auto address = parse_ipv4_address(options.bind_address);
+  if (!address) {
     throw ConfigError(where + ": expected an IPv4 address to bind to, found '" +
                       options.bind_address + "'");
   }
+  if (!kIpv4Loopback.contains(*address) && !options.allow_remote) {
+    throw ConfigError(where +
+                      ": expected a loopback address (127.0.0.0/8), found one beyond loopback: "
+                      "binding it needs allow_remote (fap_stream.allow_remote: true)");
+  }
+  if (options.allow.empty() || options.max_peers < 2) {
+    throw ConfigError(where + ": expected at least one allowed sender and two peer slots");
+  }
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(options.port);
+  addr.sin_addr.s_addr = htonl(*address);
   fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd_ < 0) throw ConfigError(where + ": socket: " + std::strerror(errno));
-  if (::bind(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
+  if (!enable_kernel_drop_count(fd_) ||
+      ::bind(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
     const std::string err = std::strerror(errno);
     ::close(fd_);
     throw ConfigError(where + ": cannot bind: " + err);
@@ -43,8 +110,12 @@ FapUdpStream::FapUdpStream(const FapMapping& mapping, const FapUdpOptions& optio
   ::getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len);
   port_ = ntohs(addr.sin_port);
   bound_ = options.bind_address + ":" + std::to_string(port_);
-  reader_ = FapReader("udp " + bound_);
-  reader_.allow_new_header(true);
+  if (!kIpv4Loopback.contains(*address)) {
+    std::fprintf(stderr,
+                 "facectl: warning: FAP stream %s listens beyond loopback: its datagrams are "
+                 "not authenticated, only the allow list (fap_stream.allow) keeps others out\n",
+                 bound_.c_str());
+  }
 }
 
 FapUdpStream::~FapUdpStream() {
@@ -53,24 +124,11 @@ FapUdpStream::~FapUdpStream() {
 }
 
 std::size_t FapUdpStream::poll() {
-  std::size_t accepted_before = 0;
-  {
-    std::lock_guard lock(mutex_);
-    accepted_before = stats_.frames;
+  std::size_t played = 0;
+  while (const auto d = receive_datagram(fd_, buffer_)) {
+    played += handle(*d, std::string_view(buffer_.data(), d->size));
   }
-  for (;;) {
-    sockaddr_in peer{};
-    socklen_t len = sizeof peer;
-    const ssize_t n = ::recvfrom(fd_, buffer_.data(), buffer_.size(), MSG_DONTWAIT,
-                                 reinterpret_cast<sockaddr*>(&peer), &len);
-    if (n < 0) break;  // EAGAIN: nothing more queued (other errors: try again next poll)
-    char ip[INET_ADDRSTRLEN] = "?";
-    inet_ntop(AF_INET, &peer.sin_addr, ip, sizeof ip);
-    handle(std::string_view(buffer_.data(), static_cast<std::size_t>(n)),
-           std::string(ip) + ":" + std::to_string(ntohs(peer.sin_port)));
-  }
-  std::lock_guard lock(mutex_);
-  return stats_.frames - accepted_before;
+  return played;
 }
 
 std::size_t FapUdpStream::wait_and_poll(int timeout_ms) {
@@ -91,54 +149,91 @@ void FapUdpStream::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-void FapUdpStream::handle(std::string_view datagram, const std::string& peer) {
+// Called with mutex_ held.
+void FapUdpStream::count_arrival(const UdpDatagram& d) {
+  ++stats_.datagrams;
+  if (!d.kernel_drops) return;
+  // A running count since the socket opened, 32 bits wide: add what it grew.
+  stats_.kernel_drops += static_cast<std::uint32_t>(*d.kernel_drops - last_drop_count_);
+  last_drop_count_ = *d.kernel_drops;
+}
+
+bool FapUdpStream::allowed(const UdpDatagram& d) const {
+  return std::any_of(options_.allow.begin(), options_.allow.end(),
+                     [&](const UdpSenderRule& r) { return r.admits(d.address, d.port); });
+}
+
+// Called with mutex_ held.
+void FapUdpStream::reject(FapUdpPeer& peer, const std::string& error, bool out_of_bounds) {
+  ++(out_of_bounds ? stats_.out_of_bounds : stats_.malformed);
+  ++(out_of_bounds ? peer.stats.out_of_bounds : peer.stats.malformed);
+  stats_.last_error = error;
+  peer.stats.last_error = error;
+}
+
+std::size_t FapUdpStream::handle(const UdpDatagram& d, std::string_view text) {
+  // A sender off the allow list is counted before anything of its datagram
+  // is parsed or anything allocated for it.
+  if (!allowed(d)) {
+    std::lock_guard lock(mutex_);
+    count_arrival(d);
+    ++stats_.refused_senders;
+    last_refused_ = FapUdpSender{d.address, d.port};
+    return 0;
+  }
+  const std::int64_t now = monotonic_ns();
+  const FapUdpSender sender{d.address, d.port};
+  FapUdpPeer* peer = nullptr;
   std::uint64_t number = 0;
   {
     std::lock_guard lock(mutex_);
-    number = ++stats_.datagrams;
+    count_arrival(d);
+    number = stats_.datagrams;
+    peer = &peers_.find_or_add(sender, now, playing_);
+    ++peer->stats.datagrams;
+    stats_.peers = peers_.size();
+    stats_.evicted = peers_.evicted();
   }
-  // Parsed on a copy of the reader, committed only if the whole datagram is
-  // good; line numbers count within the datagram, which the source names.
-  FapReader trial = reader_;
-  trial.set_source("udp " + bound_ + " datagram " + std::to_string(number) + " from " + peer);
+  // Parsed without the lock (only this thread touches readers) on a copy of
+  // the sender's reader, committed only if the whole datagram is good.
+  FapReader trial = peer->reader;
+  trial.set_source("udp " + bound_ + " datagram " + std::to_string(number) + " from " +
+                   peer->stats.peer);
   std::vector<FapFrame> frames;
-  std::string error;
   try {
-    int line = 0;
-    std::size_t pos = 0;
-    while (pos < datagram.size()) {
-      const std::size_t end = std::min(datagram.find('\n', pos), datagram.size());
-      ++line;
-      if (auto f = trial.feed(datagram.substr(pos, end - pos), line)) frames.push_back(*f);
-      pos = end + 1;
-    }
-    if (trial.mid_frame()) {
-      trial.fail(line + 1, 0,
-                 "the values line of the frame whose mask is at line " +
-                     std::to_string(trial.mask_line()) + ", in the same datagram",
-                 "the end of the datagram");
-    }
-    if (!trial.has_header()) {
-      trial.fail(1, 0, "a header 'version name frame_rate frame_count' before any frame",
-                 "a datagram without one");
-    }
+    frames = read_datagram(trial, text, skipped_frames(*peer, now), options_.limits);
   } catch (const FapFormatError& e) {
-    error = e.what();
-  }
-  if (!error.empty()) {
     std::lock_guard lock(mutex_);
-    ++stats_.malformed;
-    stats_.last_error = error;
-    return;
+    reject(*peer, e.what(), dynamic_cast<const FapBoundError*>(&e) != nullptr);
+    return 0;
   }
-  reader_ = trial;
-  if (frames.empty()) return;  // a header alone
+  peer->reader = std::move(trial);
+  if (frames.empty()) return 0;  // a header alone
+  peer->accepted_ns = now;
+  return take(*peer, frames, now);
+}
+
+// The good frames of an allowed sender: played, or kept in its own state
+// while another sender plays (so that it plays on from there once it takes
+// over). Returns the number played.
+std::size_t FapUdpStream::take(FapUdpPeer& peer, const std::vector<FapFrame>& frames,
+                               std::int64_t now_ns) {
+  const bool plays =
+      !playing_ || *playing_ == peer.sender || now_ns - played_ns_ > to_ns(options_.takeover_s);
   std::vector<FapClamp> clamps;
   std::array<double, kMaxFaceSignals> pose{};
   for (const FapFrame& f : frames) {
-    state_.apply(f);
-    mapping_.map(state_, f.number, pose, &clamps);
+    peer.state.apply(f);
+    if (plays) mapping_.map(peer.state, f.number, pose, &clamps);
   }
+  if (!plays) {
+    std::lock_guard lock(mutex_);
+    stats_.held_back += frames.size();
+    peer.stats.held_back += frames.size();
+    return 0;
+  }
+  playing_ = peer.sender;
+  played_ns_ = now_ns;
   if (mailbox_ != nullptr) {
     FaceCommand cmd;
     cmd.values = pose;
@@ -150,10 +245,12 @@ void FapUdpStream::handle(std::string_view datagram, const std::string& peer) {
   pose_ = pose;
   has_pose_ = true;
   stats_.frames += frames.size();
+  peer.stats.frames += frames.size();
   stats_.clamps += clamps.size();
   for (const FapClamp& c : clamps) {
     if (clamps_.size() < kMaxKeptClamps) clamps_.push_back(c);
   }
+  return frames.size();
 }
 
 bool FapUdpStream::latest(std::array<double, kMaxFaceSignals>& out) const {
@@ -165,7 +262,16 @@ bool FapUdpStream::latest(std::array<double, kMaxFaceSignals>& out) const {
 
 FapUdpStats FapUdpStream::stats() const {
   std::lock_guard lock(mutex_);
-  return stats_;
+  FapUdpStats st = stats_;
+  if (last_refused_) {
+    st.last_refused = ipv4_text(last_refused_->address) + ":" + std::to_string(last_refused_->port);
+  }
+  return st;
+}
+
+std::vector<FapUdpPeerStats> FapUdpStream::peer_stats() const {
+  std::lock_guard lock(mutex_);
+  return peers_.stats();
 }
 
 std::vector<FapClamp> FapUdpStream::take_clamps() {

@@ -4,41 +4,55 @@
 #include <atomic>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
 #include "control/command/face_command.hpp"
 #include "control/realtime/latest_value_mailbox.hpp"
+#include "firmware-host/config/fap_stream_config.hpp"
 #include "firmware-host/fap/fap_file.hpp"
 #include "firmware-host/fap/fap_mapping.hpp"
+#include "firmware-host/fap/fap_udp_peers.hpp"
+#include "firmware-host/fap/udp_receive.hpp"
 
 namespace facectl {
 
-struct FapUdpOptions {
-  std::string bind_address = "127.0.0.1";  // loopback unless configured otherwise
-  std::uint16_t port = 0;                  // 0: the system picks one (see port())
-};
-
 struct FapUdpStats {
-  std::uint64_t datagrams = 0;  // received
-  std::uint64_t frames = 0;     // accepted
-  std::uint64_t malformed = 0;  // rejected datagrams
-  std::uint64_t clamps = 0;     // values clamped to the envelope
-  std::string last_error;       // of the last rejected datagram
+  std::uint64_t datagrams = 0;        // received
+  std::uint64_t frames = 0;           // played
+  std::uint64_t malformed = 0;        // rejected datagrams: not the file format
+  std::uint64_t out_of_bounds = 0;    // rejected datagrams: a field past FapUdpLimits
+  std::uint64_t refused_senders = 0;  // datagrams from senders off the allow list
+  std::uint64_t evicted = 0;          // senders whose state a new sender took
+  std::uint64_t held_back = 0;        // good frames of a sender while another was playing
+  std::uint64_t kernel_drops = 0;     // dropped by the kernel, receive buffer full (SO_RXQ_OVFL)
+  std::uint64_t clamps = 0;           // values clamped to the envelope
+  std::size_t peers = 0;              // senders with state now
+  std::string last_error;             // of the last rejected datagram of an allowed sender
+  std::string last_refused;           // "address:port" of the last sender refused
 };
 
 // A live FAP stream over UDP (docs/FAP.md). Each datagram carries complete
 // lines of the FAP text format: a header once (again to restart numbering),
 // then frames, each a mask line and its values line in the same datagram.
-// The same FapReader as for files parses them. A datagram is taken whole or
-// not at all: a malformed one is counted, its error kept, and the last good
-// pose stays. Reading never blocks the real-time tick: either poll() from a
-// non-real-time thread, or start() a receiver thread; accepted poses go to the
-// latest-value mailbox the tick reads.
+// The same FapReader as for files parses them, and FapUdpLimits bounds every
+// field. A datagram is taken whole or not at all: a malformed or
+// out-of-bounds one is counted, its error kept, and the last good pose stays.
+//
+// Every sender address:port has its own numbering and counters; only
+// senders on the allow list are heard, at most max_peers at once, and one
+// of them plays at a time (another takes over once it has been silent for
+// takeover_s). Reading never blocks the real-time tick: either poll() from
+// one non-real-time thread, or start() a receiver thread; played poses go to
+// the latest-value mailbox the tick reads.
 class FapUdpStream {
  public:
-  // Binds the socket. Throws ConfigError naming the address when it cannot.
+  // Binds the socket. Throws ConfigError naming the address when it cannot,
+  // or when the address is beyond loopback without allow_remote; warns on
+  // stderr when it binds beyond loopback.
   FapUdpStream(const FapMapping& mapping, const FapUdpOptions& options,
                LatestValueMailbox<FaceCommand>* mailbox = nullptr);
   ~FapUdpStream();
@@ -46,9 +60,11 @@ class FapUdpStream {
   FapUdpStream& operator=(const FapUdpStream&) = delete;
 
   std::uint16_t port() const { return port_; }
+  // The socket, for its options (a test shrinks SO_RCVBUF to provoke drops).
+  int fd() const { return fd_; }
 
   // Handles every datagram already queued, without blocking. Returns the
-  // number of frames accepted.
+  // number of frames played. From one thread at a time.
   std::size_t poll();
   // Waits up to timeout_ms for a datagram, then poll()s.
   std::size_t wait_and_poll(int timeout_ms);
@@ -59,23 +75,38 @@ class FapUdpStream {
   // The last good pose; false before the first frame.
   bool latest(std::array<double, kMaxFaceSignals>& out) const;
   FapUdpStats stats() const;
+  std::vector<FapUdpPeerStats> peer_stats() const;
   // Clamps since the last call (kept up to 1024; the count in stats() is exact).
   std::vector<FapClamp> take_clamps();
 
  private:
-  void handle(std::string_view datagram, const std::string& peer);
+  std::size_t handle(const UdpDatagram& d, std::string_view text);
+  bool allowed(const UdpDatagram& d) const;
+  void count_arrival(const UdpDatagram& d);
+  void reject(FapUdpPeer& peer, const std::string& error, bool out_of_bounds);
+  std::size_t take(FapUdpPeer& peer, const std::vector<FapFrame>& frames, std::int64_t now_ns);
 
   const FapMapping& mapping_;
+  const FapUdpOptions options_;
   LatestValueMailbox<FaceCommand>* mailbox_;
   int fd_ = -1;
   std::uint16_t port_ = 0;
   std::string bound_;
-  FapReader reader_;
-  FapState state_;
+
+  // The receiver's alone (the thread that polls): the buffer, the readers
+  // and FAP states in peers_, and who plays.
   std::vector<char> buffer_;
   std::uint64_t sequence_ = 0;
+  std::uint32_t last_drop_count_ = 0;    // SO_RXQ_OVFL's last running count
+  std::optional<FapUdpSender> playing_;  // the sender that plays
+  std::int64_t played_ns_ = 0;           // when it last played a frame
 
-  mutable std::mutex mutex_;  // guards what other threads read: pose, stats, clamps
+  // Guards what other threads read: the counters, pose, clamps and the
+  // sender table's entries. Held only to update them, never while parsing;
+  // the tick never takes it (it reads the mailbox).
+  mutable std::mutex mutex_;
+  FapUdpPeerTable peers_;
+  std::optional<FapUdpSender> last_refused_;
   bool has_pose_ = false;
   std::array<double, kMaxFaceSignals> pose_{};
   FapUdpStats stats_;

@@ -9,15 +9,16 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "firmware-host/config/ipv4_cidr.hpp"
+
 namespace facectl {
 
 bool is_loopback_name(const std::string& host) {
   std::string h = host;
   std::transform(h.begin(), h.end(), h.begin(), [](unsigned char c) { return std::tolower(c); });
-  in_addr v4{};
   in6_addr v6{};
   if (h == "localhost") return true;
-  if (inet_pton(AF_INET, h.c_str(), &v4) == 1) return (ntohl(v4.s_addr) >> 24) == 127;
+  if (const auto v4 = parse_ipv4_address(h)) return kIpv4Loopback.contains(*v4);
   return inet_pton(AF_INET6, h.c_str(), &v6) == 1 && IN6_IS_ADDR_LOOPBACK(&v6);
 }
 

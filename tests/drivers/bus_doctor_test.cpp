@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include "sim/devices/memory_can_link.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "tests/drivers/can_test_axes.hpp"
+#include "tests/drivers/stalling_modbus_server.hpp"
 
 namespace facectl {
 namespace {
@@ -55,6 +57,25 @@ TEST(BusDoctor, ModbusFlagsKnownBadDefaultsAndBoardState) {
   EXPECT_TRUE(has(r, L::kWarning, "libmodbus's 500 ms default"));
   EXPECT_TRUE(has(r, L::kWarning, "board 1: reports fault code 2"));
   EXPECT_TRUE(has(r, L::kProblem, "board 1: has 4 channels, the rig uses 6"));
+}
+
+// A reply that starts and stalls is given up after the bus's byte timeout,
+// not libmodbus's 500 ms default (issue 21, item 8).
+TEST(BusDoctor, ModbusGivesUpOnAStalledReplyAfterTheByteTimeout) {
+  testing::StallingModbusServer server;
+  ModbusEndpoint ep;
+  ep.port = server.port();
+  ModbusTiming timing;
+  timing.response_timeout_s = 0.4;
+  timing.byte_timeout_s = 0.05;
+  const auto t0 = std::chrono::steady_clock::now();
+  const DoctorReport r = diagnose_modbus("modbus0", ep, testing::rotary_axes(2), timing, 1);
+  const auto ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0);
+  SCOPED_TRACE(r.to_text());
+  EXPECT_EQ(server.requests(), 1);
+  EXPECT_TRUE(has(r, L::kProblem, "board 1: does not answer"));
+  EXPECT_TRUE(has(r, L::kOk, "byte timeout 50 ms"));
+  EXPECT_LT(ms.count(), 300.0) << "the stalled reply was waited for past the 50 ms byte timeout";
 }
 
 TEST(BusDoctor, TheUsbSerialLatencyTimerIsReadFromSysfs) {

@@ -1,50 +1,21 @@
 #include "firmware-host/fap/fap_udp_stream.hpp"
 
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <numbers>
 #include <thread>
 
 #include "default_fap_head.hpp"
+#include "udp_sender.hpp"
 
 namespace facectl {
 namespace {
 
 using testing::default_fap_head;
 using testing::fap_frame_text;
-
-class Sender {
- public:
-  explicit Sender(std::uint16_t port) : fd_(::socket(AF_INET, SOCK_DGRAM, 0)) {
-    to_.sin_family = AF_INET;
-    to_.sin_port = htons(port);
-    inet_pton(AF_INET, "127.0.0.1", &to_.sin_addr);
-  }
-  ~Sender() { ::close(fd_); }
-  void send(const std::string& text) {
-    ASSERT_EQ(
-        ::sendto(fd_, text.data(), text.size(), 0, reinterpret_cast<sockaddr*>(&to_), sizeof to_),
-        static_cast<ssize_t>(text.size()));
-  }
-
- private:
-  int fd_;
-  sockaddr_in to_{};
-};
-
-// Polls until `frames` frames and `malformed` rejections have been counted.
-void poll_until(FapUdpStream& s, std::uint64_t frames, std::uint64_t malformed) {
-  for (int i = 0; i < 200; ++i) {
-    s.wait_and_poll(10);
-    const FapUdpStats st = s.stats();
-    if (st.frames >= frames && st.malformed >= malformed) return;
-  }
-}
+using testing::poll_until;
+using testing::Sender;
 
 double pitch(const std::array<double, kMaxFaceSignals>& pose) {
   return pose[default_fap_head().head.layout.jaw_pitch()];
@@ -60,7 +31,9 @@ TEST(FapUdpStream, BindsToLoopbackByDefault) {
 }
 
 TEST(FapUdpStream, BadBindAddressIsAnError) {
-  EXPECT_THROW(FapUdpStream(default_fap_head().mapping, {"not-an-address", 0}), ConfigError);
+  FapUdpOptions o;
+  o.bind_address = "not-an-address";
+  EXPECT_THROW(FapUdpStream(default_fap_head().mapping, o), ConfigError);
 }
 
 TEST(FapUdpStream, DeliversFramesAndRejectsBadDatagrams) {
