@@ -7,7 +7,7 @@
 # leak-*. Prints each target's executions.
 #
 # Usage: scripts/fuzz.sh [TARGET...]     (default: every target)
-#   FUZZ_SECONDS  seconds per target (default 60; .ci/run passes 30 to keep
+#   FUZZ_SECONDS  seconds per target (default 60; .ci/run passes 20 to keep
 #                 the CI under its 45 minutes, see the comment there)
 #   FUZZ_JOBS     targets run at once (default: the number of CPUs)
 #   BUILD_FUZZ    build directory (default build-fuzz); the CI passes
