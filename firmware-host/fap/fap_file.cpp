@@ -2,10 +2,11 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
+#include "facectl/face/bounded_file.hpp"
+#include "facectl/face/input_error.hpp"
 #include "firmware-host/inputs/input_limits.hpp"
 
 namespace facectl {
@@ -357,12 +358,13 @@ std::string format_fap_text(const FapSequence& seq) {
 }
 
 FapSequence load_fap_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path + ": cannot open the FAP file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ConfigError(path + ": cannot read the FAP file");
-  return parse_fap_text(text.str(), path);
+  std::string text;
+  try {
+    text = face::read_bounded_file(path, kMaxFapFileBytes, "FAP file");
+  } catch (const face::InputError& e) {
+    throw ConfigError(e.what());
+  }
+  return parse_fap_text(text, path);
 }
 
 }  // namespace facectl

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <bitset>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -116,7 +117,12 @@ FapSequence parse_fap_text(std::string_view text, const std::string& source);
 // Writes a sequence in the same text format (values with up to 17 significant
 // digits, so parse_fap_text(format_fap_text(s)) gives s back).
 std::string format_fap_text(const FapSequence& sequence);
-// Reads and parses a file. Throws FapFormatError (or ConfigError if unreadable).
+// The largest FAP file load_fap_file reads: about 5 hours of Greta's frames
+// at 25 fps, and at most about 500 MB once parsed and mapped (docs/FAP.md).
+inline constexpr std::uintmax_t kMaxFapFileBytes = 64u << 20;
+
+// Reads and parses a file. Throws FapFormatError, or ConfigError naming the
+// file if it is unreadable, not a regular file or over kMaxFapFileBytes.
 FapSequence load_fap_file(const std::string& path);
 
 }  // namespace facectl

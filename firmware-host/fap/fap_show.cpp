@@ -9,10 +9,19 @@ FapShow FapShow::build(const FapSequence& sequence, const FapMapping& mapping) {
   show.name_ = sequence.header.name;
   show.signal_count_ = mapping.layout().size();
   FapState state;
+  std::vector<FapClamp> frame_clamps;
   for (const FapFrame& frame : sequence.frames) {
     state.apply(frame);
     std::array<double, kMaxFaceSignals> pose{};
-    mapping.map(state, frame.number, pose, &show.clamps_);
+    frame_clamps.clear();
+    mapping.map(state, frame.number, pose, &frame_clamps);
+    for (FapClamp& c : frame_clamps) {
+      if (show.clamps_.size() < kMaxClampNotes) {
+        show.clamps_.push_back(std::move(c));
+      } else {
+        ++show.clamps_left_out_;
+      }
+    }
     show.times_.push_back(sequence.time_of(frame));
     show.poses_.push_back(pose);
   }
@@ -44,6 +53,11 @@ void FapShow::evaluate(double t, std::array<double, kMaxFaceSignals>& out) const
 std::vector<std::string> FapShow::report() const {
   std::vector<std::string> lines;
   for (const FapClamp& c : clamps_) lines.push_back("clamped: " + describe(c));
+  if (clamps_left_out_ > 0) {
+    lines.push_back("clamped: " + std::to_string(clamps_left_out_) + " more values after frame " +
+                    std::to_string(clamps_.back().frame) + " (the first " +
+                    std::to_string(kMaxClampNotes) + " are listed)");
+  }
   auto list = [&lines](const char* what, const std::vector<int>& faps) {
     if (faps.empty()) return;
     std::string s = what;

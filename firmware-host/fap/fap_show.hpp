@@ -24,11 +24,16 @@ class FapShow {
   std::size_t frame_count() const { return times_.size(); }
   void evaluate(double t, std::array<double, kMaxFaceSignals>& out) const;
 
+  // The first kMaxClampNotes clamps, in frame order; clamps_left_out() more.
+  // (A file may clamp in every frame: the report must stay readable and small.)
+  static constexpr std::size_t kMaxClampNotes = 100;
   const std::vector<FapClamp>& clamps() const { return clamps_; }
+  std::size_t clamps_left_out() const { return clamps_left_out_; }
   const std::vector<int>& ignored_faps() const { return ignored_; }
   // FAPs the file carries in a form that is not played (Greta's one-value FAP 1, 2).
   const std::vector<int>& unplayed_faps() const { return unplayed_; }
-  // One line per clamp, one for the ignored FAPs and one for the unplayed;
+  // One line per clamp kept, one for those left out, one for the ignored
+  // FAPs and one for the unplayed;
   // empty when there is nothing to say.
   std::vector<std::string> report() const;
 
@@ -38,6 +43,7 @@ class FapShow {
   std::vector<std::array<double, kMaxFaceSignals>> poses_;
   std::size_t signal_count_ = 0;
   std::vector<FapClamp> clamps_;
+  std::size_t clamps_left_out_ = 0;
   std::vector<int> ignored_;
   std::vector<int> unplayed_;
 };

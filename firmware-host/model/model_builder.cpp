@@ -158,7 +158,7 @@ void set_face_constraints(const HeadConfig& head, const RigConfig& rig, const Fa
                           ControllerModel& m) {
   for (std::size_t i = 0; i < m.layout.size(); ++i) {
     if (m.neutral[i] < b.lo[i] || m.neutral[i] > b.hi[i]) {
-      throw ConfigError(head.neutral_where +
+      throw ConfigError((head.neutral_where.empty() ? head.file : head.neutral_where) +
                         ": head.neutral: expected a pose inside the envelope and the "
                         "admissible ranges, found " +
                         m.layout.signal(i).name + " = " + std::to_string(m.neutral[i]) +

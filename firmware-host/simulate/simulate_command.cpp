@@ -29,7 +29,9 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
 
 // Ticks per telemetry.csv row.
 std::uint64_t telemetry_every(const SimulateOptions& o, const ControllerModel& m) {
-  return static_cast<std::uint64_t>(std::max(1.0, std::round(m.rate_hz / o.telemetry_rate_hz)));
+  // Clamped: a rate near 0 would overflow the cast (one row then, at most).
+  return static_cast<std::uint64_t>(
+      std::clamp(std::round(m.rate_hz / o.telemetry_rate_hz), 1.0, 1e15));
 }
 
 // The rig with the runtime config, and the show or FAP file: everything that
@@ -94,7 +96,8 @@ std::uint64_t check_run_size(const SimulateOptions& o, const Inputs& in, double 
                   duration_s, mb, o.max_output_mb);
     throw ConfigError(text);
   }
-  return static_cast<std::uint64_t>((o.max_output_mb - mb) * 1e6);
+  const double left = (o.max_output_mb - mb) * 1e6;
+  return left >= 1.8e19 ? UINT64_MAX : static_cast<std::uint64_t>(left);
 }
 
 }  // namespace

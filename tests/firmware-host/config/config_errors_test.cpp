@@ -13,6 +13,7 @@
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/config/rig_config.hpp"
 #include "firmware-host/model/model_builder.hpp"
+#include "tests/support/temp_dir.hpp"
 #include "tests/support/temp_file.hpp"
 
 namespace facectl {
@@ -89,7 +90,8 @@ TEST(ConfigErrors, AMissingFileIsNamed) {
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_STREQ(e.what(),
-                 "/nonexistent/rig.yaml: cannot open file (expected a readable YAML file)");
+                 "/nonexistent/rig.yaml: cannot open file (No such file or directory; expected a "
+                 "readable YAML file)");
   }
 }
 
@@ -343,10 +345,12 @@ TEST(ConfigErrors, ANeutralPoseOutsideTheEnvelopeNamesItsLine) {
   const std::string at = "  neutral: {}\n";
   ASSERT_NE(text.find(at), std::string::npos);
   text.replace(text.find(at), at.size(), "  neutral:\n    mandible: { pitch_deg: 25 }\n");
-  // Relative paths (the face model) resolve beside the copy as beside the original.
-  const std::string copy =
-      std::string(FACECTL_SOURCE_DIR) + "/config/heads/default/.neutral_test.yaml";
-  std::ofstream(copy) << text;
+  // A copy of the whole head, so that its face model resolves beside it.
+  testing::TempDir tmp;
+  std::filesystem::copy(std::string(FACECTL_SOURCE_DIR) + "/config/heads/default", tmp.path(),
+                        std::filesystem::copy_options::recursive);
+  const std::string copy = tmp.file("head.yaml");
+  std::ofstream(copy, std::ios::trunc) << text;
   RigConfig r;
   std::string msg = load_error([&] {
     const HeadConfig h = load_head_config(copy);
@@ -354,7 +358,6 @@ TEST(ConfigErrors, ANeutralPoseOutsideTheEnvelopeNamesItsLine) {
     RuntimeConfig rt;
     (void)build_model(h, r, rt);
   });
-  std::filesystem::remove(copy);
   EXPECT_EQ(msg.rfind(copy + ":69:5: head.neutral: expected a pose inside the envelope", 0), 0u)
       << msg;
 }

@@ -114,5 +114,23 @@ TEST(FapFile, MissingFileIsAnError) {
   EXPECT_THROW((void)load_fap_file(file("no_such.fap")), ConfigError);
 }
 
+// Issue 21: a directory read as an empty file ("expected a header"), and a
+// FIFO or a device was read until it ended, or memory did.
+TEST(FapFile, OnlyARegularFileWithinTheBoundIsRead) {
+  const std::string dir = FAP_TEST_FILES;
+  try {
+    (void)load_fap_file(dir);
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + ": is a directory, expected a FAP file");
+  }
+  try {
+    (void)load_fap_file("/dev/zero");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "/dev/zero: is not a regular file, expected a FAP file");
+  }
+}
+
 }  // namespace
 }  // namespace facectl

@@ -135,6 +135,19 @@ TEST(FapMapping, BeyondTheEnvelopeIsClampedAndReported) {
   for (const FapClamp& c : show.clamps()) EXPECT_NE(c.frame, 0);
 }
 
+// A file that clamps in every frame must not give a report as long as the
+// file (it goes into summary.json, summary.txt and index.html).
+TEST(FapMapping, ClampsBeyondTheFirstHundredAreCountedNotListed) {
+  const std::vector<std::vector<std::pair<int, std::string>>> frames(300, {{3, "4000"}});
+  const FapShow show = FapShow::build(sequence(frames), default_fap_head().mapping);
+  ASSERT_EQ(show.clamps().size(), FapShow::kMaxClampNotes);
+  EXPECT_EQ(show.clamps().back().frame, 99);
+  EXPECT_EQ(show.clamps_left_out(), 200u);
+  const std::vector<std::string> report = show.report();
+  ASSERT_EQ(report.size(), 101u);
+  EXPECT_EQ(report.back(), "clamped: 200 more values after frame 99 (the first 100 are listed)");
+}
+
 TEST(FapMapping, UnsupportedFapsAreListedAsIgnored) {
   const FapShow show =
       FapShow::build(sequence({{{3, "10"}, {43, "100"}, {65, "5"}}}), default_fap_head().mapping);
