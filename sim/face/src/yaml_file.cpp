@@ -1,13 +1,15 @@
 #include "facectl/face/yaml_file.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <ios>
+#include <sstream>
+#include <string>
 #include <system_error>
-#include <vector>
 
 #include "facectl/face/bounded_file.hpp"
 #include "facectl/face/input_error.hpp"
@@ -28,6 +30,46 @@ std::string found(const YAML::Node& node) {
   return "'" + node.Scalar() + "'";
 }
 
+// Notes where each document starts; the events themselves are dropped, so a
+// pass costs no memory however large the document.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  YAML::Mark last;
+  void OnDocumentStart(const YAML::Mark& at) override { last = at; }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// Refuses a second document (after `---`), which YAML::Load would silently
+// ignore. Never more than two documents are asked for: on a token it cannot
+// place (a `,` outside brackets) yaml-cpp returns empty documents forever
+// without moving on, which is how YAML::LoadAll ran out of memory on `,"x`.
+void check_one_document(const std::string& path, const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentStarts starts;
+  if (!parser.HandleNextDocument(starts)) return;
+  const YAML::Mark first = starts.last;
+  if (!parser.HandleNextDocument(starts)) return;
+  // yaml-cpp begins a "document" at the stuck token each time it fails to
+  // place it: that is a syntax error, not a second document.
+  const auto at = static_cast<std::size_t>(starts.last.pos);
+  if (starts.last.pos == first.pos || (at < text.size() && text[at] == ',')) {
+    throw error_at(path, starts.last,
+                   "YAML syntax error: unexpected '" + text.substr(at, 1) + "' at the top level");
+  }
+  throw error_at(path, starts.last, "expected one YAML document, found a second one here");
+}
+
 }  // namespace
 
 YAML::Node load_yaml_file(const std::string& path) {
@@ -36,15 +78,8 @@ YAML::Node load_yaml_file(const std::string& path) {
   const std::string text = read_bounded_file(path, kMaxYamlFileBytes, "YAML file");
   YAML::Node root;
   try {
-    // All documents, so that a second one (after `---`) is refused rather
-    // than silently ignored.
-    std::vector<YAML::Node> documents = YAML::LoadAll(text);
-    if (documents.size() > 1) {
-      throw error_at(path, documents[1].Mark(),
-                     "expected one YAML document, found " + std::to_string(documents.size()) +
-                         " (a second begins here)");
-    }
-    if (!documents.empty()) root = documents[0];
+    root = YAML::Load(text);
+    check_one_document(path, text);
   } catch (const YAML::ParserException& e) {
     throw error_at(path, e.mark, "YAML syntax error: " + e.msg);
   }

@@ -83,8 +83,23 @@ TEST(YamlFile, AMergeKeyIsRefusedNotReadAsAKey) {
 
 TEST(YamlFile, ASecondDocumentIsRefused) {
   EXPECT_EQ(error_for("a: 1\n---\na: 2\n"),
-            "F:3:1: expected one YAML document, found 2 (a second begins here)");
+            "F:2:1: expected one YAML document, found a second one here");
+  EXPECT_EQ(error_for("a: 1\n---\n"), "F:2:1: expected one YAML document, found a second one here");
   EXPECT_EQ(error_for("---\na: 1\n...\n"), "no error");
+  // A thousand documents are not all read to say so.
+  std::string many = "a: 1\n";
+  for (int i = 0; i < 1000; ++i) many += "---\nb: 2\n";
+  EXPECT_EQ(error_for(many), "F:2:1: expected one YAML document, found a second one here");
+}
+
+TEST(YamlFile, AStrayCommaIsASyntaxErrorNotEndlessDocuments) {
+  // yaml-cpp reads `,` at the top level as an empty document without moving
+  // past it: YAML::LoadAll took memory until killed, YAML::Load returned null.
+  // Found by runtime_config_fuzz (tests/fuzz/regressions/runtime_config).
+  EXPECT_EQ(error_for(",\"edoc"), "F:1:1: YAML syntax error: unexpected ',' at the top level");
+  EXPECT_EQ(error_for("# c\n  ,\n"), "F:2:3: YAML syntax error: unexpected ',' at the top level");
+  EXPECT_EQ(error_for("%YAML 1.2\n---\n,\n"),
+            "F:3:1: YAML syntax error: unexpected ',' at the top level");
 }
 
 TEST(YamlFile, AFileOverTheBoundIsRefusedBeforeParsing) {
