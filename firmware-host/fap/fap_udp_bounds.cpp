@@ -44,19 +44,19 @@ void check_header_bounds(const FapReader& reader, const FapUdpLimits& limits, in
   }
 }
 
-void check_frame_bounds(const FapReader& reader, const FapFrame& frame,
-                        std::optional<long> previous, long skipped, const FapUdpLimits& limits) {
+void check_frame_bounds(const FapReader& reader, const FapFrame& frame, std::optional<long> before,
+                        long skipped, const FapUdpLimits& limits) {
   // Refused rather than adopted: a number far ahead would otherwise shut out
   // every later frame of the sender's real numbering. Measured against the
   // time since its previous frame too, so that a sender whose numbers follow
   // its clock is not shut out by its own silence.
-  const long base = previous.value_or(0);
-  const long jump = limits.frame_jump + (previous ? skipped : 0);
+  const long base = before.value_or(0);
+  const long jump = limits.frame_jump + (before ? skipped : 0);
   if (frame.number - base > jump) {
     refuse(reader, frame.line,
-           previous ? "a frame number at most " + std::to_string(jump) +
-                          " above the previous frame's " + std::to_string(base)
-                    : "a first frame number after the header of at most " + std::to_string(jump),
+           before ? "a frame number at most " + std::to_string(jump) + " above frame " +
+                        std::to_string(base) + ", the sender's last before this datagram"
+                  : "a frame number after the header of at most " + std::to_string(jump),
            std::to_string(frame.number));
   }
   for (std::size_t i = 2; i < frame.values.size(); ++i) {

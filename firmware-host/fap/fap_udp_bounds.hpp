@@ -18,12 +18,13 @@ class FapBoundError : public FapFormatError {
 // The reader's current header (checked after every line: the first line
 // where it fails is the header's).
 void check_header_bounds(const FapReader& reader, const FapUdpLimits& limits, int line);
-// A frame just read; `previous` is the sender's frame number before it
-// (none after a header). The number may be limits.frame_jump + `skipped`
-// above it: `skipped` is how many frames the sender's clock ran on while it
-// was silent (0 within a datagram).
-void check_frame_bounds(const FapReader& reader, const FapFrame& frame,
-                        std::optional<long> previous, long skipped, const FapUdpLimits& limits);
+// A frame just read; `before` is the sender's last frame number before this
+// datagram (none if the datagram or the frames before it began with a
+// header). The number may be limits.frame_jump + `skipped` above it, for the
+// whole datagram, not per frame: `skipped` is how many frames the sender's
+// clock ran on while it was silent.
+void check_frame_bounds(const FapReader& reader, const FapFrame& frame, std::optional<long> before,
+                        long skipped, const FapUdpLimits& limits);
 // The datagram's frames so far, `count`, read up to `line`.
 void check_frame_count(const FapReader& reader, std::size_t count, const FapUdpLimits& limits,
                        int line);

@@ -26,7 +26,7 @@ std::int64_t to_ns(double s) {
 }
 
 // The frames of one datagram, read on `reader` with every field bounded;
-// `skipped` frames of silence widen the first frame's jump. Line numbers
+// `skipped` frames of silence widen the datagram's jump. Line numbers
 // count within the datagram (the reader's source names it). Throws
 // FapFormatError, or FapBoundError for a field past `limits`.
 std::vector<FapFrame> read_datagram(FapReader& reader, std::string_view datagram, long skipped,
@@ -34,15 +34,17 @@ std::vector<FapFrame> read_datagram(FapReader& reader, std::string_view datagram
   std::vector<FapFrame> frames;
   int line = 0;
   std::size_t pos = 0;
+  // One bound for the whole datagram: 64 frames each 1000 ahead of the one
+  // before would otherwise move the numbering 64,000 frames at once.
+  std::optional<long> before = reader.last_frame_number();
   while (pos < datagram.size()) {
     const std::size_t end = std::min(datagram.find('\n', pos), datagram.size());
     ++line;
-    const std::optional<long> previous = reader.last_frame_number();
+    if (!reader.last_frame_number()) before.reset();  // a header restarted the numbering
     const auto f = reader.feed(datagram.substr(pos, end - pos), line);
     check_header_bounds(reader, limits, line);
     if (f) {
-      check_frame_bounds(reader, *f, previous, skipped, limits);
-      skipped = 0;
+      check_frame_bounds(reader, *f, before, skipped, limits);
       frames.push_back(*f);
       check_frame_count(reader, frames.size(), limits, line);
     }

@@ -88,7 +88,7 @@ TEST(FapUdpSecurity, AFrameFarAheadFromAnotherSenderLocksNobodyOut) {
   legit.send(fap_frame_text(1, {{3, "200"}}));
   poll_until(stream, 2, 0);
   expect_refused_then_played_on(stream,
-                                "expected a first frame number after the header of at most 1000, "
+                                "expected a frame number after the header of at most 1000, "
                                 "found 9223372036854775807");
 }
 
@@ -142,7 +142,28 @@ TEST(FapUdpSecurity, AFrameNumberFarAheadIsRefusedNotAdopted) {
   tx.send(fap_frame_text(1, {{3, "200"}}));
   poll_until(stream, 2, 0);
   expect_refused_then_played_on(
-      stream, "expected a frame number at most 1000 above the previous frame's 0, found 5000");
+      stream,
+      "expected a frame number at most 1000 above frame 0, the sender's last before this "
+      "datagram, found 5000");
+}
+
+// The jump is bounded per datagram: 64 frames each 1000 ahead of the one
+// before would move the numbering 64,000 frames in one datagram.
+TEST(FapUdpSecurity, TheJumpIsBoundedPerDatagramNotPerFrame) {
+  FapUdpStream stream(mapping(), {});
+  Sender tx(stream.port());
+  tx.send(kHeader + fap_frame_text(0, {{3, "100"}}));
+  tx.send(fap_frame_text(600, {{3, "500"}}) + fap_frame_text(1200, {{3, "900"}}));
+  tx.send(fap_frame_text(1, {{3, "200"}}));
+  poll_until(stream, 2, 0);
+  expect_refused_then_played_on(
+      stream,
+      "expected a frame number at most 1000 above frame 0, the sender's last before this "
+      "datagram, found 1200");
+  // A header inside the datagram restarts the count from 0.
+  tx.send(fap_frame_text(900, {{3, "300"}}) + kHeader + fap_frame_text(800, {{3, "400"}}));
+  poll_until(stream, 4, 0);
+  EXPECT_NEAR(jaw_pitch(stream), open_jaw(400), 1e-12);
 }
 
 // Each field past its bound: counted, never played, and the sender is not
@@ -285,7 +306,9 @@ TEST(FapUdpSecurity, FrameNumbersThatFollowTheClockSurviveSilence) {
   const FapUdpStats st = stream.stats();
   EXPECT_EQ(st.frames, 3u) << st.last_error;
   EXPECT_EQ(st.out_of_bounds, 1u);
-  EXPECT_NE(st.last_error.find("above the previous frame's 50, found 1000050"), std::string::npos)
+  EXPECT_NE(
+      st.last_error.find("above frame 50, the sender's last before this datagram, found 1000050"),
+      std::string::npos)
       << st.last_error;
   EXPECT_NEAR(jaw_pitch(stream), open_jaw(200), 1e-12);
 }
