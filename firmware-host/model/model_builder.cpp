@@ -346,6 +346,15 @@ void set_actuator_constraints(const RigConfig& rig, BuiltModel& out) {
     if (!c.over_actuators) continue;
     CoupledConstraints::Constraint k = c.constraint;
     for (std::size_t t = 0; t < k.terms; ++t) k.index[t] = out.file_order[k.index[t]];
+    // Checked here, not only in finalize, to name the limit's own line.
+    const double at_rest = k.value(rest.data());
+    if (at_rest > k.bound + 1e-12) {  // finalize's tolerance
+      throw ConfigError(c.where +
+                        ": rig.coupled_limits: expected a limit that every actuator's rest "
+                        "position satisfies, found '" +
+                        k.name + "' = " + std::to_string(at_rest) + " at rest, above its max " +
+                        std::to_string(k.bound));
+    }
     try {
       m.actuator_constraints.add(k);
     } catch (const std::invalid_argument& e) {

@@ -339,6 +339,17 @@ TEST(ConfigErrors, ACoupledLimitTheNeutralPoseBreaksNamesItsLine) {
             "satisfies, found 'open' = 0.000000 at the neutral pose, above its max -1.000000");
 }
 
+TEST(ConfigErrors, AnActuatorCoupledLimitTheRestPoseBreaksNamesItsLine) {
+  const std::string text = rig(kGoodActuator) +
+                           "  coupled_limits:\n"
+                           "    - name: low\n"
+                           "      actuators: { jaw: 1 }\n"
+                           "      max: -1\n";
+  EXPECT_EQ(rig_error(text),
+            "RIG:16:7: rig.coupled_limits: expected a limit that every actuator's rest position "
+            "satisfies, found 'low' = 0.000000 at rest, above its max -1.000000");
+}
+
 TEST(ConfigErrors, ANeutralPoseOutsideTheEnvelopeNamesItsLine) {
   std::ifstream in(std::string(FACECTL_SOURCE_DIR) + "/config/heads/default/head.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
