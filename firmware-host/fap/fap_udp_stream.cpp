@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include "control/clock.hpp"
 #include "firmware-host/fap/fap_udp_bounds.hpp"
@@ -126,6 +127,10 @@ FapUdpStream::~FapUdpStream() {
 }
 
 std::size_t FapUdpStream::poll() {
+  // The readers and the buffer belong to the receiving thread alone.
+  if (running_.load() && receiver_.load() != std::this_thread::get_id()) {
+    throw std::logic_error("FapUdpStream::poll: a receiver thread is running (start())");
+  }
   std::size_t played = 0;
   while (const auto d = receive_datagram(fd_, buffer_)) {
     played += handle(*d, std::string_view(buffer_.data(), d->size));
@@ -142,6 +147,7 @@ std::size_t FapUdpStream::wait_and_poll(int timeout_ms) {
 void FapUdpStream::start() {
   if (running_.exchange(true)) return;
   thread_ = std::thread([this] {
+    receiver_.store(std::this_thread::get_id());
     while (running_.load(std::memory_order_relaxed)) wait_and_poll(20);
   });
 }

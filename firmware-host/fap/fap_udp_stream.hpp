@@ -64,7 +64,8 @@ class FapUdpStream {
   int fd() const { return fd_; }
 
   // Handles every datagram already queued, without blocking. Returns the
-  // number of frames played. From one thread at a time.
+  // number of frames played. From one thread at a time: while start()'s
+  // thread runs, only from it (else std::logic_error).
   std::size_t poll();
   // Waits up to timeout_ms for a datagram, then poll()s.
   std::size_t wait_and_poll(int timeout_ms);
@@ -114,6 +115,7 @@ class FapUdpStream {
 
   std::thread thread_;
   std::atomic<bool> running_{false};
+  std::atomic<std::thread::id> receiver_{};  // start()'s thread, once it runs
 };
 
 }  // namespace facectl

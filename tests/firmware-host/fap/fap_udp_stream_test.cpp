@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <numbers>
+#include <stdexcept>
 #include <thread>
 
 #include "default_fap_head.hpp"
@@ -111,6 +112,16 @@ TEST(FapUdpStream, ReceiverThreadFeedsTheMailbox) {
   ASSERT_TRUE(got);
   EXPECT_NEAR(cmd.values[default_fap_head().head.layout.jaw_pitch()],
               default_fap_head().mapping.pitch_for_open_jaw(300), 1e-12);
+}
+
+// The readers are the receiving thread's alone: a second thread polling
+// them would race it.
+TEST(FapUdpStream, PollingBesideTheReceiverThreadIsRefused) {
+  FapUdpStream stream(default_fap_head().mapping, {});
+  stream.start();
+  EXPECT_THROW(stream.poll(), std::logic_error);
+  stream.stop();
+  EXPECT_NO_THROW(stream.poll());
 }
 
 }  // namespace
