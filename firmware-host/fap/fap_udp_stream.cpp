@@ -128,7 +128,7 @@ FapUdpStream::~FapUdpStream() {
 
 std::size_t FapUdpStream::poll() {
   // The readers and the buffer belong to the receiving thread alone.
-  if (running_.load() && receiver_.load() != std::this_thread::get_id()) {
+  if (receiving_.load() && receiver_.load() != std::this_thread::get_id()) {
     throw std::logic_error("FapUdpStream::poll: a receiver thread is running (start())");
   }
   std::size_t played = 0;
@@ -146,6 +146,7 @@ std::size_t FapUdpStream::wait_and_poll(int timeout_ms) {
 
 void FapUdpStream::start() {
   if (running_.exchange(true)) return;
+  receiving_.store(true);
   thread_ = std::thread([this] {
     receiver_.store(std::this_thread::get_id());
     while (running_.load(std::memory_order_relaxed)) wait_and_poll(20);
@@ -155,6 +156,10 @@ void FapUdpStream::start() {
 void FapUdpStream::stop() {
   running_.store(false);
   if (thread_.joinable()) thread_.join();
+  // Only now: until the join the receiver may still be in handle(); and a
+  // later thread may be given the old one's id.
+  receiver_.store({});
+  receiving_.store(false);
 }
 
 // Called with mutex_ held.

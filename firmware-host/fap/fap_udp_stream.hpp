@@ -65,7 +65,8 @@ class FapUdpStream {
 
   // Handles every datagram already queued, without blocking. Returns the
   // number of frames played. From one thread at a time: while start()'s
-  // thread runs, only from it (else std::logic_error).
+  // thread runs, only from it (else std::logic_error; checked on entry, so a
+  // poll() still running when start() is called is the caller's race).
   std::size_t poll();
   // Waits up to timeout_ms for a datagram, then poll()s.
   std::size_t wait_and_poll(int timeout_ms);
@@ -115,6 +116,7 @@ class FapUdpStream {
 
   std::thread thread_;
   std::atomic<bool> running_{false};
+  std::atomic<bool> receiving_{false};       // from start() until stop() has joined
   std::atomic<std::thread::id> receiver_{};  // start()'s thread, once it runs
 };
 

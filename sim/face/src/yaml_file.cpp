@@ -49,25 +49,24 @@ class DocumentStarts : public YAML::EventHandler {
   void OnMapEnd() override {}
 };
 
-// Refuses a second document (after `---`), which YAML::Load would silently
-// ignore. Never more than two documents are asked for: on a token it cannot
-// place (a `,` outside brackets) yaml-cpp returns empty documents forever
-// without moving on, which is how YAML::LoadAll ran out of memory on `,"x`.
+// Refuses more YAML after the first document (after `---`, or a second
+// node such as `[a] b`), which YAML::Load would silently ignore. At most
+// three documents are asked for: on a token it cannot place (a `,` outside
+// brackets) yaml-cpp 0.7 returns empty documents forever, each starting at
+// that token, which is how YAML::LoadAll ran out of memory on `,"x`.
 void check_one_document(const std::string& path, const std::string& text) {
   std::istringstream in(text);
   YAML::Parser parser(in);
   DocumentStarts starts;
   if (!parser.HandleNextDocument(starts)) return;
-  const YAML::Mark first = starts.last;
   if (!parser.HandleNextDocument(starts)) return;
-  // yaml-cpp begins a "document" at the stuck token each time it fails to
-  // place it: that is a syntax error, not a second document.
-  const auto at = static_cast<std::size_t>(starts.last.pos);
-  if (starts.last.pos == first.pos || (at < text.size() && text[at] == ',')) {
-    throw error_at(path, starts.last,
-                   "YAML syntax error: unexpected '" + text.substr(at, 1) + "' at the top level");
+  const YAML::Mark second = starts.last;
+  // Marks only, never an index into `text`: after a byte-order mark or in
+  // UTF-16, yaml-cpp's positions count the UTF-8 it converted to.
+  if (parser.HandleNextDocument(starts) && starts.last.pos == second.pos) {
+    throw error_at(path, second, "YAML syntax error: unexpected ',' outside [ ] or { }");
   }
-  throw error_at(path, starts.last, "expected one YAML document, found a second one here");
+  throw error_at(path, second, "expected one YAML document, found a second one here");
 }
 
 }  // namespace

@@ -96,10 +96,22 @@ TEST(YamlFile, AStrayCommaIsASyntaxErrorNotEndlessDocuments) {
   // yaml-cpp reads `,` at the top level as an empty document without moving
   // past it: YAML::LoadAll took memory until killed, YAML::Load returned null.
   // Found by runtime_config_fuzz (tests/fuzz/regressions/runtime_config).
-  EXPECT_EQ(error_for(",\"edoc"), "F:1:1: YAML syntax error: unexpected ',' at the top level");
-  EXPECT_EQ(error_for("# c\n  ,\n"), "F:2:3: YAML syntax error: unexpected ',' at the top level");
-  EXPECT_EQ(error_for("%YAML 1.2\n---\n,\n"),
-            "F:3:1: YAML syntax error: unexpected ',' at the top level");
+  const std::string comma = "YAML syntax error: unexpected ',' outside [ ] or { }";
+  EXPECT_EQ(error_for(",\"edoc"), "F:1:1: " + comma);
+  EXPECT_EQ(error_for("# c\n  ,\n"), "F:2:3: " + comma);
+  EXPECT_EQ(error_for("%YAML 1.2\n---\n,\n"), "F:3:1: " + comma);
+  EXPECT_EQ(error_for("[a]\n,\n"), "F:2:1: " + comma);
+  // After a byte-order mark, and in UTF-16, yaml-cpp's positions are not
+  // byte offsets into the file; the error must still come out as one.
+  EXPECT_EQ(error_for("\xEF\xBB\xBF,x"), "F:1:1: " + comma);
+  std::string utf16("#\0", 2);
+  for (int i = 0; i < 20; ++i) utf16 += "\x2D\x4E";  // U+4E2D
+  utf16.append("\n\0,\0", 4);
+  EXPECT_EQ(error_for(utf16), "F:2:1: " + comma);
+}
+
+TEST(YamlFile, ASecondNodeWithoutDashesIsASecondDocument) {
+  EXPECT_EQ(error_for("[a]\nb: 1\n"), "F:2:1: expected one YAML document, found a second one here");
 }
 
 TEST(YamlFile, AFileOverTheBoundIsRefusedBeforeParsing) {
