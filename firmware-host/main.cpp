@@ -45,8 +45,17 @@ void add_run_command(CLI::App& app, CliOptions& o) {
                       "from config: sim)");
   run_cmd->add_flag("--gamepad", o.run.gamepad,
                     "Puppeteer the face from the runtime config's gamepad instead of a show");
+  run_cmd->add_option("--input", o.run.input,
+                      "Play an input file instead of the show: FAP, Live Link Face CSV, MediaPipe "
+                      "JSON, OpenFace CSV, Rhubarb JSON/TSV, Praat TextGrid, speech audio "
+                      "(docs/INPUTS.md)");
+  run_cmd->add_option("--format", o.run.format,
+                      "The --input file's format (default: detected from its content)");
+  run_cmd->add_flag("--fap-stream", o.run.fap_stream,
+                    "Play the live MPEG-4 FAP stream over UDP of the runtime config's fap_stream "
+                    "block instead of a show (docs/FAP.md)");
   run_cmd->add_option("--record-show", o.run.record_show,
-                      "With --gamepad: write what was performed as a show file");
+                      "With --gamepad or --input: write what was performed as a show file");
   run_cmd->add_option(
       "--inject", o.run.inject,
       "Rehearse a fault: estop@S, bus_fault:BUS@S, input_loss@S, overrun_storm:MS@S");
@@ -124,16 +133,23 @@ void add_verify_command(CLI::App& app, CliOptions& o) {
   verify_cmd->callback([&o] { o.exit_code = facectl::verify_command(o.verify); });
 }
 
-// `facectl simulate`: a show or FAP file offline on the rig's simulated twin.
+// `facectl simulate`: a show, FAP or other input file offline on the rig's simulated twin.
 void add_simulate_command(CLI::App& app, CliOptions& o) {
   CLI::App* simulate_cmd = app.add_subcommand(
       "simulate",
-      "Run a show or an MPEG-4 FAP file through the whole pipeline offline, on the rig's "
+      "Run a show, an MPEG-4 FAP file or another input through the whole pipeline offline, on the "
+      "rig's "
       "simulated twin; write telemetry, plots, a summary and an HTML report (exit 0 ok, 1 the "
       "head faulted, 2 unusable input)");
   simulate_cmd->add_option("--rig", o.simulate.rig, "Rig YAML")->required();
   simulate_cmd->add_option("--show", o.simulate.show, "Show file to play");
   simulate_cmd->add_option("--fap", o.simulate.fap, "MPEG-4 FAP file to play");
+  simulate_cmd->add_option("--input", o.simulate.input,
+                           "Any input file to play: show, FAP, Live Link Face CSV, MediaPipe "
+                           "JSON, OpenFace CSV, Rhubarb JSON/TSV, Praat TextGrid, speech audio "
+                           "(docs/INPUTS.md)");
+  simulate_cmd->add_option("--format", o.simulate.format,
+                           "The --input file's format (default: detected from its content)");
   simulate_cmd->add_option("--out", o.simulate.out, "Output folder (replaced as a whole)")
       ->required();
   simulate_cmd->add_flag("--render", o.simulate.render, "Also write the face render frames");

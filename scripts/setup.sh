@@ -18,6 +18,9 @@ packages=(
   # deployment test checks the unit and sysusers file (systemd-analyze,
   # systemd-sysusers) and builds the .deb (dpkg-shlibdeps, dpkg-deb).
   libsystemd-dev systemd dpkg-dev
+  # `--input speech.wav`: the speech-driven jaw reads WAV (and FLAC, Ogg)
+  # through libsndfile (docs/INPUTS.md).
+  libsndfile1-dev
   # The SocketCAN tests run in a QEMU guest (tests/drivers/qemu): the emulator,
   # Debian's kernel with the CAN modules, a static busybox for the initramfs,
   # and can-utils and iproute2 for the guest's candump, cansend and vcan set-up.

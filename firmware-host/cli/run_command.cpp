@@ -18,8 +18,11 @@
 #include "control/realtime/loop_timer.hpp"
 #include "drivers/hid/hid_gamepad.hpp"
 #include "firmware-host/config/loaded_config.hpp"
+#include "firmware-host/fap/fap_udp_stream.hpp"
 #include "firmware-host/inputs/gamepad_puppeteer.hpp"
+#include "firmware-host/inputs/recorded_input.hpp"
 #include "firmware-host/inputs/show_player.hpp"
+#include "firmware-host/inputs/text_lines.hpp"
 #include "firmware-host/run/fault_injection.hpp"
 #include "firmware-host/run/head_runtime.hpp"
 #include "firmware-host/run/run_summary.hpp"
@@ -43,9 +46,13 @@ constexpr double kFaultLingerSeconds = 0.5;
 struct RunSession {
   std::vector<Injection> injections;
   HeadRuntime head;
+  std::optional<RecordedInput> input;       // --input, when it is not a show
+  std::optional<Show> input_show;           // --input, when it is
+  std::unique_ptr<FapMapping> fap_mapping;  // --fap-stream: outlives the stream
+  std::unique_ptr<FapUdpStream> fap_stream;
+  std::unique_ptr<ShowRecorder> recorder;  // before its writers: they stop first
   std::unique_ptr<ShowPlayer> player;
   std::unique_ptr<HidGamepad> pad;
-  std::unique_ptr<ShowRecorder> recorder;
   std::unique_ptr<GamepadPuppeteer> puppeteer;
   double end_s = 1e300;
 
@@ -73,8 +80,39 @@ void load(const RunOptions& options, RunSession& s) {
     throw ConfigError("--gamepad: expected a gamepad block in " + cfg.runtime.file +
                       ", found none");
   }
-  if (options.record_show && !options.gamepad) {
-    throw ConfigError("--record-show: expected --gamepad (it records the puppeteering)");
+  if (options.record_show && !options.gamepad && !options.input) {
+    throw ConfigError(
+        "--record-show: expected --gamepad or --input (it records what they perform)");
+  }
+  if (options.gamepad + options.fap_stream + options.input.has_value() + options.show.has_value() >
+      1) {
+    throw ConfigError("expected at most one of --show, --input, --gamepad and --fap-stream");
+  }
+  if (options.fap_stream) {
+    if (!cfg.runtime.fap_stream) {
+      throw ConfigError("--fap-stream: expected a fap_stream block in " + cfg.runtime.file +
+                        ", found none");
+    }
+    s.fap_mapping = std::make_unique<FapMapping>(
+        load_fap_mapping(cfg.head, cfg.expressions, cfg.runtime.visemes_path));
+  }
+  if (options.format && !options.input)
+    throw ConfigError("--format: expected --input FILE with it");
+  if (options.input) {
+    std::optional<InputFormat> format;
+    if (options.format) {
+      format = parse_input_format(*options.format);
+      if (!format) {
+        throw ConfigError("--format: expected one of " + input_format_names() + ", found '" +
+                          *options.format + "'");
+      }
+    }
+    const std::string head = read_file_head(*options.input, kDetectBytes);
+    if (resolve_input_format(*options.input, head, format) == InputFormat::kShow) {
+      s.input_show = Show::load(*options.input, cfg.head.layout, cfg.head.neutral, cfg.expressions);
+    } else {
+      s.input = load_recorded_input(cfg, *options.input, format);
+    }
   }
   if (options.duration_s && !(*options.duration_s > 0.0)) {
     throw ConfigError("--duration: expected a number of seconds > 0");
@@ -108,12 +146,43 @@ void open_input(const RunOptions& options, RunSession& s) {
         g.selector.path.empty()
             ? (std::to_string(g.selector.vendor) + ":" + std::to_string(g.selector.product)).c_str()
             : g.selector.path.c_str());
+  } else if (options.fap_stream) {
+    // Binding may fail (port in use, address): before anything is enabled.
+    s.fap_stream = std::make_unique<FapUdpStream>(*s.fap_mapping, *s.head.cfg->runtime.fap_stream,
+                                                  &s.head.mailbox);
+    std::fprintf(stderr, "facectl run: FAP stream listening on UDP port %u; Ctrl-C ends the run\n",
+                 static_cast<unsigned>(s.fap_stream->port()));
+  } else if (s.input || s.input_show) {
+    if (options.record_show) {
+      s.recorder = std::make_unique<ShowRecorder>(model.layout, model.neutral);
+    }
+    ShowPlayer::PoseSource source;
+    if (s.input) {
+      source = [track = &s.input->track](double t, std::array<double, kMaxFaceSignals>& out) {
+        track->evaluate(t, out);
+      };
+    } else {
+      source = [show = &*s.input_show](double t, std::array<double, kMaxFaceSignals>& out) {
+        show->evaluate(t, out);
+      };
+    }
+    const double duration = s.input ? s.input->track.duration() : s.input_show->duration();
+    s.player = std::make_unique<ShowPlayer>(std::move(source), duration, s.head.mailbox,
+                                            s.head.cfg->runtime.show_rate_hz,
+                                            options.duration_s.has_value(), s.recorder.get());
+    if (s.input) {
+      for (const std::string& note : s.input->notes) {
+        std::fprintf(stderr, "facectl run: %s: %s\n", options.input->c_str(), note.c_str());
+      }
+    }
   } else if (s.head.cfg->show) {
     s.player = std::make_unique<ShowPlayer>(*s.head.cfg->show, s.head.mailbox,
                                             s.head.cfg->runtime.show_rate_hz,
                                             options.duration_s.has_value());
   }
   s.end_s = options.duration_s ? *options.duration_s
+            : s.input          ? s.input->track.duration()
+            : s.input_show     ? s.input_show->duration()
             : (s.player)       ? s.head.cfg->show->duration()
                                : 1e300;
 }
@@ -121,6 +190,7 @@ void open_input(const RunOptions& options, RunSession& s) {
 // Stage 4. Start: input, logger and the real-time loop, and ask to enable.
 void start(RunSession& s) {
   if (s.player) s.player->start();
+  if (s.fap_stream) s.fap_stream->start();
   if (s.puppeteer) s.puppeteer->start();
   start_head_loop(s.head);
   s.head.controller->request_enable();
@@ -192,6 +262,7 @@ void stop(RunSession& s, bool tty) {
   stop_head_loop(s.head);  // nothing holds once the loop has stopped
   if (s.player) s.player->stop();
   if (s.puppeteer) s.puppeteer->stop();
+  if (s.fap_stream) s.fap_stream->stop();
   if (s.head.writer) {
     // A slow file must not hold the exit: the drain has a budget, and a
     // signal from here on cuts it short (the rows left are counted lost).
@@ -209,7 +280,8 @@ void stop(RunSession& s, bool tty) {
 // Writes what was puppeteered as a show file; 1 when there is none to write.
 int write_recorded_show(const RunOptions& options, const ShowRecorder& recorder) {
   if (recorder.keyframes() == 0) {
-    std::fprintf(stderr, "facectl run: --record-show: the gamepad sent nothing; no show written\n");
+    std::fprintf(stderr, "facectl run: --record-show: the %s sent nothing; no show written\n",
+                 options.gamepad ? "gamepad" : "input");
     return 1;
   }
   try {
@@ -265,6 +337,19 @@ int run_command(const RunOptions& options) {
                      s.head.events.dropped(),
                      s.head.real != nullptr};
   int rc = print_run_summary(in);
+  if (s.fap_stream) {
+    const FapUdpStats st = s.fap_stream->stats();
+    std::printf(
+        "  FAP stream: %llu datagrams, %llu frames played, %llu malformed, %llu out of "
+        "bounds, %llu from refused senders, %llu dropped by the kernel\n",
+        static_cast<unsigned long long>(st.datagrams), static_cast<unsigned long long>(st.frames),
+        static_cast<unsigned long long>(st.malformed),
+        static_cast<unsigned long long>(st.out_of_bounds),
+        static_cast<unsigned long long>(st.refused_senders),
+        static_cast<unsigned long long>(st.kernel_drops));
+    if (!st.last_error.empty())
+      std::printf("  FAP stream: last error: %s\n", st.last_error.c_str());
+  }
   if (s.recorder) rc = std::max(rc, write_recorded_show(options, *s.recorder));
   return rc;
 }

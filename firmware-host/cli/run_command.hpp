@@ -11,10 +11,13 @@ struct RunOptions {
   std::optional<std::string> show;   // overrides the runtime file's show
   std::optional<double> duration_s;  // run this long (the show loops); else play the show once
   std::optional<double> rate_hz;
-  std::optional<std::string> record;       // telemetry CSV path
-  std::optional<std::string> hardware;     // "sim" or "real": overrides the runtime file
-  bool gamepad = false;                    // puppeteer from the runtime file's gamepad, not a show
-  std::optional<std::string> record_show;  // with gamepad: write what was performed as a show
+  std::optional<std::string> record;    // telemetry CSV path
+  std::optional<std::string> hardware;  // "sim" or "real": overrides the runtime file
+  std::optional<std::string> input;     // play this input file instead of the show (docs/INPUTS.md)
+  std::optional<std::string> format;    // the input's format; else detected from its content
+  bool fap_stream = false;  // play the runtime file's fap_stream (UDP) instead of a show
+  bool gamepad = false;     // puppeteer from the runtime file's gamepad, not a show
+  std::optional<std::string> record_show;  // with gamepad or input: write what was played as a show
   std::vector<std::string> inject;         // fault rehearsal on simulated hardware
   bool quiet = false;                      // no status line even on a terminal
 };

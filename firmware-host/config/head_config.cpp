@@ -57,11 +57,16 @@ HeadConfig load_head_config(const std::string& path) {
   std::set<std::string> seen;
   for (const ConfigNode& m : head["muscles"].items()) {
     std::string name;
+    std::vector<int> aus;
     if (m.is_map()) {
       m.expect_keys({"name", "facs"});
       name = m["name"].string();
       if (auto facs = m.get("facs")) {
-        for (const auto& au : facs->items()) (void)au.integer();
+        for (const auto& au : facs->items()) {
+          const long n = au.integer();
+          if (n < 1 || n > 99) au.fail("a FACS action unit number 1..99", std::to_string(n));
+          aus.push_back(static_cast<int>(n));
+        }
       }
     } else {
       name = m.string();
@@ -69,6 +74,8 @@ HeadConfig load_head_config(const std::string& path) {
     if (name.empty()) m.fail("a muscle name", "an empty name");
     if (!seen.insert(name).second) m.fail("a unique muscle name", "duplicate '" + name + "'");
     cfg.muscles.push_back(name);
+    cfg.muscle_facs.push_back(std::move(aus));
+    cfg.muscle_where.push_back(m.where());
   }
   if (cfg.muscles.empty()) head["muscles"].fail("at least one muscle", "an empty list");
   if (auto p = head.get("passive_muscles")) cfg.passive_muscles = p->string_list();

@@ -35,6 +35,10 @@ struct HeadConfig {
   std::string file;
   std::string name;
   std::vector<std::string> muscles;
+  // The FACS action units each muscle serves (head.yaml `facs`), by muscle
+  // index; checked against the retargeting table (inputs/retarget_table.hpp).
+  std::vector<std::vector<int>> muscle_facs;
+  std::vector<std::string> muscle_where;  // file:line:column of each muscle's entry
   std::vector<std::string> passive_muscles;
   std::map<std::string, Range> rigid_ranges;  // SI, keyed by rigid signal name
   std::optional<EnvelopeSpec> envelope;

@@ -6,8 +6,8 @@ namespace facectl {
 
 RuntimeConfig load_runtime_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path, "");
-  root.expect_keys({"runtime", "head", "rig", "expressions", "show", "visemes", "hardware",
-                    "safety_io", "gamepad", "serve", "fap_stream"});
+  root.expect_keys({"runtime", "head", "rig", "expressions", "show", "visemes", "retarget",
+                    "hardware", "safety_io", "gamepad", "serve", "fap_stream"});
   RuntimeConfig cfg;
   cfg.file = path;
   cfg.head_path = resolve_path(path, root["head"].string());
@@ -18,6 +18,10 @@ RuntimeConfig load_runtime_config(const std::string& path) {
   // an installed /etc/facectl each find their own.
   const auto visemes = root.get("visemes");
   cfg.visemes_path = resolve_path(path, visemes ? visemes->string() : "fap/visemes.yaml");
+  // Per head: beside the head file unless the runtime file names another.
+  const auto retarget = root.get("retarget");
+  cfg.retarget_path = retarget ? resolve_path(path, retarget->string())
+                               : resolve_path(cfg.head_path, "retarget.yaml");
   if (auto n = root.get("hardware")) cfg.hardware = parse_hardware_mode(*n);
   if (auto n = root.get("safety_io")) cfg.safety_io = parse_safety_io(*n);
   if (auto n = root.get("gamepad")) cfg.gamepad = parse_gamepad(*n);

@@ -35,12 +35,13 @@ struct RuntimeConfig {
   std::string rig_path;
   std::string expressions_path;
   std::string show_path;
-  std::string visemes_path;  // `visemes:`, default fap/visemes.yaml beside this file
+  std::string visemes_path;   // `visemes:`, default fap/visemes.yaml beside this file
+  std::string retarget_path;  // `retarget:`, default retarget.yaml beside the head file
   HardwareMode hardware = HardwareMode::kSim;  // `hardware:`; `facectl run --hardware` overrides
   std::optional<SafetyIoConfig> safety_io;     // required by hardware: real
   std::optional<GamepadConfig> gamepad;        // puppeteering (`facectl run --gamepad`)
   ServeConfig serve;                           // `facectl serve`
-  std::optional<FapUdpOptions> fap_stream;     // the live FAP stream (no command opens it yet)
+  std::optional<FapUdpOptions> fap_stream;     // the live FAP stream (run --fap-stream)
 };
 
 RuntimeConfig load_runtime_config(const std::string& path);

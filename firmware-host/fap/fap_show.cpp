@@ -1,13 +1,12 @@
 #include "firmware-host/fap/fap_show.hpp"
 
-#include <algorithm>
-
 namespace facectl {
 
 FapShow FapShow::build(const FapSequence& sequence, const FapMapping& mapping) {
   FapShow show;
   show.name_ = sequence.header.name;
-  show.signal_count_ = mapping.layout().size();
+  show.track_ = PoseTrack(mapping.layout().size());
+  show.track_.reserve(sequence.frames.size());
   FapState state;
   std::vector<FapClamp> frame_clamps;
   for (const FapFrame& frame : sequence.frames) {
@@ -22,8 +21,7 @@ FapShow FapShow::build(const FapSequence& sequence, const FapMapping& mapping) {
         ++show.clamps_left_out_;
       }
     }
-    show.times_.push_back(sequence.time_of(frame));
-    show.poses_.push_back(pose);
+    show.track_.add(sequence.time_of(frame), pose);
   }
   for (int f = 1; f <= kFapCount; ++f) {
     const auto bit = static_cast<std::size_t>(f - 1);
@@ -31,23 +29,6 @@ FapShow FapShow::build(const FapSequence& sequence, const FapMapping& mapping) {
     if (sequence.unplayed[bit]) show.unplayed_.push_back(f);
   }
   return show;
-}
-
-void FapShow::evaluate(double t, std::array<double, kMaxFaceSignals>& out) const {
-  if (t <= times_.front()) {
-    out = poses_.front();
-    return;
-  }
-  if (t >= times_.back()) {
-    out = poses_.back();
-    return;
-  }
-  const auto next = std::upper_bound(times_.begin(), times_.end(), t);
-  const auto k = static_cast<std::size_t>(next - times_.begin());
-  const double w = (t - times_[k - 1]) / (times_[k] - times_[k - 1]);
-  for (std::size_t i = 0; i < signal_count_; ++i) {
-    out[i] = poses_[k - 1][i] + w * (poses_[k][i] - poses_[k - 1][i]);
-  }
 }
 
 std::vector<std::string> FapShow::report() const {

@@ -7,6 +7,7 @@
 #include "control/capacity.hpp"
 #include "firmware-host/fap/fap_file.hpp"
 #include "firmware-host/fap/fap_mapping.hpp"
+#include "firmware-host/inputs/pose_track.hpp"
 
 namespace facectl {
 
@@ -19,10 +20,13 @@ class FapShow {
   static FapShow build(const FapSequence& sequence, const FapMapping& mapping);
 
   const std::string& name() const { return name_; }
-  double start() const { return times_.front(); }
-  double duration() const { return times_.back(); }
-  std::size_t frame_count() const { return times_.size(); }
-  void evaluate(double t, std::array<double, kMaxFaceSignals>& out) const;
+  double start() const { return track_.start(); }
+  double duration() const { return track_.duration(); }
+  std::size_t frame_count() const { return track_.size(); }
+  void evaluate(double t, std::array<double, kMaxFaceSignals>& out) const {
+    track_.evaluate(t, out);
+  }
+  const PoseTrack& track() const { return track_; }
 
   // The first kMaxClampNotes clamps, in frame order; clamps_left_out() more.
   // (A file may clamp in every frame: the report must stay readable and small.)
@@ -39,9 +43,7 @@ class FapShow {
 
  private:
   std::string name_;
-  std::vector<double> times_;
-  std::vector<std::array<double, kMaxFaceSignals>> poses_;
-  std::size_t signal_count_ = 0;
+  PoseTrack track_;
   std::vector<FapClamp> clamps_;
   std::size_t clamps_left_out_ = 0;
   std::vector<int> ignored_;

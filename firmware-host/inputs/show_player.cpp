@@ -9,7 +9,19 @@ namespace facectl {
 
 ShowPlayer::ShowPlayer(const Show& show, LatestValueMailbox<FaceCommand>& mailbox, double rate_hz,
                        bool loop)
-    : show_(show), mailbox_(mailbox), rate_hz_(rate_hz), loop_(loop) {}
+    : ShowPlayer(
+          [&show](double t, std::array<double, kMaxFaceSignals>& out) { show.evaluate(t, out); },
+          show.duration(), mailbox, rate_hz, loop) {}
+
+ShowPlayer::ShowPlayer(PoseSource source, double duration_s,
+                       LatestValueMailbox<FaceCommand>& mailbox, double rate_hz, bool loop,
+                       ShowRecorder* recorder)
+    : source_(std::move(source)),
+      duration_s_(duration_s),
+      mailbox_(mailbox),
+      recorder_(recorder),
+      rate_hz_(rate_hz),
+      loop_(loop) {}
 
 ShowPlayer::~ShowPlayer() {
   stop();
@@ -32,7 +44,7 @@ void ShowPlayer::run() {
   while (!stop_.load(std::memory_order_relaxed)) {
     const std::int64_t now = monotonic_ns();
     double t = static_cast<double>(now - t0) * 1e-9;
-    const double duration = show_.duration();
+    const double duration = duration_s_;
     if (t >= duration) {
       if (loop_ && duration > 0.0) {
         t = std::fmod(t, duration);
@@ -41,7 +53,8 @@ void ShowPlayer::run() {
       }
     }
     if (!silent_.load(std::memory_order_relaxed)) {
-      show_.evaluate(t, cmd.values);
+      source_(t, cmd.values);
+      if (recorder_) recorder_->add(static_cast<double>(now - t0) * 1e-9, cmd.values);
       ++cmd.sequence;
       cmd.stamp_ns = now;
       mailbox_.publish(cmd);

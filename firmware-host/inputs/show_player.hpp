@@ -1,19 +1,28 @@
 #pragma once
 
+#include <array>
 #include <atomic>
+#include <functional>
 #include <thread>
 
 #include "control/command/face_command.hpp"
 #include "control/realtime/latest_value_mailbox.hpp"
 #include "firmware-host/inputs/show.hpp"
+#include "firmware-host/inputs/show_recorder.hpp"
 
 namespace facectl {
 
-// Non-real-time input thread: evaluates a show at a fixed rate and publishes
-// each pose into the controller's latest-value mailbox.
+// Non-real-time input thread: evaluates a show (or any timed poses: a
+// recorded input's PoseTrack) at a fixed rate and publishes each pose into the
+// controller's latest-value mailbox; with a recorder, also records what it
+// published (`--record-show`), read only after stop().
 class ShowPlayer {
  public:
+  using PoseSource = std::function<void(double t, std::array<double, kMaxFaceSignals>& out)>;
+
   ShowPlayer(const Show& show, LatestValueMailbox<FaceCommand>& mailbox, double rate_hz, bool loop);
+  ShowPlayer(PoseSource source, double duration_s, LatestValueMailbox<FaceCommand>& mailbox,
+             double rate_hz, bool loop, ShowRecorder* recorder = nullptr);
   ~ShowPlayer();
   ShowPlayer(const ShowPlayer&) = delete;
   ShowPlayer& operator=(const ShowPlayer&) = delete;
@@ -27,8 +36,10 @@ class ShowPlayer {
  private:
   void run();
 
-  const Show& show_;
+  PoseSource source_;
+  double duration_s_;
   LatestValueMailbox<FaceCommand>& mailbox_;
+  ShowRecorder* recorder_;
   double rate_hz_;
   bool loop_;
   std::thread thread_;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include "firmware-host/inputs/input_limits.hpp"
 #include "firmware-host/report/html_report.hpp"
@@ -43,8 +44,17 @@ struct Inputs {
 
 Inputs load_inputs(const SimulateOptions& o) {
   if (o.rig.empty()) throw ConfigError("--rig: expected a rig file, found none");
-  if (o.show.empty() == o.fap.empty()) {
-    throw ConfigError("expected exactly one of --show FILE and --fap FILE");
+  if (o.show.empty() + o.fap.empty() + o.input.empty() != 2) {
+    throw ConfigError("expected exactly one of --show FILE, --fap FILE and --input FILE");
+  }
+  std::optional<InputFormat> format;
+  if (!o.format.empty()) {
+    format = parse_input_format(o.format);
+    if (!format) {
+      throw ConfigError("--format: expected one of " + input_format_names() + ", found '" +
+                        o.format + "'");
+    }
+    if (o.input.empty()) throw ConfigError("--format: expected --input FILE with it");
   }
   if (o.out.empty()) throw ConfigError("--out: expected an output folder, found none");
   if (!(o.telemetry_rate_hz > 0.0) || !std::isfinite(o.telemetry_rate_hz)) {
@@ -66,9 +76,10 @@ Inputs load_inputs(const SimulateOptions& o) {
   ConfigOverrides overrides;
   overrides.rig_path = o.rig;
   in.cfg = load_config(o.config.empty() ? default_config_path() : o.config, overrides);
-  in.input = std::make_unique<SimulationInput>(o.show.empty()
-                                                   ? SimulationInput::load_fap(in.cfg, o.fap)
-                                                   : SimulationInput::load_show(in.cfg, o.show));
+  in.input = std::make_unique<SimulationInput>(
+      !o.input.empty() ? SimulationInput::load_input(in.cfg, o.input, format)
+      : o.show.empty() ? SimulationInput::load_fap(in.cfg, o.fap)
+                       : SimulationInput::load_show(in.cfg, o.show));
   return in;
 }
 

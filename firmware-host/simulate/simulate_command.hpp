@@ -7,7 +7,9 @@ namespace facectl {
 struct SimulateOptions {
   std::string rig;          // rig YAML
   std::string show;         // a show file, or
-  std::string fap;          // an MPEG-4 FAP file
+  std::string fap;          // an MPEG-4 FAP file, or
+  std::string input;        // any input file (docs/INPUTS.md)
+  std::string format;       // --format: the input's format, else detected
   std::string out;          // output folder (replaced as a whole)
   std::string config;       // runtime config (default: the shipped one)
   bool render = false;      // face render frames

@@ -1,7 +1,7 @@
 #include "firmware-host/simulate/simulation_input.hpp"
 
-#include "firmware-host/fap/fap_file.hpp"
-#include "firmware-host/fap/fap_mapping.hpp"
+#include "firmware-host/inputs/recorded_input.hpp"
+#include "firmware-host/inputs/text_lines.hpp"
 
 namespace facectl {
 
@@ -17,11 +17,19 @@ SimulationInput SimulationInput::from_show(Show show) {
 }
 
 SimulationInput SimulationInput::load_fap(const LoadedConfig& cfg, const std::string& path) {
-  const FapSequence sequence = load_fap_file(path);  // parse first: a bad file costs nothing
+  return load_input(cfg, path, InputFormat::kFap);
+}
+
+SimulationInput SimulationInput::load_input(const LoadedConfig& cfg, const std::string& path,
+                                            std::optional<InputFormat> format) {
+  if (!format) format = resolve_input_format(path, read_file_head(path, kDetectBytes), format);
+  if (*format == InputFormat::kShow) return load_show(cfg, path);
+  RecordedInput recorded = load_recorded_input(cfg, path, format);
   SimulationInput in;
-  in.fap_ = FapShow::build(sequence,
-                           load_fap_mapping(cfg.head, cfg.expressions, cfg.runtime.visemes_path));
-  in.name_ = in.fap_->name();
+  in.format_ = recorded.format;
+  in.name_ = std::move(recorded.name);
+  in.track_ = std::move(recorded.track);
+  in.notes_ = std::move(recorded.notes);
   return in;
 }
 

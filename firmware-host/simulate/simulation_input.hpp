@@ -7,39 +7,45 @@
 
 #include "control/capacity.hpp"
 #include "firmware-host/config/loaded_config.hpp"
-#include "firmware-host/fap/fap_show.hpp"
+#include "firmware-host/inputs/input_format.hpp"
+#include "firmware-host/inputs/pose_track.hpp"
 #include "firmware-host/inputs/show.hpp"
 
 namespace facectl {
 
-// What `facectl simulate` plays: a show file or an MPEG-4 FAP file, both as
-// face poses over time (SI, layout order). Loading throws ConfigError (a FAP
-// file: FapFormatError) naming file:line:column; nothing is half loaded.
+// What `facectl simulate` plays: a show, or a recorded input (an MPEG-4 FAP
+// file, a capture, lip sync; docs/INPUTS.md), both as face poses over time
+// (SI, layout order). Loading throws ConfigError naming file:line:column;
+// nothing is half loaded.
 class SimulationInput {
  public:
   static SimulationInput load_show(const LoadedConfig& cfg, const std::string& path);
   static SimulationInput load_fap(const LoadedConfig& cfg, const std::string& path);
+  // Any input file, in `format` or the one its content shows.
+  static SimulationInput load_input(const LoadedConfig& cfg, const std::string& path,
+                                    std::optional<InputFormat> format);
   static SimulationInput from_show(Show show);
 
   const std::string& name() const { return name_; }
-  const char* kind() const { return show_ ? "show" : "fap"; }
-  double duration() const { return show_ ? show_->duration() : fap_->duration(); }
+  // "show", "fap", "live_link_face", ... (input_format_name).
+  const char* kind() const { return input_format_name(format_); }
+  double duration() const { return show_ ? show_->duration() : track_.duration(); }
   void evaluate(double t, std::array<double, kMaxFaceSignals>& out) const {
     if (show_) {
       show_->evaluate(t, out);
     } else {
-      fap_->evaluate(t, out);
+      track_.evaluate(t, out);
     }
   }
-  // FAP clamps and ignored FAPs (FapShow::report()); empty for shows.
-  std::vector<std::string> notes() const {
-    return fap_ ? fap_->report() : std::vector<std::string>{};
-  }
+  // What was read leniently, clamped or not shown; empty for shows.
+  const std::vector<std::string>& notes() const { return notes_; }
 
  private:
   std::string name_;
+  InputFormat format_ = InputFormat::kShow;
   std::optional<Show> show_;
-  std::optional<FapShow> fap_;
+  PoseTrack track_;
+  std::vector<std::string> notes_;
 };
 
 }  // namespace facectl

@@ -36,6 +36,9 @@ ExpressionMetrics measure(const FaceModel& m, const Points& s) {
       (now("fdp_4_1") - now("fdp_4_2")).norm() - (rest("fdp_4_1") - rest("fdp_4_2")).norm();
   r.chin_drop = -d("fdp_2_1").y();
   r.chin_shift = d("fdp_2_1").x();
+  r.chin_forward = d("fdp_2_1").z();
+  r.lower_lip_rise = d("fdp_8_2").y();
+  r.nostril_rise = 0.5 * (d("fdp_9_1").y() + d("fdp_9_2").y());
   r.lid_ratio_l =
       (now("fdp_3_1").y() - now("fdp_3_3").y()) / (rest("fdp_3_1").y() - rest("fdp_3_3").y());
   r.lid_ratio_r =

@@ -19,6 +19,9 @@ struct ExpressionMetrics {
   double inner_brow_gap;                                // Δ|4.1 − 4.2|
   double chin_drop;                                     // −Δy of 2.1
   double chin_shift;                                    // Δx of 2.1
+  double chin_forward;                                  // Δz of 2.1
+  double lower_lip_rise;                                // 8.2 Δy
+  double nostril_rise;                                  // mean Δy of 9.1, 9.2
   double lid_ratio_l, lid_ratio_r;                      // lid gap (3.1–3.3) / rest gap
   double max_skin;                                      // largest skin vertex displacement
 };

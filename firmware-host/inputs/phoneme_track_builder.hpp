@@ -1,0 +1,36 @@
+// Shared by the phoneme parsers: error messages and the checks every segment
+// must pass whatever the format.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "firmware-host/inputs/phoneme_track.hpp"
+
+namespace facectl {
+
+class PhonemeTrackBuilder {
+ public:
+  explicit PhonemeTrackBuilder(const std::string& file) : file_(file) {}
+
+  // Throws ConfigError "file:line: [key: ]expected ..., found ...".
+  [[noreturn]] void fail(int line, std::string_view key, std::string_view expected,
+                         std::string_view found) const;
+  // A time that is finite, >= 0 and within kMaxShowSeconds.
+  void check_time(double t, int line, std::string_view key, std::string_view found) const;
+  // Appends a segment after checking end >= start and that it starts no
+  // earlier than the previous end. viseme < 0 is noted and stored as 0.
+  void add(double start, double end, std::string label, int viseme, int line,
+           std::string_view key = {});
+  double last_end() const { return track_.segments.empty() ? 0.0 : track_.segments.back().end_s; }
+  PhonemeTrack finish(double duration_s);
+
+ private:
+  const std::string& file_;
+  PhonemeTrack track_;
+};
+
+// A quoted, shortened value for "found ...".
+std::string quote_found(std::string_view s);
+
+}  // namespace facectl

@@ -1,0 +1,178 @@
+// `--input` as a user runs it: facectl simulate and facectl run on files other
+// tools wrote, a broken one refused with its line and nothing written, and a
+// performance recorded as a show that --show plays back.
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "../simulate/simulate_process.hpp"
+#include "tests/support/facectl_child.hpp"
+
+namespace facectl {
+namespace {
+
+using testing::run_facectl;
+using testing::TempDir;
+
+const std::string kReal = std::string(INPUT_REAL_FILES);
+const std::string kRig = std::string(FACECTL_SOURCE_DIR) + "/config/rigs/default.yaml";
+
+TEST(InputProcess, SimulateDetectsAndPlaysEachCaptureFormat) {
+  const std::pair<std::string, const char*> files[] = {
+      {kReal + "/live_link_face/S07-001.first9lines.csv", "live_link_face"},
+      {kReal + "/openface/OpenFace_Test.first3lines.csv", "openface"},
+      {kReal + "/mediapipe/mediapipe-labeler_blendshapes.json", "mediapipe"},
+  };
+  for (const auto& [file, kind] : files) {
+    TempDir tmp;
+    const auto r = run_facectl({"simulate", "--rig", kRig, "--input", file, "--duration", "0.5",
+                                "--out", tmp / "out", "--quiet"},
+                               tmp / "log.txt");
+    EXPECT_EQ(r.exit_code, 0) << file << "\n" << r.output;
+    const std::string summary = testing::read_text(tmp / "out/summary.json");
+    EXPECT_NE(summary.find(std::string("\"kind\": \"") + kind + "\""), std::string::npos)
+        << file << "\n"
+        << summary.substr(0, 400);
+  }
+}
+
+TEST(InputProcess, ABrokenInputIsRefusedAtItsLineAndNothingIsWritten) {
+  TempDir tmp;
+  std::string text = testing::read_text(kReal + "/live_link_face/S07-001.first9lines.csv");
+  text.replace(text.find("12:27:47:51.168"), 15, "12:27:47:51.1x8");
+  testing::write_text(tmp / "broken.csv", text);
+  const auto r = run_facectl(
+      {"simulate", "--rig", kRig, "--input", tmp / "broken.csv", "--out", tmp / "out", "--quiet"},
+      tmp / "log.txt");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(tmp / "broken.csv" + ":4: expected a timecode"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp / "out"));
+}
+
+TEST(InputProcess, AnUnknownFormatOrFormatNameIsRefused) {
+  TempDir tmp;
+  testing::write_text(tmp / "x.txt", "hello\n");
+  auto r = run_facectl({"simulate", "--rig", kRig, "--input", tmp / "x.txt", "--out", tmp / "out"},
+                       tmp / "log.txt");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("name it with --format"), std::string::npos) << r.output;
+  r = run_facectl({"simulate", "--rig", kRig, "--input", tmp / "x.txt", "--format", "csv", "--out",
+                   tmp / "out"},
+                  tmp / "log.txt");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--format: expected one of show, fap, live_link_face"), std::string::npos)
+      << r.output;
+}
+
+TEST(InputProcess, RunRecordsAPerformanceAsAShowThatPlaysBack) {
+  TempDir tmp;
+  const std::string take = tmp / "take.yaml";
+  auto r = run_facectl({"run", "--quiet", "--duration", "1.5", "--input",
+                        kReal + "/live_link_face/S07-001.first9lines.csv", "--record-show", take},
+                       tmp / "log.txt");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("recorded"), std::string::npos) << r.output;
+  ASSERT_TRUE(std::filesystem::exists(take)) << r.output;
+  // The take's gaze: EyeLookUpLeft 0.47 is 9.4 deg of eye pitch through the table.
+  const std::string yaml = testing::read_text(take);
+  EXPECT_NE(yaml.find("eye_pitch_l_deg: 9."), std::string::npos) << yaml.substr(0, 600);
+  r = run_facectl({"run", "--quiet", "--show", take}, tmp / "log2.txt");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+}  // namespace
+}  // namespace facectl
+
+// ---- the live FAP stream, wired into facectl run
+
+namespace facectl {
+namespace {
+
+// A UDP port free now (the system's pick), for the child to bind.
+std::uint16_t free_udp_port() {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t len = sizeof a;
+  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+  close(fd);
+  return ntohs(a.sin_port);
+}
+
+// Datagrams from one socket: one sender, whose frame numbering the stream follows.
+void send_udp(std::uint16_t port, const std::vector<std::string>& datagrams) {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(port);
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  for (const std::string& text : datagrams) {
+    sendto(fd, text.data(), text.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  }
+  close(fd);
+}
+
+// A FAP frame moving FAP 3 (open_jaw) only.
+std::string jaw_frame(int number, int value) {
+  std::string mask;
+  for (int f = 1; f <= 68; ++f) mask += (f == 3 ? "1 " : "0 ");
+  return mask + "\n" + std::to_string(number) + " " + std::to_string(value) + "\n";
+}
+
+TEST(InputProcess, RunPlaysTheLiveFapStreamAndCountsWhatItRefuses) {
+  TempDir tmp;
+  const std::uint16_t port = free_udp_port();
+  const std::string config = std::string(FACECTL_SOURCE_DIR) + "/config/";
+  testing::write_text(
+      tmp / "facectl.yaml",
+      "head: " + config + "heads/default/head.yaml\n" + "rig: " + config + "rigs/default.yaml\n" +
+          "expressions: " + config + "expressions/library.yaml\n" + "visemes: " + config +
+          "fap/visemes.yaml\n" + "fap_stream: { port: " + std::to_string(port) + " }\n");
+  const testing::Child child = testing::spawn_facectl(
+      {"run", "--quiet", "--config", tmp / "facectl.yaml", "--fap-stream", "--duration", "3"});
+  // Wait for the stream to listen.
+  std::string out;
+  for (int i = 0; i < 200 && out.find("listening on UDP port") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    out = testing::read_text(child.out_path);
+  }
+  ASSERT_NE(out.find("FAP stream listening on UDP port " + std::to_string(port)), std::string::npos)
+      << out;
+  send_udp(port, {"2.1 live 25 1000\n" + jaw_frame(0, 200), jaw_frame(1, 300) + jaw_frame(2, 400),
+                  "not a FAP line\n"});
+  EXPECT_EQ(testing::wait_exit_within(child, 20.0), 0) << testing::read_text(child.out_path);
+  out = testing::read_text(child.out_path);
+  EXPECT_NE(out.find("FAP stream: 3 datagrams, 3 frames played, 1 malformed"), std::string::npos)
+      << out;
+  std::remove(child.out_path.c_str());
+}
+
+TEST(InputProcess, TheFapStreamNeedsItsBlockAndPlaysAlone) {
+  TempDir tmp;
+  auto r = run_facectl({"run", "--quiet", "--fap-stream", "--gamepad"}, tmp / "log.txt");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("expected at most one of --show, --input, --gamepad and --fap-stream"),
+            std::string::npos)
+      << r.output;
+  const std::string config = std::string(FACECTL_SOURCE_DIR) + "/config/";
+  testing::write_text(tmp / "facectl.yaml", "head: " + config + "heads/default/head.yaml\n" +
+                                                "rig: " + config + "rigs/default.yaml\n" +
+                                                "expressions: " + config +
+                                                "expressions/library.yaml\n");
+  r = run_facectl({"run", "--quiet", "--config", tmp / "facectl.yaml", "--fap-stream"},
+                  tmp / "log.txt");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--fap-stream: expected a fap_stream block"), std::string::npos)
+      << r.output;
+}
+
+}  // namespace
+}  // namespace facectl
