@@ -9,6 +9,8 @@
 namespace facectl {
 namespace {
 
+constexpr double kMaxClosureRamp = 0.04;  // s
+
 bool is_closure(int v) {
   return v == kVisemePBM || v == kVisemeFV;
 }
@@ -70,7 +72,11 @@ VisemeTimeline VisemeTimeline::build(const PhonemeTrack& track, const Coarticula
             "segments out of order");
     prev_end = s.end_s;
     const DominanceClass c = class_of(s.viseme, p);
-    const double half = std::min(0.5 * (s.end_s - s.start_s), p.max_half_s);
+    // A segment longer than 2 * max_half_s keeps its own span at full
+    // dominance (a flat top) and reaches as far beyond its ends as one of
+    // that length: a held "mmm" stays closed, a long vowel stays open.
+    const double real_half = 0.5 * (s.end_s - s.start_s);
+    const double half = std::min(real_half, p.max_half_s);
     // Half-dominance distances from the centre; kept above 1 ms for zero-length segments.
     const double before = std::max(half + c.reach_before_s, 1e-3);
     const double after = std::max(half + c.reach_after_s, 1e-3);
@@ -78,11 +84,12 @@ VisemeTimeline VisemeTimeline::build(const PhonemeTrack& track, const Coarticula
     g.start = s.start_s;
     g.end = s.end_s;
     g.centre = 0.5 * (s.start_s + s.end_s);
+    g.flat = real_half - half;
     g.alpha = c.alpha;
     g.theta_before = std::numbers::ln2 / std::pow(before, p.exponent);
     g.theta_after = std::numbers::ln2 / std::pow(after, p.exponent);
-    g.lo = g.centre - window * before;
-    g.hi = g.centre + window * after;
+    g.lo = g.centre - g.flat - window * before;
+    g.hi = g.centre + g.flat + window * after;
     g.viseme = s.viseme;
     g.closure = is_closure(s.viseme);
     g.hold = std::min(p.closure_hold_s, 0.4 * (s.end_s - s.start_s));
@@ -108,21 +115,22 @@ void VisemeTimeline::weights(double t, std::array<double, kVisemeCount>& out) co
     const Segment& s = *--it;
     if (s.end < t - max_after_) break;
     if (t < s.lo || t > s.hi) continue;
-    const double tau = std::abs(t - s.centre);
+    if (s.closure && t >= s.start && t <= s.end) {
+      // Eased in from the start and out to the end, over at most
+      // kMaxClosureRamp: a held "mmm" is sealed for all but its edges.
+      const double ramp = std::min(s.centre - s.hold - s.start, kMaxClosureRamp);
+      double k = 1.0;
+      if (t < s.start + ramp) k = ramp > 0 ? smoothstep((t - s.start) / ramp) : 1.0;
+      if (t > s.end - ramp) k = ramp > 0 ? smoothstep((s.end - t) / ramp) : 1.0;
+      seal = k;
+      seal_viseme = s.viseme;
+    }
+    const double tau = std::max(0.0, std::abs(t - s.centre) - s.flat);
     const double theta = t < s.centre ? s.theta_before : s.theta_after;
     const double d = s.alpha * (std::exp(-theta * std::pow(tau, exponent_)) - cutoff_);
     if (d <= 0.0) continue;
     out[static_cast<std::size_t>(s.viseme)] += d;
     total += d;
-    if (s.closure && t >= s.start && t <= s.end) {
-      const double ramp_in = s.centre - s.hold - s.start;
-      const double ramp_out = s.end - (s.centre + s.hold);
-      double k = 1.0;
-      if (t < s.centre - s.hold) k = ramp_in > 0 ? smoothstep((t - s.start) / ramp_in) : 1.0;
-      if (t > s.centre + s.hold) k = ramp_out > 0 ? smoothstep((s.end - t) / ramp_out) : 1.0;
-      seal = k;
-      seal_viseme = s.viseme;
-    }
   }
   for (double& w : out) w = (1.0 - seal) * w / total;
   out[static_cast<std::size_t>(seal_viseme)] += seal;

@@ -17,8 +17,10 @@ namespace facectl {
 //   D(t) = alpha * exp(-theta * |t - centre|^c)
 // uses theta_before before its centre and theta_after after it, chosen so
 // that D is alpha / 2 reach_before_s before the segment's start and
-// reach_after_s after its end. Segments longer than 2 * max_half_s count as
-// that long here, so that a long pause or vowel does not reach across phrases.
+// reach_after_s after its end. A segment longer than 2 * max_half_s holds
+// full dominance over its own span (|t - centre| is measured from the edge of
+// that flat top) and reaches beyond its ends as one of 2 * max_half_s does,
+// so that a long pause or vowel does not reach across phrases.
 struct DominanceClass {
   double alpha = 1.0;
   double reach_before_s = 0.04;
@@ -49,7 +51,8 @@ struct CoarticulationParams {
   // before the first and after the last segment and in unlabelled gaps.
   double rest_dominance = 0.01;
   // Closures seal: over centre +- min(closure_hold_s, 40 % of the segment) the
-  // output is exactly the closure viseme, eased in and out over the rest of it.
+  // output is exactly the closure viseme, eased in and out over the rest of
+  // it, the easing at most 40 ms at each end (a long "mmm" stays sealed).
   double closure_hold_s = 0.02;
   // Dominance below this fraction of a segment's peak is dropped (and the
   // rest lowered by it, so weights stay continuous).
@@ -68,7 +71,7 @@ class VisemeTimeline {
 
  private:
   struct Segment {
-    double start, end, centre, alpha, theta_before, theta_after, lo, hi, hold;
+    double start, end, centre, flat, alpha, theta_before, theta_after, lo, hi, hold;
     int viseme;
     bool closure;
   };

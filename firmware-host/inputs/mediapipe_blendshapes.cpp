@@ -6,6 +6,7 @@
 
 #include "firmware-host/config/config_node.hpp"
 #include "firmware-host/inputs/input_limits.hpp"
+#include "firmware-host/inputs/json_limits.hpp"
 #include "firmware-host/inputs/text_lines.hpp"
 
 namespace facectl {
@@ -135,40 +136,10 @@ struct Reader {
   }
 };
 
-// The deepest nesting of [ ] and { } outside strings; nlohmann's dump() and
-// copies recurse, so a file of 100 000 ['s must be refused before them.
-std::size_t nesting_depth(std::string_view text) {
-  std::size_t depth = 0, deepest = 0;
-  bool in_string = false, escaped = false;
-  for (char c : text) {
-    if (in_string) {
-      if (escaped) {
-        escaped = false;
-      } else if (c == '\\') {
-        escaped = true;
-      } else if (c == '"') {
-        in_string = false;
-      }
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      deepest = std::max(deepest, ++depth);
-    } else if ((c == ']' || c == '}') && depth > 0) {
-      --depth;
-    }
-  }
-  return deepest;
-}
-
-constexpr std::size_t kMaxDepth = 16;  // the deepest real layout nests 4
-
 }  // namespace
 
 ArkitCapture parse_mediapipe_blendshapes(std::string_view text, const std::string& file) {
-  if (nesting_depth(text) > kMaxDepth) {
-    throw ConfigError(file + ": expected JSON nested at most " + std::to_string(kMaxDepth) +
-                      " deep, found deeper");
-  }
+  check_json_shape(text, file);
   json root;
   try {
     root = json::parse(text);

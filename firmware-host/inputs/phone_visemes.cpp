@@ -119,6 +119,23 @@ int viseme_of_phone(std::string_view label) {
   return find(kSampa, ipa);
 }
 
+int viseme_of_sampa_phone(std::string_view label) {
+  // X-SAMPA capitals that ARPAbet spells otherwise, case kept.
+  static constexpr std::array<Entry, 7> kSampaCapitals{{
+      {"V", kVisemeA},      // ʌ, not v
+      {"S", kVisemeChJSh},  // ʃ, not s
+      {"Z", kVisemeChJSh},  // ʒ, not z
+      {"T", kVisemeTh},     // θ, not t
+      {"D", kVisemeTh},     // ð, not d
+      {"N", kVisemeKG},     // ŋ, not n
+      {"Q", kVisemeO},      // ɒ, not a glottal stop
+  }};
+  const std::string_view t = trim(label);
+  if (const int v = find(kSampaCapitals, t); v >= 0) return v;
+  if (const int v = find(kSampa, t); v >= 0) return v;
+  return viseme_of_phone(label);
+}
+
 int viseme_of_rhubarb_shape(char shape) {
   switch (shape) {
     case 'A':

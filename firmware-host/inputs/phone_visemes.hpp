@@ -49,9 +49,14 @@ inline constexpr int kVisemeCount = 15;
 //      ʊ u ʉ w ɥ -> 14
 // 4. A few X-SAMPA symbols SPPAS writes that no ARPAbet phone spells:
 //      { A -> 10   @ E -> 11   I -> 12   O -> 13   U -> 14   3 3r -> 9
-//      tS dZ -> 6. Its S Z T D N V Q read as ARPAbet (s z t d n v, glottal
-//      stop): near misses.
+//      tS dZ -> 6. Its S Z T D N V Q read as ARPAbet here (s z t d n v,
+//      glottal stop); viseme_of_sampa_phone reads them as SAMPA.
 int viseme_of_phone(std::string_view label);
+
+// As viseme_of_phone, for a tier in SPPAS's X-SAMPA (PhonAlign): its
+// capitals first (V S Z T D N Q are ʌ ʃ ʒ θ ð ŋ ɒ there, not ARPAbet's
+// v s z t d n and glottal stop), then the table above.
+int viseme_of_sampa_phone(std::string_view label);
 
 // Rhubarb Lip Sync's mouth shapes (README "Mouth shapes"):
 //   A closed lips (P B M) -> 1 p_b_m

@@ -13,9 +13,12 @@ namespace facectl {
 
 std::string quote_found(std::string_view s) {
   constexpr std::size_t kMax = 40;
+  std::size_t cut = std::min(kMax, s.size());
+  // Not inside a UTF-8 character: back up over its continuation bytes.
+  while (cut < s.size() && cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;
   std::string out = "'";
-  out += s.substr(0, kMax);
-  if (s.size() > kMax) out += "...";
+  out += s.substr(0, cut);
+  if (s.size() > cut) out += "...";
   return out + "'";
 }
 
@@ -48,13 +51,22 @@ void PhonemeTrackBuilder::add(double start, double end, std::string label, int v
   }
   start = std::max(start, prev);
   end = std::max(end, start);
+  // A segment of no length shows nothing, and would seal the lips for an
+  // instant if it were a closure.
+  if (end - start < kMinSegmentSeconds) {
+    ++empty_;
+    return;
+  }
+  if (track_.segments.size() >= kMaxPhonemeSegments) {
+    fail(line, key, "at most " + std::to_string(kMaxPhonemeSegments) + " segments", "more");
+  }
   if (viseme < 0) {
     viseme = kVisemeNone;
-    const bool seen = std::any_of(track_.segments.begin(), track_.segments.end(),
-                                  [&](const PhonemeSegment& s) { return s.label == label; });
-    if (!seen) {
-      track_.notes.push_back(file_ + ":" + std::to_string(line) + ": unknown phone " +
-                             quote_found(label) + " read as silence (viseme 0)");
+    if (unknown_.insert(label).second) {
+      if (unknown_.size() <= kMaxUnknownNotes) {
+        track_.notes.push_back(file_ + ":" + std::to_string(line) + ": unknown phone " +
+                               quote_found(label) + " read as silence (viseme 0)");
+      }
     }
   }
   track_.segments.push_back({start, end, std::move(label), viseme, line});
@@ -62,6 +74,13 @@ void PhonemeTrackBuilder::add(double start, double end, std::string label, int v
 
 PhonemeTrack PhonemeTrackBuilder::finish(double duration_s) {
   track_.duration_s = std::max(duration_s, last_end());
+  if (unknown_.size() > kMaxUnknownNotes) {
+    track_.notes.push_back(std::to_string(unknown_.size() - kMaxUnknownNotes) +
+                           " more unknown phones read as silence");
+  }
+  if (empty_ > 0) {
+    track_.notes.push_back("skipped " + std::to_string(empty_) + " segments shorter than 0.1 ms");
+  }
   return std::move(track_);
 }
 

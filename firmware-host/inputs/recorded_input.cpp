@@ -8,6 +8,7 @@
 #include "firmware-host/fap/viseme_table.hpp"
 #include "firmware-host/inputs/arkit_capture.hpp"
 #include "firmware-host/inputs/coarticulation.hpp"
+#include "firmware-host/inputs/input_limits.hpp"
 #include "firmware-host/inputs/lip_sync_track.hpp"
 #include "firmware-host/inputs/live_link_face_csv.hpp"
 #include "firmware-host/inputs/mediapipe_blendshapes.hpp"
@@ -28,14 +29,48 @@ RecordedInput from_arkit(const LoadedConfig& cfg, const ArkitCapture& capture) {
   return in;
 }
 
-RecordedInput from_phonemes(const LoadedConfig& cfg, const PhonemeTrack& phonemes) {
-  if (phonemes.segments.empty()) throw ConfigError("expected at least one phoneme, found none");
+RecordedInput from_phonemes(const LoadedConfig& cfg, const PhonemeTrack& phonemes,
+                            const std::string& path) {
+  if (phonemes.segments.empty()) {
+    throw ConfigError(path + ": expected at least one phoneme or mouth shape, found none");
+  }
+  // Sampled every 10 ms into poses: the length bounds the memory.
+  if (phonemes.duration_s > kMaxAudioSeconds) {
+    throw ConfigError(path + ": expected lip sync of at most " +
+                      std::to_string(static_cast<int>(kMaxAudioSeconds)) + " s, found " +
+                      std::to_string(phonemes.duration_s) + " s");
+  }
   const VisemeTable visemes = VisemeTable::load(cfg.runtime.visemes_path, cfg.head.layout);
   const VisemeTimeline timeline = VisemeTimeline::build(phonemes, CoarticulationParams{});
   RecordedInput in;
   in.notes = phonemes.notes;
   in.track = lip_sync_pose_track(timeline, visemes, cfg.head.layout, cfg.head.neutral);
   return in;
+}
+
+// `text` with each byte that is not part of valid UTF-8 replaced by '?'.
+std::string valid_utf8(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const std::size_t n = c < 0x80           ? 1
+                          : (c >> 5) == 0x6  ? 2
+                          : (c >> 4) == 0xE  ? 3
+                          : (c >> 3) == 0x1E ? 4
+                                             : 0;
+    bool ok = n > 0 && i + n <= text.size();
+    for (std::size_t k = 1; ok && k < n; ++k)
+      ok = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+    if (ok) {
+      out.append(text, i, n);
+      i += n;
+    } else {
+      out.push_back('?');
+      ++i;
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -89,16 +124,18 @@ RecordedInput load_recorded_input(const LoadedConfig& cfg, const std::string& pa
       break;
     }
     case InputFormat::kRhubarbJson:
-      in = from_phonemes(cfg, parse_rhubarb_json(text, path));
+      in = from_phonemes(cfg, parse_rhubarb_json(text, path), path);
       break;
     case InputFormat::kRhubarbTsv:
-      in = from_phonemes(cfg, parse_rhubarb_tsv(text, path));
+      in = from_phonemes(cfg, parse_rhubarb_tsv(text, path), path);
       break;
     case InputFormat::kTextGrid:
-      in = from_phonemes(cfg, parse_textgrid(text, path, ""));
+      in = from_phonemes(cfg, parse_textgrid(text, path, ""), path);
       break;
   }
   if (in.name.empty()) in.name = std::filesystem::path(path).filename().string();
+  // Notes quote the file; they go into summary.json, which must be valid UTF-8.
+  for (std::string& note : in.notes) note = valid_utf8(note);
   in.format = f;
   return in;
 }

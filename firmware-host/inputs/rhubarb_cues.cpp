@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "firmware-host/inputs/input_limits.hpp"
+#include "firmware-host/inputs/json_limits.hpp"
 #include "firmware-host/inputs/phoneme_track.hpp"
 #include "firmware-host/inputs/phoneme_track_builder.hpp"
 
@@ -53,15 +54,20 @@ std::vector<int> cue_lines(std::string_view text, bool bare_array) {
   return lines;
 }
 
-std::string found_json(const nlohmann::json& j) {
-  if (j.is_null()) return "nothing";
-  return quote_found(j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+// What was found, for a message: lists and objects by their size (dumping
+// one could cost as much as the file).
+std::string found_json(const nlohmann::json* j) {
+  if (!j || j->is_null()) return "nothing";
+  if (j->is_array()) return "a list of " + std::to_string(j->size());
+  if (j->is_object()) return "an object of " + std::to_string(j->size()) + " keys";
+  return quote_found(j->dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }
 
 }  // namespace
 
 PhonemeTrack parse_rhubarb_json(std::string_view text, const std::string& file) {
   PhonemeTrackBuilder b(file);
+  check_json_shape(text, file);
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
@@ -79,8 +85,8 @@ PhonemeTrack parse_rhubarb_json(std::string_view text, const std::string& file) 
   const auto cues_it = doc.is_object() ? doc.find("mouthCues") : doc.end();
   if (!bare && (cues_it == doc.end() || !cues_it->is_array())) {
     b.fail(1, {}, "a JSON object with a \"mouthCues\" array (Rhubarb's JSON export)",
-           doc.is_object() ? (cues_it == doc.end() ? "no \"mouthCues\"" : found_json(*cues_it))
-                           : found_json(doc));
+           doc.is_object() ? (cues_it == doc.end() ? "no \"mouthCues\"" : found_json(&*cues_it))
+                           : found_json(&doc));
   }
   const nlohmann::json& cues = bare ? doc : *cues_it;
   const std::vector<int> lines = cue_lines(text, bare);
@@ -89,19 +95,21 @@ PhonemeTrack parse_rhubarb_json(std::string_view text, const std::string& file) 
     const int line = i < lines.size() ? lines[i] : 1;
     const std::string key = (bare ? "[" : "mouthCues[") + std::to_string(i) + "]";
     if (!cue.is_object())
-      b.fail(line, key, "a cue {\"start\", \"end\", \"value\"}", found_json(cue));
+      b.fail(line, key, "a cue {\"start\", \"end\", \"value\"}", found_json(&cue));
     double t[2] = {0, 0};
     for (int k = 0; k < 2; ++k) {
       const char* name = k == 0 ? "start" : "end";
       const auto it = cue.find(name);
-      const nlohmann::json& v = it == cue.end() ? nlohmann::json() : *it;
-      if (!v.is_number()) b.fail(line, key + "." + name, "a number of seconds", found_json(v));
-      t[k] = v.get<double>();
+      const nlohmann::json* v = it == cue.end() ? nullptr : &*it;  // no copy: values may nest
+      if (!v || !v->is_number()) {
+        b.fail(line, key + "." + name, "a number of seconds", found_json(v));
+      }
+      t[k] = v->get<double>();
       b.check_time(t[k], line, key + "." + name, found_json(v));
     }
     const auto vit = cue.find("value");
-    const nlohmann::json& v = vit == cue.end() ? nlohmann::json() : *vit;
-    const std::string shape = v.is_string() ? v.get<std::string>() : std::string();
+    const nlohmann::json* v = vit == cue.end() ? nullptr : &*vit;
+    const std::string shape = v && v->is_string() ? v->get<std::string>() : std::string();
     if (shape.size() != 1 || viseme_of_rhubarb_shape(shape[0]) < 0) {
       b.fail(line, key + ".value", "a mouth shape A-H or X", found_json(v));
     }

@@ -70,11 +70,11 @@ struct Token {
 std::string describe(const Token& t) {
   switch (t.kind) {
     case Token::kNumber:
-      return "the number " + t.text;
+      return "the number " + t.text.substr(0, 40);
     case Token::kString:
       return "the string \"" + t.text.substr(0, 40) + (t.text.size() > 40 ? "...\"" : "\"");
     case Token::kFlag:
-      return t.text;
+      return quote_found(t.text);
     case Token::kWord:
       return quote_found(t.text);
     case Token::kEnd:
@@ -151,8 +151,10 @@ class Lexer {
       } else if (c == '!') {
         while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
       } else if (c == '[') {
-        const std::size_t close = text_.find(']', pos_);
-        if (close == std::string_view::npos || text_.find('\n', pos_) < close) return;
+        // Only up to the line's end: a search of the whole rest per '[' is
+        // quadratic on a file of one long line.
+        const std::size_t close = text_.find_first_of("]\n", pos_);
+        if (close == std::string_view::npos || text_[close] != ']') return;
         pos_ = close + 1;
       } else if (std::isalpha(static_cast<unsigned char>(c))) {
         std::size_t end = pos_;
@@ -340,11 +342,16 @@ PhonemeTrack parse_textgrid(std::string_view text, const std::string& file,
     b.fail(r.peek().line, {}, "the end of the TextGrid after its last tier", describe(r.peek()));
   }
   const Tier& tier = choose_tier(tiers, tier_name, tiers_line, b);
+  // SPPAS writes X-SAMPA, where capitals mean other phones than in ARPAbet.
+  std::string lower_name = tier.name;
+  for (char& c : lower_name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool sampa = lower_name == "phonalign";
   for (const Interval& iv : tier.intervals) {
     // A bad interval is named by its xmin line, a good segment by its label's.
     const bool bad = iv.xmax < iv.xmin || iv.xmin < b.last_end() - kSegmentOverlapTolerance;
-    b.add(iv.xmin, iv.xmax, iv.text, viseme_of_phone(iv.text), bad ? iv.line_min : iv.line_text,
-          "tier \"" + tier.name + "\"");
+    b.add(iv.xmin, iv.xmax, iv.text,
+          sampa ? viseme_of_sampa_phone(iv.text) : viseme_of_phone(iv.text),
+          bad ? iv.line_min : iv.line_text, "tier \"" + tier.name + "\"");
   }
   return b.finish(xmax);
 }

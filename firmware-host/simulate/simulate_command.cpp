@@ -157,7 +157,10 @@ int simulate_command(const SimulateOptions& o) {
         plots.write((dir.path() / "plots").string(), stats.states());
     const SummaryJson summary = make_summary(in.cfg, input, run, stats, head.hardware());
     const std::string text = summary_text(summary);
-    write_file(dir.path() / "summary.json", summary.dump(2) + "\n");
+    // Input notes quote the input's text: never let a stray byte throw here,
+    // after the whole run (invalid UTF-8 is written as U+FFFD).
+    write_file(dir.path() / "summary.json",
+               summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     write_file(dir.path() / "summary.txt", text);
     write_file(dir.path() / "index.html", html_report(summary, plot_files, frames));
     dir.commit();

@@ -180,5 +180,28 @@ TEST(CoarticulationTest, SamplesAtAFixedRateAndChecksParameters) {
   EXPECT_EQ(weights_at(VisemeTimeline::build({}, {}), 1.0)[kVisemeNone], 1.0);
 }
 
+TEST(CoarticulationTest, ALongClosureStaysClosedAndALongVowelStaysOpen) {
+  // Longer than 2 * max_half_s (0.3 s): their own span keeps full dominance.
+  const VisemeTimeline closure = VisemeTimeline::build(track("AA1 0.15, M 2.0, AA1 0.15"), {});
+  for (double t = 0.2 + 0.15 + 0.045; t < 0.2 + 0.15 + 2.0 - 0.045; t += 0.01) {  // past the ramps
+    EXPECT_DOUBLE_EQ(weights_at(closure, t)[kVisemePBM], 1.0) << t;
+  }
+  const VisemeTimeline vowel = VisemeTimeline::build(track("AA1 2.0"), {});
+  for (double t = 0.2 + 0.05; t < 0.2 + 2.0 - 0.05; t += 0.01) {
+    EXPECT_GT(weights_at(vowel, t)[kVisemeA], 0.95) << t;
+  }
+}
+
+TEST(CoarticulationTest, TheLookAheadDoesNotShrinkForALongRoundedVowel) {
+  // 120 ms before UW starts, rounding reaches as far as for a short UW.
+  const double start = 0.2 + 0.3;
+  const double shorter =
+      weights_at(VisemeTimeline::build(track("AA1 0.3, UW1 0.2"), {}), start - 0.12)[kVisemeU];
+  const double longer =
+      weights_at(VisemeTimeline::build(track("AA1 0.3, UW1 1.0"), {}), start - 0.12)[kVisemeU];
+  EXPECT_GT(shorter, 0.05);
+  EXPECT_NEAR(longer, shorter, 1e-9);
+}
+
 }  // namespace
 }  // namespace facectl

@@ -55,6 +55,19 @@ TEST(InputProcess, ABrokenInputIsRefusedAtItsLineAndNothingIsWritten) {
   EXPECT_FALSE(std::filesystem::exists(tmp / "out"));
 }
 
+TEST(InputProcess, LipSyncLongerThanTwoHoursIsRefusedBeforeItCostsMemory) {
+  // 14 bytes that would be 8.6 million poses.
+  TempDir tmp;
+  testing::write_text(tmp / "long.tsv", "0.00\tA\n86400\tX\n");
+  const auto r = run_facectl(
+      {"simulate", "--rig", kRig, "--input", tmp / "long.tsv", "--out", tmp / "out", "--quiet"},
+      tmp / "log.txt");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(tmp / "long.tsv" + ": expected lip sync of at most 7200 s"),
+            std::string::npos)
+      << r.output;
+}
+
 TEST(InputProcess, AnUnknownFormatOrFormatNameIsRefused) {
   TempDir tmp;
   testing::write_text(tmp / "x.txt", "hello\n");

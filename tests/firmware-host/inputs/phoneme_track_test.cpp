@@ -146,7 +146,7 @@ TEST(RhubarbJsonTest, BrokenFilesNameLineCueAndProblem) {
             "found no \"mouthCues\"");
   EXPECT_EQ(json_error("{\"mouthCues\": {}}"),
             "F:1: expected a JSON object with a \"mouthCues\" array (Rhubarb's JSON export), "
-            "found '{}'");
+            "found an object of 0 keys");
   const std::string head = "{\"mouthCues\": [\n{\"start\": 0, \"end\": 0.1, \"value\": \"X\"},\n";
   EXPECT_EQ(json_error(head + "{\"start\": \"a\", \"end\": 0.2, \"value\": \"A\"}]}"),
             "F:3: mouthCues[1].start: expected a number of seconds, found '\"a\"'");
@@ -395,7 +395,7 @@ TEST(TextGridTest, BrokenFilesNameTheirLine) {
   EXPECT_EQ(grid_error(with(kMfaLong, "xmin = 0.23\n", "xmin = -0.23\n")),
             "F:38: expected a time in seconds from 0 to 86400, found the number -0.23");
   EXPECT_EQ(grid_error(with(kMfaLong, "<exists>", "<maybe>")),
-            "F:6: expected <exists> or <absent>, found <maybe>");
+            "F:6: expected <exists> or <absent>, found '<maybe>'");
 }
 
 #ifdef INPUT_REAL_FILES
@@ -448,6 +448,16 @@ TEST(RealPhonemeFilesTest, TextGridsFromAlignersAndPraat) {
   for (const std::string& n : mary.notes) EXPECT_NE(n.find("AH0L"), std::string::npos) << n;
 
   const PhonemeTrack sppas = load_phoneme_file(real("textgrid/sppas_bobby.TextGrid"));
+  // X-SAMPA on SPPAS's PhonAlign tier: D is the th of "the", not d.
+  int d = 0;
+  for (const PhonemeSegment& seg : sppas.segments) {
+    if (seg.label != "D") continue;
+    EXPECT_EQ(seg.viseme, kVisemeTh);
+    ++d;
+  }
+  EXPECT_GE(d, 1);
+  EXPECT_EQ(viseme_of_sampa_phone("V"), kVisemeA);
+  EXPECT_EQ(viseme_of_phone("V"), kVisemeFV);
   ASSERT_EQ(sppas.segments.size(), 16u);  // PhonAlign
   EXPECT_EQ(sppas.segments[0].label, "#");
   EXPECT_TRUE(sppas.notes.empty()) << sppas.notes.front();
