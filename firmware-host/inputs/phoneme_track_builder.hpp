@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_set>
+#include <utility>
 
 #include "firmware-host/inputs/phoneme_track.hpp"
 
@@ -13,7 +14,7 @@ namespace facectl {
 
 class PhonemeTrackBuilder {
  public:
-  explicit PhonemeTrackBuilder(const std::string& file) : file_(file) {}
+  explicit PhonemeTrackBuilder(std::string file) : file_(std::move(file)) {}
 
   // Throws ConfigError "file:line: [key: ]expected ..., found ...".
   [[noreturn]] void fail(int line, std::string_view key, std::string_view expected,
@@ -31,7 +32,7 @@ class PhonemeTrackBuilder {
   PhonemeTrack finish(double duration_s);
 
  private:
-  const std::string& file_;
+  std::string file_;  // a copy: a builder may outlive the caller's string
   PhonemeTrack track_;
   std::unordered_set<std::string> unknown_;  // labels noted as unknown
   long empty_ = 0;                           // segments skipped for no length
