@@ -108,7 +108,8 @@ void load(const RunOptions& options, RunSession& s) {
       }
     }
     const std::string head = read_file_head(*options.input, kDetectBytes);
-    if (resolve_input_format(*options.input, head, format) == InputFormat::kShow) {
+    format = resolve_input_format(*options.input, head, format);  // detected once
+    if (*format == InputFormat::kShow) {
       s.input_show = Show::load(*options.input, cfg.head.layout, cfg.head.neutral, cfg.expressions);
     } else {
       s.input = load_recorded_input(cfg, *options.input, format);

@@ -108,13 +108,8 @@ ArkitCapture parse_live_link_face_csv(std::string_view text, const std::string& 
   long no_face = 0, repeated = 0, clamped = 0;
   double max_ff = 0;
   bool rolled_over = false;  // a row whose whole second follows the previous row's
-  while (lines.next(line)) {
-    if (line.empty()) continue;
-    const auto f = split_fields(line, ',');
-    if (f.size() != c.width) {
-      fail_at_line(file, lines.number(), std::to_string(c.width) + " fields as the header",
-                   std::to_string(f.size()) + " fields");
-    }
+  std::vector<std::string_view> f;
+  while (next_csv_row(lines, c.width, file, f)) {
     const auto tc = parse_timecode(f[c.timecode]);
     if (!tc) fail_at_line(file, lines.number(), "a timecode HH:MM:SS:FF[.sub]", f[c.timecode]);
     double count = 0;

@@ -74,13 +74,8 @@ OpenFaceCapture parse_openface_csv(std::string_view text, const std::string& fil
   OpenFaceCapture capture;
   long held = 0;
   double t0 = 0;
-  while (lines.next(line)) {
-    if (line.empty()) continue;
-    const auto f = split_fields(line, ',');
-    if (f.size() != c.width) {
-      fail_at_line(file, lines.number(), std::to_string(c.width) + " fields as the header",
-                   std::to_string(f.size()) + " fields");
-    }
+  std::vector<std::string_view> f;
+  while (next_csv_row(lines, c.width, file, f)) {
     if (capture.frames.size() >= kMaxCaptureFrames) {
       fail_at_line(file, lines.number(), "at most " + std::to_string(kMaxCaptureFrames) + " frames",
                    "more");

@@ -38,6 +38,20 @@ void fail_at_line(const std::string& file, int line, const std::string& expected
                     std::string(found.substr(0, 60)) + "'");
 }
 
+bool next_csv_row(TextLines& lines, std::size_t width, const std::string& file,
+                  std::vector<std::string_view>& fields) {
+  std::string_view line;
+  do {
+    if (!lines.next(line)) return false;
+  } while (line.empty());
+  fields = split_fields(line, ',');
+  if (fields.size() != width) {
+    fail_at_line(file, lines.number(), std::to_string(width) + " fields as the header",
+                 std::to_string(fields.size()) + " fields");
+  }
+  return true;
+}
+
 std::vector<std::string_view> split_fields(std::string_view line, char sep) {
   std::vector<std::string_view> fields;
   for (;;) {

@@ -27,6 +27,11 @@ std::string_view first_line(std::string_view text);
 [[noreturn]] void fail_at_line(const std::string& file, int line, const std::string& expected,
                                std::string_view found);
 
+// The next non-empty line of a CSV body as its comma-separated fields;
+// false at the end. A row with other than `width` fields is refused at its line.
+bool next_csv_row(TextLines& lines, std::size_t width, const std::string& file,
+                  std::vector<std::string_view>& fields);
+
 // Fields split at `sep`, each trimmed of blanks (OpenFace writes ", ").
 std::vector<std::string_view> split_fields(std::string_view line, char sep);
 
