@@ -6,7 +6,7 @@
 
 #include "firmware-host/config/config_node.hpp"
 #include "firmware-host/inputs/input_limits.hpp"
-#include "firmware-host/inputs/json_limits.hpp"
+#include "firmware-host/inputs/json_input.hpp"
 #include "firmware-host/inputs/text_lines.hpp"
 
 namespace facectl {
@@ -139,15 +139,7 @@ struct Reader {
 }  // namespace
 
 ArkitCapture parse_mediapipe_blendshapes(std::string_view text, const std::string& file) {
-  check_json_shape(text, file);
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // e.byte is the offset; the message names it too.
-    throw ConfigError(file + ": expected JSON, found a syntax error at byte " +
-                      std::to_string(e.byte));
-  }
+  const json root = parse_json_input(text, file, "MediaPipe blendshapes JSON");
   Reader r{file};
   ArkitCapture capture;
   capture.producer = "MediaPipe blendshapes JSON";

@@ -6,17 +6,12 @@
 #include <optional>
 
 #include "firmware-host/inputs/input_limits.hpp"
-#include "firmware-host/inputs/json_limits.hpp"
+#include "firmware-host/inputs/json_input.hpp"
 #include "firmware-host/inputs/phoneme_track.hpp"
 #include "firmware-host/inputs/phoneme_track_builder.hpp"
 
 namespace facectl {
 namespace {
-
-int line_at(std::string_view text, std::size_t offset) {
-  offset = std::min(offset, text.size());
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + offset, '\n'));
-}
 
 // The line of each element of the cue array: the value of the top-level key
 // "mouthCues", or the top-level array itself. nlohmann::json keeps no
@@ -67,20 +62,7 @@ std::string found_json(const nlohmann::json* j) {
 
 PhonemeTrack parse_rhubarb_json(std::string_view text, const std::string& file) {
   PhonemeTrackBuilder b(file);
-  check_json_shape(text, file);
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    b.fail(line_at(text, e.byte == 0 ? 0 : e.byte - 1), {}, "a Rhubarb JSON file",
-           "text that is not JSON");
-  } catch (const nlohmann::json::out_of_range& e) {
-    // "number overflow parsing '1e999'": no offset, so find the number.
-    const std::string what = e.what();
-    const auto open = what.find('\'');
-    const std::string number = what.substr(open + 1, what.rfind('\'') - open - 1);
-    b.fail(line_at(text, text.find(number)), {}, "numbers a double can hold", quote_found(number));
-  }
+  const nlohmann::json doc = parse_json_input(text, file, "a Rhubarb JSON file");
   const bool bare = doc.is_array();
   const auto cues_it = doc.is_object() ? doc.find("mouthCues") : doc.end();
   if (!bare && (cues_it == doc.end() || !cues_it->is_array())) {

@@ -46,7 +46,7 @@ json body_json(const httplib::Request& req) {
   if (req.body.empty()) return json::object();
   try {
     return json::parse(req.body);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
     throw std::invalid_argument(std::string("malformed JSON body: ") + e.what());
   }
 }

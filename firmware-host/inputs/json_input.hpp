@@ -1,5 +1,6 @@
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
@@ -16,5 +17,12 @@ inline constexpr std::size_t kMaxJsonContainers = 2'000'000;
 // Throws ConfigError "file: expected JSON nested at most 16 deep, ..." (or
 // with at most 2 000 000 lists and objects). Brackets inside strings do not count.
 void check_json_shape(std::string_view text, const std::string& file);
+
+// The input's text, shape-checked then parsed. Every parser failure is a
+// ConfigError naming the line: "file:3: expected <what>, found text that is
+// not JSON", or "file:3: expected numbers a double can hold, found '1e999'"
+// (nlohmann throws out_of_range, not parse_error, for those).
+nlohmann::json parse_json_input(std::string_view text, const std::string& file,
+                                const std::string& what);
 
 }  // namespace facectl
