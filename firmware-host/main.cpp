@@ -54,6 +54,9 @@ void add_run_command(CLI::App& app, CliOptions& o) {
   run_cmd->add_flag("--fap-stream", o.run.fap_stream,
                     "Play the live MPEG-4 FAP stream over UDP of the runtime config's fap_stream "
                     "block instead of a show (docs/FAP.md)");
+  run_cmd->add_flag("--live-link-face", o.run.live_link_face,
+                    "Play the Live Link Face app's UDP stream (the runtime config's "
+                    "live_link_face block) instead of a show (docs/INPUTS.md)");
   run_cmd->add_option("--record-show", o.run.record_show,
                       "With --gamepad or --input: write what was performed as a show file");
   run_cmd->add_option(

@@ -20,7 +20,9 @@
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/fap/fap_udp_stream.hpp"
 #include "firmware-host/inputs/gamepad_puppeteer.hpp"
+#include "firmware-host/inputs/live_link_face_stream.hpp"
 #include "firmware-host/inputs/recorded_input.hpp"
+#include "firmware-host/inputs/retarget_table.hpp"
 #include "firmware-host/inputs/show_player.hpp"
 #include "firmware-host/inputs/text_lines.hpp"
 #include "firmware-host/run/fault_injection.hpp"
@@ -48,9 +50,11 @@ struct RunSession {
   HeadRuntime head;
   std::optional<RecordedInput> input;       // --input, when it is not a show
   std::optional<Show> input_show;           // --input, when it is
+  std::unique_ptr<ShowRecorder> recorder;   // before its writers: they stop first
   std::unique_ptr<FapMapping> fap_mapping;  // --fap-stream: outlives the stream
   std::unique_ptr<FapUdpStream> fap_stream;
-  std::unique_ptr<ShowRecorder> recorder;  // before its writers: they stop first
+  std::unique_ptr<RetargetTable> retarget;  // --live-link-face: outlives the stream
+  std::unique_ptr<LiveLinkFaceStream> live_link_face;
   std::unique_ptr<ShowPlayer> player;
   std::unique_ptr<HidGamepad> pad;
   std::unique_ptr<GamepadPuppeteer> puppeteer;
@@ -80,13 +84,25 @@ void load(const RunOptions& options, RunSession& s) {
     throw ConfigError("--gamepad: expected a gamepad block in " + cfg.runtime.file +
                       ", found none");
   }
-  if (options.record_show && !options.gamepad && !options.input) {
+  if (options.record_show && !options.gamepad && !options.input && !options.fap_stream &&
+      !options.live_link_face) {
     throw ConfigError(
-        "--record-show: expected --gamepad or --input (it records what they perform)");
+        "--record-show: expected --gamepad, --input, --fap-stream or --live-link-face (it records "
+        "what they perform)");
   }
-  if (options.gamepad + options.fap_stream + options.input.has_value() + options.show.has_value() >
+  if (options.gamepad + options.fap_stream + options.live_link_face + options.input.has_value() +
+          options.show.has_value() >
       1) {
-    throw ConfigError("expected at most one of --show, --input, --gamepad and --fap-stream");
+    throw ConfigError(
+        "expected at most one of --show, --input, --gamepad, --fap-stream and --live-link-face");
+  }
+  if (options.live_link_face) {
+    if (!cfg.runtime.live_link_face) {
+      throw ConfigError("--live-link-face: expected a live_link_face block in " + cfg.runtime.file +
+                        ", found none");
+    }
+    s.retarget =
+        std::make_unique<RetargetTable>(RetargetTable::load(cfg.runtime.retarget_path, cfg.head));
   }
   if (options.fap_stream) {
     if (!cfg.runtime.fap_stream) {
@@ -129,15 +145,16 @@ void open_hardware(const RunOptions& options, RunSession& s) {
 // duration is given. Throws when the gamepad cannot be opened.
 void open_input(const RunOptions& options, RunSession& s) {
   const ControllerModel& model = s.model();
+  // Whichever source plays records into it (load() checked there is one).
+  if (options.record_show) {
+    s.recorder = std::make_unique<ShowRecorder>(model.layout, model.neutral);
+  }
   if (options.gamepad) {
     const GamepadConfig& g = *s.head.cfg->runtime.gamepad;
     try {
       s.pad = std::make_unique<HidGamepad>(g.selector, g.layout);
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("gamepad: ") + e.what());
-    }
-    if (options.record_show) {
-      s.recorder = std::make_unique<ShowRecorder>(model.layout, model.neutral);
     }
     s.puppeteer = std::make_unique<GamepadPuppeteer>(
         [p = s.pad.get()](GamepadState& st) { return p->latest(st); }, GamepadMapping(g.terms),
@@ -150,13 +167,18 @@ void open_input(const RunOptions& options, RunSession& s) {
   } else if (options.fap_stream) {
     // Binding may fail (port in use, address): before anything is enabled.
     s.fap_stream = std::make_unique<FapUdpStream>(*s.fap_mapping, *s.head.cfg->runtime.fap_stream,
-                                                  &s.head.mailbox);
+                                                  &s.head.mailbox, s.recorder.get());
     std::fprintf(stderr, "facectl run: FAP stream listening on UDP port %u; Ctrl-C ends the run\n",
                  static_cast<unsigned>(s.fap_stream->port()));
+  } else if (options.live_link_face) {
+    s.live_link_face = std::make_unique<LiveLinkFaceStream>(
+        *s.retarget, model.layout, model.neutral, *s.head.cfg->runtime.live_link_face,
+        &s.head.mailbox, s.recorder.get());
+    std::fprintf(stderr,
+                 "facectl run: Live Link Face stream listening on UDP port %u; Ctrl-C ends the "
+                 "run\n",
+                 static_cast<unsigned>(s.live_link_face->port()));
   } else if (s.input || s.input_show) {
-    if (options.record_show) {
-      s.recorder = std::make_unique<ShowRecorder>(model.layout, model.neutral);
-    }
     ShowPlayer::PoseSource source;
     if (s.input) {
       source = [track = &s.input->track](double t, std::array<double, kMaxFaceSignals>& out) {
@@ -192,6 +214,7 @@ void open_input(const RunOptions& options, RunSession& s) {
 void start(RunSession& s) {
   if (s.player) s.player->start();
   if (s.fap_stream) s.fap_stream->start();
+  if (s.live_link_face) s.live_link_face->start();
   if (s.puppeteer) s.puppeteer->start();
   start_head_loop(s.head);
   s.head.controller->request_enable();
@@ -264,6 +287,7 @@ void stop(RunSession& s, bool tty) {
   if (s.player) s.player->stop();
   if (s.puppeteer) s.puppeteer->stop();
   if (s.fap_stream) s.fap_stream->stop();
+  if (s.live_link_face) s.live_link_face->stop();
   if (s.head.writer) {
     // A slow file must not hold the exit: the drain has a budget, and a
     // signal from here on cuts it short (the rows left are counted lost).
@@ -282,7 +306,9 @@ void stop(RunSession& s, bool tty) {
 int write_recorded_show(const RunOptions& options, const ShowRecorder& recorder) {
   if (recorder.keyframes() == 0) {
     std::fprintf(stderr, "facectl run: --record-show: the %s sent nothing; no show written\n",
-                 options.gamepad ? "gamepad" : "input");
+                 options.gamepad ? "gamepad"
+                 : options.input ? "input"
+                                 : "stream");
     return 1;
   }
   try {
@@ -350,6 +376,23 @@ int run_command(const RunOptions& options) {
         static_cast<unsigned long long>(st.kernel_drops));
     if (!st.last_error.empty())
       std::printf("  FAP stream: last error: %s\n", st.last_error.c_str());
+  }
+  if (s.live_link_face) {
+    const LiveLinkFaceStats st = s.live_link_face->stats();
+    std::printf(
+        "  Live Link Face stream: %llu datagrams, %llu frames played, %llu without a face, "
+        "%llu malformed, %llu held back, %llu from refused senders, %llu dropped by the kernel\n",
+        static_cast<unsigned long long>(st.datagrams), static_cast<unsigned long long>(st.frames),
+        static_cast<unsigned long long>(st.no_face), static_cast<unsigned long long>(st.malformed),
+        static_cast<unsigned long long>(st.held_back),
+        static_cast<unsigned long long>(st.refused_senders),
+        static_cast<unsigned long long>(st.kernel_drops));
+    if (!st.subject.empty()) {
+      std::printf("  Live Link Face stream: subject '%s', device %s\n", st.subject.c_str(),
+                  st.device_id.c_str());
+    }
+    if (!st.last_error.empty())
+      std::printf("  Live Link Face stream: last error: %s\n", st.last_error.c_str());
   }
   if (s.recorder) rc = std::max(rc, write_recorded_show(options, *s.recorder));
   return rc;

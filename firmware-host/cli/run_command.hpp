@@ -15,8 +15,9 @@ struct RunOptions {
   std::optional<std::string> hardware;  // "sim" or "real": overrides the runtime file
   std::optional<std::string> input;     // play this input file instead of the show (docs/INPUTS.md)
   std::optional<std::string> format;    // the input's format; else detected from its content
-  bool fap_stream = false;  // play the runtime file's fap_stream (UDP) instead of a show
-  bool gamepad = false;     // puppeteer from the runtime file's gamepad, not a show
+  bool fap_stream = false;      // play the runtime file's fap_stream (UDP) instead of a show
+  bool live_link_face = false;  // play the runtime file's live_link_face stream (UDP)
+  bool gamepad = false;         // puppeteer from the runtime file's gamepad, not a show
   std::optional<std::string> record_show;  // with gamepad or input: write what was played as a show
   std::vector<std::string> inject;         // fault rehearsal on simulated hardware
   bool quiet = false;                      // no status line even on a terminal

@@ -6,33 +6,7 @@ FapUdpOptions parse_fap_stream_config(const ConfigNode& node) {
   node.expect_keys(
       {"bind", "port", "allow_remote", "allow", "max_peers", "takeover_ms", "max_frame_jump"});
   FapUdpOptions o;
-  if (auto n = node.get("allow_remote")) o.allow_remote = n->boolean();
-  const char* remote_hint = ", or allow_remote: true to go beyond loopback";
-  if (auto n = node.get("bind")) {
-    o.bind_address = n->string();
-    const auto address = parse_ipv4_address(o.bind_address);
-    if (!address) n->fail("an IPv4 address to bind to");
-    if (!kIpv4Loopback.contains(*address) && !o.allow_remote) {
-      n->fail(std::string("a loopback address (127.0.0.0/8)") + remote_hint);
-    }
-  }
-  if (auto n = node.get("port")) o.port = static_cast<std::uint16_t>(n->integer_in(0, 65535));
-  if (auto n = node.get("allow")) {
-    o.allow.clear();
-    for (const ConfigNode& item : n->items()) {
-      const auto rule = parse_udp_sender_rule(item.string());
-      if (!rule) {
-        item.fail(
-            "an IPv4 address or network, optionally with a port (a.b.c.d, a.b.c.d/prefix, "
-            "a.b.c.d:port or a.b.c.d/prefix:port)");
-      }
-      if (!rule->network.within(kIpv4Loopback) && !o.allow_remote) {
-        item.fail(std::string("senders within loopback (127.0.0.0/8)") + remote_hint);
-      }
-      o.allow.push_back(*rule);
-    }
-    if (o.allow.empty()) n->fail("at least one address or network");
-  }
+  parse_udp_listen_keys(node, o);
   if (auto n = node.get("max_peers")) o.max_peers = static_cast<std::size_t>(n->integer_in(2, 64));
   if (auto n = node.get("takeover_ms")) o.takeover_s = n->number_in(0.0, 60'000.0) * 1e-3;
   if (auto n = node.get("max_frame_jump")) o.limits.frame_jump = n->integer_in(1, 1'000'000);

@@ -6,8 +6,7 @@
 #include <vector>
 
 #include "firmware-host/config/config_node.hpp"
-#include "firmware-host/config/ipv4_cidr.hpp"
-#include "firmware-host/config/udp_sender_rule.hpp"
+#include "firmware-host/config/udp_listen_config.hpp"
 
 namespace facectl {
 
@@ -29,13 +28,7 @@ struct FapUdpLimits {
 };
 
 // The live FAP stream: where it listens, whom it hears and its bounds.
-struct FapUdpOptions {
-  std::string bind_address = "127.0.0.1";  // beyond loopback only with allow_remote
-  std::uint16_t port = 0;                  // 0: the system picks one
-  bool allow_remote = false;
-  // Senders heard; others are counted and dropped. Pin the port
-  // (127.0.0.1:5005) to shut out the other processes on this host.
-  std::vector<UdpSenderRule> allow = {{kIpv4Loopback, 0}};
+struct FapUdpOptions : UdpListenOptions {
   // Senders with state at once, at least 2: a new one takes the slot of the
   // one heard least recently other than the one playing.
   std::size_t max_peers = 8;

@@ -7,6 +7,7 @@
 #include "control/safety/safety_state_machine.hpp"
 #include "firmware-host/config/fap_stream_config.hpp"
 #include "firmware-host/config/hardware_config.hpp"
+#include "firmware-host/config/live_link_face_config.hpp"
 #include "firmware-host/config/serve_config.hpp"
 
 namespace facectl {
@@ -42,6 +43,7 @@ struct RuntimeConfig {
   std::optional<GamepadConfig> gamepad;        // puppeteering (`facectl run --gamepad`)
   ServeConfig serve;                           // `facectl serve`
   std::optional<FapUdpOptions> fap_stream;     // the live FAP stream (run --fap-stream)
+  std::optional<LiveLinkFaceOptions> live_link_face;  // run --live-link-face
 };
 
 RuntimeConfig load_runtime_config(const std::string& path);

@@ -1,16 +1,6 @@
 #include "firmware-host/fap/fap_udp_stream.hpp"
-
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <poll.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <stdexcept>
 
 #include "control/clock.hpp"
@@ -19,7 +9,7 @@
 namespace facectl {
 namespace {
 
-constexpr std::size_t kMaxDatagram = 65536;
+constexpr std::size_t kMaxDatagram = 65536;  // above UDP's 65507: never cut
 constexpr std::size_t kMaxKeptClamps = 1024;
 
 std::int64_t to_ns(double s) {
@@ -72,108 +62,31 @@ long skipped_frames(const FapUdpPeer& peer, std::int64_t now_ns) {
   return static_cast<long>(std::min(silent_s * peer.reader.header().frame_rate, 1e12));
 }
 
+const FapUdpOptions& checked(const FapUdpOptions& o) {
+  if (o.allow.empty() || o.max_peers < 2) {
+    throw ConfigError("FAP stream " + o.bind_address + ":" + std::to_string(o.port) +
+                      ": expected at least one allowed sender and two peer slots");
+  }
+  return o;
+}
+
 }  // namespace
 
 FapUdpStream::FapUdpStream(const FapMapping& mapping, const FapUdpOptions& options,
-                           LatestValueMailbox<FaceCommand>* mailbox)
+                           LatestValueMailbox<FaceCommand>* mailbox, ShowRecorder* recorder)
     : mapping_(mapping),
       options_(options),
       mailbox_(mailbox),
-      buffer_(kMaxDatagram),
-      // Too few slots is a ConfigError below, with the address.
-      peers_(std::max<std::size_t>(options.max_peers, 2)) {
-  const std::string where =
-      "FAP stream " + options.bind_address + ":" + std::to_string(options.port);
-  const auto address = parse_ipv4_address(options.bind_address);
-  if (!address) {
-    throw ConfigError(where + ": expected an IPv4 address to bind to, found '" +
-                      options.bind_address + "'");
-  }
-  if (!kIpv4Loopback.contains(*address) && !options.allow_remote) {
-    throw ConfigError(where +
-                      ": expected a loopback address (127.0.0.0/8), found one beyond loopback: "
-                      "binding it needs allow_remote (fap_stream.allow_remote: true)");
-  }
-  if (options.allow.empty() || options.max_peers < 2) {
-    throw ConfigError(where + ": expected at least one allowed sender and two peer slots");
-  }
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(options.port);
-  addr.sin_addr.s_addr = htonl(*address);
-  fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (fd_ < 0) throw ConfigError(where + ": socket: " + std::strerror(errno));
-  if (!enable_kernel_drop_count(fd_) ||
-      ::bind(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
-    const std::string err = std::strerror(errno);
-    ::close(fd_);
-    throw ConfigError(where + ": cannot bind: " + err);
-  }
-  socklen_t len = sizeof addr;
-  ::getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len);
-  port_ = ntohs(addr.sin_port);
-  bound_ = options.bind_address + ":" + std::to_string(port_);
-  if (!kIpv4Loopback.contains(*address)) {
-    std::fprintf(stderr,
-                 "facectl: warning: FAP stream %s listens beyond loopback: its datagrams are "
-                 "not authenticated, only the allow list (fap_stream.allow) keeps others out\n",
-                 bound_.c_str());
-  }
-}
-
-FapUdpStream::~FapUdpStream() {
-  stop();
-  if (fd_ >= 0) ::close(fd_);
-}
-
-std::size_t FapUdpStream::poll() {
-  // The readers and the buffer belong to the receiving thread alone.
-  if (receiving_.load() && receiver_.load() != std::this_thread::get_id()) {
-    throw std::logic_error("FapUdpStream::poll: a receiver thread is running (start())");
-  }
-  std::size_t played = 0;
-  while (const auto d = receive_datagram(fd_, buffer_)) {
-    played += handle(*d, std::string_view(buffer_.data(), d->size));
-  }
-  return played;
-}
-
-std::size_t FapUdpStream::wait_and_poll(int timeout_ms) {
-  pollfd p{fd_, POLLIN, 0};
-  ::poll(&p, 1, timeout_ms);
-  return poll();
-}
-
-void FapUdpStream::start() {
-  if (running_.exchange(true)) return;
-  receiving_.store(true);
-  thread_ = std::thread([this] {
-    receiver_.store(std::this_thread::get_id());
-    while (running_.load(std::memory_order_relaxed)) wait_and_poll(20);
-  });
-}
-
-void FapUdpStream::stop() {
-  running_.store(false);
-  if (thread_.joinable()) thread_.join();
-  // Only now: until the join the receiver may still be in handle(); and a
-  // later thread may be given the old one's id.
-  receiver_.store({});
-  receiving_.store(false);
-}
+      recorder_(recorder),
+      // Too few slots is a ConfigError in checked(), with the address.
+      peers_(std::max<std::size_t>(options.max_peers, 2)),
+      listener_(checked(options), "FAP stream", "fap_stream", kMaxDatagram,
+                [this](const UdpDatagram& d, std::string_view text) { return handle(d, text); }) {}
 
 // Called with mutex_ held.
 void FapUdpStream::count_arrival(const UdpDatagram& d) {
   ++stats_.datagrams;
-  if (!d.kernel_drops) return;
-  // A running count since the socket opened, 32 bits wide: add what it grew.
-  stats_.kernel_drops += static_cast<std::uint32_t>(*d.kernel_drops - last_drop_count_);
-  last_drop_count_ = *d.kernel_drops;
-}
-
-bool FapUdpStream::allowed(const UdpDatagram& d) const {
-  return std::any_of(options_.allow.begin(), options_.allow.end(),
-                     [&](const UdpSenderRule& r) { return r.admits(d.address, d.port); });
+  stats_.kernel_drops += listener_.new_kernel_drops(d);
 }
 
 // Called with mutex_ held.
@@ -187,7 +100,7 @@ void FapUdpStream::reject(FapUdpPeer& peer, const std::string& error, bool out_o
 std::size_t FapUdpStream::handle(const UdpDatagram& d, std::string_view text) {
   // A sender off the allow list is counted before anything of its datagram
   // is parsed or anything allocated for it.
-  if (!allowed(d)) {
+  if (!listener_.allowed(d)) {
     std::lock_guard lock(mutex_);
     count_arrival(d);
     ++stats_.refused_senders;
@@ -210,7 +123,7 @@ std::size_t FapUdpStream::handle(const UdpDatagram& d, std::string_view text) {
   // Parsed without the lock (only this thread touches readers) on a copy of
   // the sender's reader, committed only if the whole datagram is good.
   FapReader trial = peer->reader;
-  trial.set_source("udp " + bound_ + " datagram " + std::to_string(number) + " from " +
+  trial.set_source("udp " + listener_.bound() + " datagram " + std::to_string(number) + " from " +
                    peer->stats.peer);
   std::vector<FapFrame> frames;
   try {
@@ -247,6 +160,10 @@ std::size_t FapUdpStream::take(FapUdpPeer& peer, const std::vector<FapFrame>& fr
   }
   playing_ = peer.sender;
   played_ns_ = now_ns;
+  if (first_played_ns_ < 0) first_played_ns_ = now_ns;
+  if (recorder_ != nullptr) {
+    recorder_->add(static_cast<double>(now_ns - first_played_ns_) * 1e-9, pose);
+  }
   if (mailbox_ != nullptr) {
     FaceCommand cmd;
     cmd.values = pose;

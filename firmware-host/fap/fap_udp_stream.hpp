@@ -1,13 +1,11 @@
 #pragma once
 
 #include <array>
-#include <atomic>
 #include <cstdint>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <vector>
 
 #include "control/command/face_command.hpp"
@@ -16,7 +14,8 @@
 #include "firmware-host/fap/fap_file.hpp"
 #include "firmware-host/fap/fap_mapping.hpp"
 #include "firmware-host/fap/fap_udp_peers.hpp"
-#include "firmware-host/fap/udp_receive.hpp"
+#include "firmware-host/fap/udp_listener.hpp"
+#include "firmware-host/inputs/show_recorder.hpp"
 
 namespace facectl {
 
@@ -53,26 +52,29 @@ class FapUdpStream {
   // Binds the socket. Throws ConfigError naming the address when it cannot,
   // or when the address is beyond loopback without allow_remote; warns on
   // stderr when it binds beyond loopback.
+  // A recorder, when given, gets every pose played, timed from the first
+  // (`run --record-show`); it is the receiving thread's until stop().
   FapUdpStream(const FapMapping& mapping, const FapUdpOptions& options,
-               LatestValueMailbox<FaceCommand>* mailbox = nullptr);
-  ~FapUdpStream();
+               LatestValueMailbox<FaceCommand>* mailbox = nullptr,
+               ShowRecorder* recorder = nullptr);
+  ~FapUdpStream() = default;
   FapUdpStream(const FapUdpStream&) = delete;
   FapUdpStream& operator=(const FapUdpStream&) = delete;
 
-  std::uint16_t port() const { return port_; }
+  std::uint16_t port() const { return listener_.port(); }
   // The socket, for its options (a test shrinks SO_RCVBUF to provoke drops).
-  int fd() const { return fd_; }
+  int fd() const { return listener_.fd(); }
 
   // Handles every datagram already queued, without blocking. Returns the
   // number of frames played. From one thread at a time: while start()'s
   // thread runs, only from it (else std::logic_error; checked on entry, so a
   // poll() still running when start() is called is the caller's race).
-  std::size_t poll();
+  std::size_t poll() { return listener_.poll(); }
   // Waits up to timeout_ms for a datagram, then poll()s.
-  std::size_t wait_and_poll(int timeout_ms);
+  std::size_t wait_and_poll(int timeout_ms) { return listener_.wait_and_poll(timeout_ms); }
   // A thread that wait_and_poll()s until stop() (or destruction).
-  void start();
-  void stop();
+  void start() { listener_.start(); }
+  void stop() { listener_.stop(); }
 
   // The last good pose; false before the first frame.
   bool latest(std::array<double, kMaxFaceSignals>& out) const;
@@ -83,7 +85,6 @@ class FapUdpStream {
 
  private:
   std::size_t handle(const UdpDatagram& d, std::string_view text);
-  bool allowed(const UdpDatagram& d) const;
   void count_arrival(const UdpDatagram& d);
   void reject(FapUdpPeer& peer, const std::string& error, bool out_of_bounds);
   std::size_t take(FapUdpPeer& peer, const std::vector<FapFrame>& frames, std::int64_t now_ns);
@@ -91,17 +92,14 @@ class FapUdpStream {
   const FapMapping& mapping_;
   const FapUdpOptions options_;
   LatestValueMailbox<FaceCommand>* mailbox_;
-  int fd_ = -1;
-  std::uint16_t port_ = 0;
-  std::string bound_;
+  ShowRecorder* recorder_;
 
-  // The receiver's alone (the thread that polls): the buffer, the readers
-  // and FAP states in peers_, and who plays.
-  std::vector<char> buffer_;
+  // The receiver's alone (the thread that polls): the readers and FAP
+  // states in peers_, and who plays.
   std::uint64_t sequence_ = 0;
-  std::uint32_t last_drop_count_ = 0;    // SO_RXQ_OVFL's last running count
   std::optional<FapUdpSender> playing_;  // the sender that plays
   std::int64_t played_ns_ = 0;           // when it last played a frame
+  std::int64_t first_played_ns_ = -1;    // the recorded show's time 0
 
   // Guards what other threads read: the counters, pose, clamps and the
   // sender table's entries. Held only to update them, never while parsing;
@@ -114,10 +112,8 @@ class FapUdpStream {
   FapUdpStats stats_;
   std::vector<FapClamp> clamps_;
 
-  std::thread thread_;
-  std::atomic<bool> running_{false};
-  std::atomic<bool> receiving_{false};       // from start() until stop() has joined
-  std::atomic<std::thread::id> receiver_{};  // start()'s thread, once it runs
+  // Last: destroyed first, so its thread stops before what it calls into.
+  UdpListener listener_;
 };
 
 }  // namespace facectl

@@ -1,8 +1,24 @@
 #include "firmware-host/inputs/arkit_capture.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace facectl {
+
+int arkit_frame_pose(const ArkitFrame& frame, const RetargetTable& table, const FaceLayout& layout,
+                     const std::array<double, kMaxFaceSignals>& neutral,
+                     std::array<double, kMaxFaceSignals>& pose) {
+  pose = neutral;
+  if (frame.has_head) {
+    const std::pair<const char*, double> turns[] = {{"neck_pan", frame.head_yaw},
+                                                    {"neck_tilt", frame.head_pitch},
+                                                    {"neck_roll", frame.head_roll}};
+    for (const auto& [name, angle] : turns) {
+      if (const auto i = layout.find(name)) pose[*i] += angle;
+    }
+  }
+  return table.add_arkit(frame.weights, pose);
+}
 
 PoseTrack arkit_pose_track(const ArkitCapture& capture, const RetargetTable& table,
                            const FaceLayout& layout,
@@ -10,18 +26,10 @@ PoseTrack arkit_pose_track(const ArkitCapture& capture, const RetargetTable& tab
                            std::vector<std::string>& notes) {
   PoseTrack track(layout.size());
   track.reserve(capture.frames.size());
-  const auto pan = layout.find("neck_pan");
-  const auto tilt = layout.find("neck_tilt");
-  const auto roll = layout.find("neck_roll");
   long clamped = 0;
+  std::array<double, kMaxFaceSignals> pose{};
   for (const ArkitFrame& f : capture.frames) {
-    std::array<double, kMaxFaceSignals> pose = neutral;
-    if (f.has_head) {
-      pose[*pan] += f.head_yaw;
-      pose[*tilt] += f.head_pitch;
-      pose[*roll] += f.head_roll;
-    }
-    clamped += table.add_arkit(f.weights, pose);
+    clamped += arkit_frame_pose(f, table, layout, neutral, pose);
     track.add(f.t, pose);
   }
   if (clamped > 0) {

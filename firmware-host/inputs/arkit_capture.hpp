@@ -26,6 +26,13 @@ struct ArkitCapture {
   std::vector<std::string> notes;  // what was read leniently: clamps, dropped rows
 };
 
+// One frame's face pose: the head's neutral pose plus the retargeted
+// blendshapes and, when the frame has it, the head rotation on the neck
+// signals the head has. Returns how many signals were clamped.
+int arkit_frame_pose(const ArkitFrame& frame, const RetargetTable& table, const FaceLayout& layout,
+                     const std::array<double, kMaxFaceSignals>& neutral,
+                     std::array<double, kMaxFaceSignals>& pose);
+
 // Face poses: the head's neutral pose plus the retargeted blendshapes, and
 // the head rotation on the neck (yaw -> neck_pan, pitch -> neck_tilt, roll ->
 // neck_roll) when the capture has it. Clamps are counted into `notes`.

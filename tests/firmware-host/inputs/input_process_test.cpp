@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <thread>
 
 #include "../simulate/simulate_process.hpp"
@@ -140,6 +141,23 @@ std::string jaw_frame(int number, int value) {
   return mask + "\n" + std::to_string(number) + " " + std::to_string(value) + "\n";
 }
 
+// Spawns `facectl run` with `args` and waits (up to 60 s: a sanitizer build
+// on a busy machine loads the head slowly) until it prints `listening`.
+testing::Child spawn_listening(const std::vector<std::string>& args, const std::string& listening) {
+  const testing::Child child = testing::spawn_facectl(args);
+  std::string out;
+  for (int i = 0; i < 3000 && out.find(listening) == std::string::npos; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    out = testing::read_text(child.out_path);
+  }
+  if (out.find(listening) == std::string::npos) {
+    kill(child.pid, SIGKILL);
+    testing::wait_exit(child);
+    ADD_FAILURE() << "not listening within 60 s:\n" << out;
+  }
+  return child;
+}
+
 TEST(InputProcess, RunPlaysTheLiveFapStreamAndCountsWhatItRefuses) {
   TempDir tmp;
   const std::uint16_t port = free_udp_port();
@@ -149,26 +167,58 @@ TEST(InputProcess, RunPlaysTheLiveFapStreamAndCountsWhatItRefuses) {
       "head: " + config + "heads/default/head.yaml\n" + "rig: " + config + "rigs/default.yaml\n" +
           "expressions: " + config + "expressions/library.yaml\n" + "visemes: " + config +
           "fap/visemes.yaml\n" + "fap_stream: { port: " + std::to_string(port) + " }\n");
-  const testing::Child child = testing::spawn_facectl(
-      {"run", "--quiet", "--config", tmp / "facectl.yaml", "--fap-stream", "--duration", "3"});
-  // Wait for the stream to listen: loading the head takes seconds in a
-  // sanitizer build on a busy machine.
-  std::string out;
-  for (int i = 0; i < 3000 && out.find("listening on UDP port") == std::string::npos; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    out = testing::read_text(child.out_path);
-  }
-  if (out.find("FAP stream listening on UDP port " + std::to_string(port)) == std::string::npos) {
-    kill(child.pid, SIGKILL);
-    testing::wait_exit(child);
-    FAIL() << "the stream did not listen within 60 s:\n" << out;
-  }
+  const testing::Child child = spawn_listening(
+      {"run", "--quiet", "--config", tmp / "facectl.yaml", "--fap-stream", "--duration", "3"},
+      "FAP stream listening on UDP port " + std::to_string(port));
   send_udp(port, {"2.1 live 25 1000\n" + jaw_frame(0, 200), jaw_frame(1, 300) + jaw_frame(2, 400),
                   "not a FAP line\n"});
   EXPECT_EQ(testing::wait_exit_within(child, 120.0), 0) << testing::read_text(child.out_path);
-  out = testing::read_text(child.out_path);
+  const std::string out = testing::read_text(child.out_path);
   EXPECT_NE(out.find("FAP stream: 3 datagrams, 3 frames played, 1 malformed"), std::string::npos)
       << out;
+  std::remove(child.out_path.c_str());
+}
+
+// PyLiveLinkFace (tests/.../peers, an independent implementation of the
+// app's format) sends a second of performance at 60 fps and one malformed
+// datagram; the take is recorded as a show.
+TEST(InputProcess, RunPlaysTheLiveLinkFaceStreamFromAnIndependentSender) {
+  TempDir tmp;
+  const std::uint16_t port = free_udp_port();
+  const std::string config = std::string(FACECTL_SOURCE_DIR) + "/config/";
+  testing::write_text(tmp / "facectl.yaml",
+                      "head: " + config + "heads/default/head.yaml\n" + "rig: " + config +
+                          "rigs/default.yaml\n" + "expressions: " + config +
+                          "expressions/library.yaml\n" +
+                          "live_link_face: { port: " + std::to_string(port) + " }\n");
+  const testing::Child child =
+      spawn_listening({"run", "--quiet", "--config", tmp / "facectl.yaml", "--live-link-face",
+                       "--duration", "4", "--record-show", tmp / "take.yaml"},
+                      "Live Link Face stream listening on UDP port " + std::to_string(port));
+  const std::string peer =
+      std::string(FACECTL_SOURCE_DIR) + "/tests/firmware-host/inputs/peers/llf_peer.py";
+  EXPECT_EQ(std::system(("python3 " + peer + " send " + std::to_string(port) + " 1.0 > " +
+                         (tmp / "peer.txt"))
+                            .c_str()),
+            0);
+  EXPECT_EQ(testing::wait_exit_within(child, 120.0), 0) << testing::read_text(child.out_path);
+  const std::string out = testing::read_text(child.out_path);
+  EXPECT_NE(out.find("Live Link Face stream: 61 datagrams, 60 frames played, 0 without a face, 1 "
+                     "malformed, 0 held back, 0 from refused senders, 0 dropped by the kernel"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("subject 'facectl-test', device 4B3A1C2D-5E6F-4071-8293-A4B5C6D7E8F9"),
+            std::string::npos)
+      << out;
+  // The take: the jaw open to 0.6 of 18 deg (jawOpen through the retargeting table) and
+  // the inner brows raised, played back by --show.
+  const std::string take = testing::read_text(tmp / "take.yaml");
+  EXPECT_NE(take.find("mandible: { pitch_deg: 10.8"), std::string::npos) << take.substr(0, 600);
+  EXPECT_NE(take.find("frontalis_inner"), std::string::npos) << take.substr(0, 600);
+  const auto r =
+      run_facectl({"run", "--quiet", "--config", tmp / "facectl.yaml", "--show", tmp / "take.yaml"},
+                  tmp / "replay.txt");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
   std::remove(child.out_path.c_str());
 }
 
@@ -176,8 +226,10 @@ TEST(InputProcess, TheFapStreamNeedsItsBlockAndPlaysAlone) {
   TempDir tmp;
   auto r = run_facectl({"run", "--quiet", "--fap-stream", "--gamepad"}, tmp / "log.txt");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("expected at most one of --show, --input, --gamepad and --fap-stream"),
-            std::string::npos)
+  EXPECT_NE(
+      r.output.find(
+          "expected at most one of --show, --input, --gamepad, --fap-stream and --live-link-face"),
+      std::string::npos)
       << r.output;
   const std::string config = std::string(FACECTL_SOURCE_DIR) + "/config/";
   testing::write_text(tmp / "facectl.yaml", "head: " + config + "heads/default/head.yaml\n" +
