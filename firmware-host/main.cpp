@@ -58,7 +58,8 @@ void add_run_command(CLI::App& app, CliOptions& o) {
                     "Play the Live Link Face app's UDP stream (the runtime config's "
                     "live_link_face block) instead of a show (docs/INPUTS.md)");
   run_cmd->add_option("--record-show", o.run.record_show,
-                      "With --gamepad or --input: write what was performed as a show file");
+                      "With --gamepad, --input, --fap-stream or --live-link-face: write what was "
+                      "performed as a show file");
   run_cmd->add_option(
       "--inject", o.run.inject,
       "Rehearse a fault: estop@S, bus_fault:BUS@S, input_loss@S, overrun_storm:MS@S");

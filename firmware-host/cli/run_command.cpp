@@ -381,12 +381,14 @@ int run_command(const RunOptions& options) {
     const LiveLinkFaceStats st = s.live_link_face->stats();
     std::printf(
         "  Live Link Face stream: %llu datagrams, %llu frames played, %llu without a face, "
-        "%llu malformed, %llu held back, %llu from refused senders, %llu dropped by the kernel\n",
+        "%llu malformed, %llu held back, %llu from refused senders, %llu dropped by the "
+        "kernel, %llu values clamped\n",
         static_cast<unsigned long long>(st.datagrams), static_cast<unsigned long long>(st.frames),
         static_cast<unsigned long long>(st.no_face), static_cast<unsigned long long>(st.malformed),
         static_cast<unsigned long long>(st.held_back),
         static_cast<unsigned long long>(st.refused_senders),
-        static_cast<unsigned long long>(st.kernel_drops));
+        static_cast<unsigned long long>(st.kernel_drops),
+        static_cast<unsigned long long>(st.clamps));
     if (!st.subject.empty()) {
       std::printf("  Live Link Face stream: subject '%s', device %s\n", st.subject.c_str(),
                   st.device_id.c_str());

@@ -18,9 +18,10 @@ struct RunOptions {
   bool fap_stream = false;      // play the runtime file's fap_stream (UDP) instead of a show
   bool live_link_face = false;  // play the runtime file's live_link_face stream (UDP)
   bool gamepad = false;         // puppeteer from the runtime file's gamepad, not a show
-  std::optional<std::string> record_show;  // with gamepad or input: write what was played as a show
-  std::vector<std::string> inject;         // fault rehearsal on simulated hardware
-  bool quiet = false;                      // no status line even on a terminal
+  // With gamepad, input or a stream: write what was played as a show.
+  std::optional<std::string> record_show;
+  std::vector<std::string> inject;  // fault rehearsal on simulated hardware
+  bool quiet = false;               // no status line even on a terminal
 };
 
 // Exit codes: 0 success; 1 a check failed (a limit breach or lost telemetry);

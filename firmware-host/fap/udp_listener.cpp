@@ -11,9 +11,9 @@ namespace facectl {
 UdpListener::UdpListener(const UdpListenOptions& options, const std::string& what,
                          const std::string& block, std::size_t max_datagram, Handler handler)
     : allow_(options.allow),
+      buffer_(max_datagram + 1),
       socket_(bind_udp_socket(options, what, block)),
-      handler_(std::move(handler)),
-      buffer_(max_datagram + 1) {}
+      handler_(std::move(handler)) {}
 
 UdpListener::~UdpListener() {
   stop();

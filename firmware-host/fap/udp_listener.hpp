@@ -52,9 +52,10 @@ class UdpListener {
 
  private:
   const std::vector<UdpSenderRule> allow_;
+  // Before the socket: nothing would close its fd if this threw after it.
+  std::vector<char> buffer_;  // the receiving thread's
   const BoundUdpSocket socket_;
   const Handler handler_;
-  std::vector<char> buffer_;           // the receiving thread's
   std::uint32_t last_drop_count_ = 0;  // SO_RXQ_OVFL's last running count
   std::thread thread_;
   std::atomic<bool> running_{false};

@@ -18,10 +18,11 @@ inline constexpr std::size_t kMaxJsonContainers = 2'000'000;
 // with at most 2 000 000 lists and objects). Brackets inside strings do not count.
 void check_json_shape(std::string_view text, const std::string& file);
 
-// The input's text, shape-checked then parsed. Every parser failure is a
-// ConfigError naming the line: "file:3: expected <what>, found text that is
-// not JSON", or "file:3: expected numbers a double can hold, found '1e999'"
-// (nlohmann throws out_of_range, not parse_error, for those).
+// The input's text, shape-checked then parsed. Every failure is a
+// ConfigError naming the file, and the line where the parser gives a place:
+// "file:3: expected <what>, found text that is not JSON", or "file:3:
+// expected numbers a double can hold, found '1e999'" (nlohmann throws
+// out_of_range, not parse_error, for those).
 nlohmann::json parse_json_input(std::string_view text, const std::string& file,
                                 const std::string& what);
 

@@ -121,8 +121,14 @@ LiveLinkFacePacket parse_live_link_face_packet(std::span<const std::uint8_t> byt
   }
   for (std::size_t i = 0; i < kLiveLinkFaceValues; ++i) {
     const std::size_t at = c.offset();
-    const float v = c.f32("blendshape value");
-    if (!std::isfinite(v)) c.fail(at, "blendshape value", "a finite number", "NaN or infinity");
+    const bool weight = i < kArkitCount;
+    const char* field = weight ? "blendshape weight" : "rotation";
+    const float v = c.f32(field);
+    if (!std::isfinite(v)) c.fail(at, field, "a finite number", "NaN or infinity");
+    if (weight ? (v < kLiveLinkFaceMinWeight || v > kLiveLinkFaceMaxWeight)
+               : std::abs(v) > static_cast<float>(M_PI)) {
+      c.fail(at, field, weight ? "-0.5..1.5" : "radians within -pi..pi", std::to_string(v));
+    }
     p.values[i] = v;
   }
   if (c.left() != 0) {

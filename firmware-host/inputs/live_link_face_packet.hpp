@@ -23,6 +23,8 @@ namespace facectl {
 inline constexpr std::uint8_t kLiveLinkFaceVersion = 6;
 inline constexpr std::size_t kLiveLinkFaceValues = 61;
 inline constexpr std::size_t kLiveLinkFaceMaxName = 256;  // Unreal's bound on either string
+inline constexpr double kLiveLinkFaceMinWeight = -0.5;
+inline constexpr double kLiveLinkFaceMaxWeight = 1.5;
 // 52 blendshapes then these.
 inline constexpr std::size_t kLiveLinkFaceHeadYaw = 52;
 
@@ -43,9 +45,11 @@ class LiveLinkFacePacketError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Reads one datagram (allocating only to report a failure). Strict where a value would be
-// played: the blendshape count must be 61, every value finite, and the
-// packet must end after the last one. The frame time is not checked (the
+// Reads one datagram (allocating only to report a failure). Strict where a
+// value would be played, with the Live Link Face CSV's bounds: the count must
+// be 61, each blendshape weight within -0.5..1.5 (ARKit's solver overshoots
+// 0..1 a little; the stream clamps it), each rotation within -pi..pi, and the
+// packet must end after the last value. The frame time is not checked (the
 // stream plays on arrival, and some senders write a rate denominator of 0).
 LiveLinkFacePacket parse_live_link_face_packet(std::span<const std::uint8_t> bytes);
 

@@ -12,15 +12,16 @@ namespace facectl {
 namespace {
 
 // A version 6 packet is 318 bytes with a 36-character device id and a
-// 12-character name, at most 1074 with both names at their bound of 256;
+// 12-character name, at most 782 with both names at their bound of 256;
 // anything longer is refused for its length.
 constexpr std::size_t kMaxDatagram = 2047;
 
-// The retargeting table's view of one packet.
-ArkitFrame arkit_frame(const LiveLinkFacePacket& p) {
+// The retargeting table's view of one packet; `clamped` counts the weights
+// ARKit's solver overshot past 0..1 (the parser refused any beyond -0.5..1.5).
+ArkitFrame arkit_frame(const LiveLinkFacePacket& p, int& clamped) {
   ArkitFrame f;
   for (std::size_t i = 0; i < kArkitCount; ++i) {
-    // The app's weights are 0..1; the table clamps what it sums.
+    clamped += (p.values[i] < 0.0F || p.values[i] > 1.0F);
     f.weights[live_link_face_arkit_index(i)] = std::clamp<double>(p.values[i], 0.0, 1.0);
   }
   f.has_head = true;
@@ -84,7 +85,8 @@ std::size_t LiveLinkFaceStream::handle(const UdpDatagram& d, std::string_view by
   std::array<double, kMaxFaceSignals> pose{};
   int clamped = 0;
   if (plays) {
-    clamped = arkit_frame_pose(arkit_frame(packet), table_, layout_, neutral_, pose);
+    const ArkitFrame frame = arkit_frame(packet, clamped);
+    clamped += arkit_frame_pose(frame, table_, layout_, neutral_, pose);
     playing_ = sender;
     played_ns_ = now;
     if (mailbox_ != nullptr) {

@@ -20,12 +20,12 @@ namespace facectl {
 struct LiveLinkFaceStats {
   std::uint64_t datagrams = 0;        // received
   std::uint64_t frames = 0;           // played
-  std::uint64_t no_face = 0;          // packets without a face (the last pose stays)
+  std::uint64_t no_face = 0;          // packets without a face: nothing played
   std::uint64_t malformed = 0;        // not a version 6 packet: never played
   std::uint64_t refused_senders = 0;  // datagrams from senders off the allow list
   std::uint64_t held_back = 0;        // good frames of a sender while another was playing
   std::uint64_t kernel_drops = 0;     // dropped by the kernel, receive buffer full (SO_RXQ_OVFL)
-  std::uint64_t clamps = 0;           // signal values clamped by the retargeting table
+  std::uint64_t clamps = 0;           // weights clamped to 0..1, and signals by the table
   std::string last_error;             // of the last malformed datagram
   std::string subject;                // the playing sender's subject name and device id
   std::string device_id;
@@ -35,8 +35,9 @@ struct LiveLinkFaceStats {
 // stream"): each packet's 52 blendshapes go through the head's retargeting
 // table, and the head rotation onto the neck, as for a recorded capture.
 // A packet is taken whole or not at all: a malformed one is counted, its
-// error kept, and the last good pose stays. One sender (address:port) plays
-// at a time; another takes over once it has been silent for takeover_s.
+// error kept, and nothing is played for it (nor for a packet without a
+// face). One sender (address:port) plays at a time; another takes over once
+// the one playing has played nothing for takeover_s.
 // Played poses go to the latest-value mailbox the tick reads (the input
 // watchdog eases the face to neutral when they stop) and, when given, to a
 // show recorder (`run --record-show`), timed from the first pose played.

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <optional>
 #include <thread>
 
 #include "../simulate/simulate_process.hpp"
@@ -142,8 +143,10 @@ std::string jaw_frame(int number, int value) {
 }
 
 // Spawns `facectl run` with `args` and waits (up to 60 s: a sanitizer build
-// on a busy machine loads the head slowly) until it prints `listening`.
-testing::Child spawn_listening(const std::vector<std::string>& args, const std::string& listening) {
+// on a busy machine loads the head slowly) until it prints `listening`;
+// nullopt (a failure recorded, the child reaped) when it does not.
+std::optional<testing::Child> spawn_listening(const std::vector<std::string>& args,
+                                              const std::string& listening) {
   const testing::Child child = testing::spawn_facectl(args);
   std::string out;
   for (int i = 0; i < 3000 && out.find(listening) == std::string::npos; ++i) {
@@ -154,6 +157,7 @@ testing::Child spawn_listening(const std::vector<std::string>& args, const std::
     kill(child.pid, SIGKILL);
     testing::wait_exit(child);
     ADD_FAILURE() << "not listening within 60 s:\n" << out;
+    return std::nullopt;
   }
   return child;
 }
@@ -167,9 +171,11 @@ TEST(InputProcess, RunPlaysTheLiveFapStreamAndCountsWhatItRefuses) {
       "head: " + config + "heads/default/head.yaml\n" + "rig: " + config + "rigs/default.yaml\n" +
           "expressions: " + config + "expressions/library.yaml\n" + "visemes: " + config +
           "fap/visemes.yaml\n" + "fap_stream: { port: " + std::to_string(port) + " }\n");
-  const testing::Child child = spawn_listening(
+  const auto listening = spawn_listening(
       {"run", "--quiet", "--config", tmp / "facectl.yaml", "--fap-stream", "--duration", "3"},
       "FAP stream listening on UDP port " + std::to_string(port));
+  if (!listening) return;
+  const testing::Child& child = *listening;
   send_udp(port, {"2.1 live 25 1000\n" + jaw_frame(0, 200), jaw_frame(1, 300) + jaw_frame(2, 400),
                   "not a FAP line\n"});
   EXPECT_EQ(testing::wait_exit_within(child, 120.0), 0) << testing::read_text(child.out_path);
@@ -191,20 +197,26 @@ TEST(InputProcess, RunPlaysTheLiveLinkFaceStreamFromAnIndependentSender) {
                           "rigs/default.yaml\n" + "expressions: " + config +
                           "expressions/library.yaml\n" +
                           "live_link_face: { port: " + std::to_string(port) + " }\n");
-  const testing::Child child =
+  // Long enough for any start-up of the peer; Ctrl-C ends it once it has sent.
+  const auto listening =
       spawn_listening({"run", "--quiet", "--config", tmp / "facectl.yaml", "--live-link-face",
-                       "--duration", "4", "--record-show", tmp / "take.yaml"},
+                       "--duration", "120", "--record-show", tmp / "take.yaml"},
                       "Live Link Face stream listening on UDP port " + std::to_string(port));
+  if (!listening) return;
+  const testing::Child& child = *listening;
   const std::string peer =
       std::string(FACECTL_SOURCE_DIR) + "/tests/firmware-host/inputs/peers/llf_peer.py";
   EXPECT_EQ(std::system(("python3 " + peer + " send " + std::to_string(port) + " 1.0 > " +
                          (tmp / "peer.txt"))
                             .c_str()),
             0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the last datagram's way
+  kill(child.pid, SIGINT);
   EXPECT_EQ(testing::wait_exit_within(child, 120.0), 0) << testing::read_text(child.out_path);
   const std::string out = testing::read_text(child.out_path);
   EXPECT_NE(out.find("Live Link Face stream: 61 datagrams, 60 frames played, 0 without a face, 1 "
-                     "malformed, 0 held back, 0 from refused senders, 0 dropped by the kernel"),
+                     "malformed, 0 held back, 0 from refused senders, 0 dropped by the kernel, "
+                     "0 values clamped"),
             std::string::npos)
       << out;
   EXPECT_NE(out.find("subject 'facectl-test', device 4B3A1C2D-5E6F-4071-8293-A4B5C6D7E8F9"),

@@ -115,11 +115,22 @@ TEST(LiveLinkFacePacket, RefusesWhatItCannotPlay) {
   b = good;
   put_f32(b, kValuesAt + 4 * 17, std::nanf(""));
   EXPECT_EQ(error_of(b),
-            "byte 142: blendshape value: expected a finite number, found NaN or "
+            "byte 142: blendshape weight: expected a finite number, found NaN or "
             "infinity");
   b = good;
+  put_f32(b, kValuesAt + 4 * 17, 1.6f);
+  EXPECT_EQ(error_of(b), "byte 142: blendshape weight: expected -0.5..1.5, found 1.600000");
+  b = good;
+  put_f32(b, kValuesAt + 4 * 17, 1.5f);  // ARKit overshoots a little: clamped, not refused
+  EXPECT_EQ(error_of(b), "parsed");
+  b = good;
+  put_f32(b, kValuesAt + 4 * 52, 3e38f);  // a head yaw that would swing the neck to its stop
+  EXPECT_EQ(error_of(b).rfind("byte 282: rotation: expected radians within -pi..pi, found 3", 0),
+            0u)
+      << error_of(b);
+  b = good;
   put_f32(b, kValuesAt + 4 * 52, INFINITY);
-  EXPECT_NE(error_of(b).find("byte 282: blendshape value"), std::string::npos);
+  EXPECT_NE(error_of(b).find("byte 282: rotation: expected a finite number"), std::string::npos);
   b = good;
   b.push_back(0);
   EXPECT_EQ(error_of(b),

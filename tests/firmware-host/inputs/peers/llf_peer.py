@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Live Link Face packets encoded by PyLiveLinkFace (pylivelinkface.py beside
-this file, MIT, see SOURCES.md), an independent implementation of the app's
+this file, MIT; peers/SOURCES.md), an independent implementation of the app's
 UDP format, for facectl's tests.
 
   llf_peer.py write DIR          the fixture packets of tests/.../real/live_link_face_udp
