@@ -85,7 +85,8 @@ TEST(LiveLinkFacePacket, MapsUnrealsOrderOntoTheArkitNames) {
 
 TEST(LiveLinkFacePacket, APacketEndingAfterTheNameHasNoFace) {
   const Bytes b = read_fixture("pylivelinkface_neutral.bin");
-  const LiveLinkFacePacket p = parse_live_link_face_packet(Bytes(b.begin(), b.begin() + 57));
+  const Bytes head(b.begin(), b.begin() + 57);  // the packet's names point into it
+  const LiveLinkFacePacket p = parse_live_link_face_packet(head);
   EXPECT_FALSE(p.has_face);
   EXPECT_EQ(p.subject, "facectl-test");
 }

@@ -316,6 +316,12 @@ class SlowSink : public ::testing::Test {
 TEST_F(SlowSink, TheDrainHasABudgetAndCountsWhatItLost) {
   Child c = spawn({"run", "--config", stall_tolerant_config(), "--duration", "1", "--record", fifo_,
                    "--quiet"});
+  // Timed from the loop's start, not the spawn: loading the head takes
+  // seconds in a sanitizer build on a busy machine (12.1 s once, under ASan).
+  for (int i = 0; i < 3000 && read_file(c.out_path).find("IDLE -> ENABLING") == std::string::npos;
+       ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
   const auto t0 = std::chrono::steady_clock::now();
   const int code = wait_exit_within(c, 30.0);
   const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
