@@ -1,4 +1,5 @@
 #include "firmware-host/fap/fap_udp_stream.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
