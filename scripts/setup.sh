@@ -21,6 +21,8 @@ packages=(
   # `--input speech.wav`: the speech-driven jaw reads WAV (and FLAC, Ogg)
   # through libsndfile (docs/INPUTS.md).
   libsndfile1-dev
+  # `facectl serve`'s OSC control decodes messages with liblo (docs/INPUTS.md).
+  liblo-dev
   # The SocketCAN tests run in a QEMU guest (tests/drivers/qemu): the emulator,
   # Debian's kernel with the CAN modules, a static busybox for the initramfs,
   # and can-utils and iproute2 for the guest's candump, cansend and vcan set-up.

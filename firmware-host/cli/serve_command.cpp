@@ -122,12 +122,16 @@ int serve_command(const ServeOptions& options) {
   const std::string where = s.api->url();
   s.session.log->add("service", "serve",
                      "listening on " + where + ", head IDLE, event log " + s.session.log->path());
+  if (s.session.osc) {
+    s.session.log->add("service", "osc", "OSC control on udp " + s.session.osc->bound());
+  }
   notify_ready("IDLE, listening on " + where);
 
   serve_until_signal(s);
   s.api->stop();
   s.http.join();
   stop_serve_session(s.session);
+  if (s.session.osc) s.session.log->add("service", "osc", describe(s.session.osc->stats()));
   const SafetyState end = s.session.head.controller->state();
   s.session.log->add("service", "serve", "stopped in " + std::string(to_string(end)));
   return end == SafetyState::kFault || end == SafetyState::kEstop ? 3 : 0;

@@ -44,6 +44,7 @@ struct RuntimeConfig {
   ServeConfig serve;                           // `facectl serve`
   std::optional<FapUdpOptions> fap_stream;     // the live FAP stream (run --fap-stream)
   std::optional<LiveLinkFaceOptions> live_link_face;  // run --live-link-face
+  std::optional<UdpListenOptions> osc;                // `facectl serve`'s OSC control
 };
 
 RuntimeConfig load_runtime_config(const std::string& path);

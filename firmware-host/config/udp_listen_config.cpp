@@ -32,4 +32,12 @@ void parse_udp_listen_keys(const ConfigNode& node, UdpListenOptions& o) {
   }
 }
 
+UdpListenOptions parse_osc_config(const ConfigNode& node) {
+  node.expect_keys({"bind", "port", "allow_remote", "allow"});
+  UdpListenOptions o;
+  o.port = 9000;
+  parse_udp_listen_keys(node, o);
+  return o;
+}
+
 }  // namespace facectl

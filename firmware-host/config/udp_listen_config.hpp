@@ -26,4 +26,8 @@ struct UdpListenOptions {
 // without `allow_remote: true` is an error at its line.
 void parse_udp_listen_keys(const ConfigNode& node, UdpListenOptions& o);
 
+// The runtime file's `osc:` block (`facectl serve`'s OSC control): bind,
+// port (default 9000), allow_remote and allow, nothing else.
+UdpListenOptions parse_osc_config(const ConfigNode& node);
+
 }  // namespace facectl

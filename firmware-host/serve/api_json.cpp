@@ -138,6 +138,20 @@ json events_json(const EventLog& log, std::size_t limit) {
   return {{"events", events}};
 }
 
+std::pair<std::size_t, double> checked_signal_value(const ControllerModel& m, const FaceBounds& b,
+                                                    const std::string& key, double v,
+                                                    const std::string& where) {
+  const auto i = m.layout.find_yaml_key(key);
+  if (!i) throw std::invalid_argument(where + ": no such signal on this head");
+  const double k = yaml_to_si(m.layout.signal(*i).kind);
+  if (!std::isfinite(v) || v * k < b.lo[*i] - 1e-12 || v * k > b.hi[*i] + 1e-12) {
+    std::ostringstream e;
+    e << where << ": expected " << b.lo[*i] / k << ".." << b.hi[*i] / k << ", found " << v;
+    throw std::invalid_argument(e.str());
+  }
+  return {*i, v * k};
+}
+
 FaceDirector::Pose parse_pose_request(const json& body, const ControllerModel& m,
                                       std::string& summary) {
   if (!body.is_object() || !body.contains("signals") || !body["signals"].is_object()) {
@@ -147,21 +161,15 @@ FaceDirector::Pose parse_pose_request(const json& body, const ControllerModel& m
   FaceDirector::Pose pose = m.neutral;
   std::ostringstream text;
   for (const auto& [key, value] : body["signals"].items()) {
-    const auto i = m.layout.find_yaml_key(key);
-    if (!i) throw std::invalid_argument("signals." + key + ": no such signal on this head");
+    if (!m.layout.find_yaml_key(key)) {
+      throw std::invalid_argument("signals." + key + ": no such signal on this head");
+    }
     if (!value.is_number()) {
       throw std::invalid_argument("signals." + key + ": expected a number, found " + value.dump());
     }
-    const SignalInfo& s = m.layout.signal(*i);
-    const double k = yaml_to_si(s.kind);
     const double v = value.get<double>();
-    if (!std::isfinite(v) || v * k < b.lo[*i] - 1e-12 || v * k > b.hi[*i] + 1e-12) {
-      std::ostringstream e;
-      e << "signals." << key << ": expected " << b.lo[*i] / k << ".." << b.hi[*i] / k << ", found "
-        << v;
-      throw std::invalid_argument(e.str());
-    }
-    pose[*i] = v * k;
+    const auto [i, si] = checked_signal_value(m, b, key, v, "signals." + key);
+    pose[i] = si;
     text << (text.tellp() > 0 ? ", " : "") << key << "=" << v;
   }
   summary = text.str();

@@ -3,8 +3,10 @@
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "control/telemetry_record.hpp"
+#include "firmware-host/model/model_builder.hpp"
 #include "firmware-host/serve/face_geometry.hpp"
 #include "firmware-host/serve/head_service.hpp"
 
@@ -25,6 +27,14 @@ nlohmann::json events_json(const EventLog& log, std::size_t limit);
 // the neutral face. Throws std::invalid_argument naming the key for an
 // unknown signal, a value that is not a number, or one outside the range the
 // tick admits (the envelope for the jaw).
+// Signal `key` (its YAML key, e.g. jaw_pitch_deg) at `v` in its YAML unit:
+// its index and SI value, inside the face's bounds. Throws
+// std::invalid_argument "<where>: no such signal on this head" or
+// "<where>: expected lo..hi, found v".
+std::pair<std::size_t, double> checked_signal_value(const ControllerModel& m, const FaceBounds& b,
+                                                    const std::string& key, double v,
+                                                    const std::string& where);
+
 FaceDirector::Pose parse_pose_request(const nlohmann::json& body, const ControllerModel& model,
                                       std::string& summary);
 

@@ -82,6 +82,7 @@ class HeadService {
   const ShowCatalog& shows() const { return shows_; }
   const FaceDirector& director() const { return director_; }
   const EventLog& log() const { return log_; }
+  EventLog& log() { return log_; }
   // Set by the monitor: true while the tick count advances (sd_notify WATCHDOG).
   bool loop_alive() const { return loop_alive_.load(std::memory_order_relaxed); }
 

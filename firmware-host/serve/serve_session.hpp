@@ -7,6 +7,7 @@
 #include "firmware-host/serve/event_log.hpp"
 #include "firmware-host/serve/face_director.hpp"
 #include "firmware-host/serve/head_service.hpp"
+#include "firmware-host/serve/osc_control.hpp"
 #include "firmware-host/serve/show_catalog.hpp"
 
 namespace facectl {
@@ -20,6 +21,7 @@ struct ServeSession {
   std::unique_ptr<ShowCatalog> shows;
   std::unique_ptr<FaceDirector> director;
   std::unique_ptr<HeadService> service;
+  std::unique_ptr<OscControl> osc;  // with an `osc:` block in the runtime file
 };
 
 // With head.cfg loaded: opens the event log, the hardware and the
@@ -27,12 +29,12 @@ struct ServeSession {
 // Nothing is started. Throws naming what cannot be opened.
 void open_serve_session(ServeSession& s, const std::string& event_log_path);
 
-// Starts the face command source, the real-time loop and the monitor. The
-// head stays IDLE until enabled.
+// Starts the face command source, the real-time loop, the monitor and the
+// OSC control. The head stays IDLE until enabled.
 void start_serve_session(ServeSession& s);
 
-// Stops the source and the loop, releases the outputs, then the monitor
-// (which logs the last transitions).
+// Stops the OSC control, the source and the loop, releases the outputs,
+// then the monitor (which logs the last transitions).
 void stop_serve_session(ServeSession& s);
 
 }  // namespace facectl

@@ -1,11 +1,7 @@
 // `--input` as a user runs it: facectl simulate and facectl run on files other
 // tools wrote, a broken one refused with its line and nothing written, and a
 // performance recorded as a show that --show plays back.
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -14,6 +10,7 @@
 
 #include "../simulate/simulate_process.hpp"
 #include "tests/support/facectl_child.hpp"
+#include "tests/support/loopback_udp.hpp"
 
 namespace facectl {
 namespace {
@@ -109,31 +106,8 @@ TEST(InputProcess, RunRecordsAPerformanceAsAShowThatPlaysBack) {
 namespace facectl {
 namespace {
 
-// A UDP port free now (the system's pick), for the child to bind.
-std::uint16_t free_udp_port() {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  socklen_t len = sizeof a;
-  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
-  close(fd);
-  return ntohs(a.sin_port);
-}
-
-// Datagrams from one socket: one sender, whose frame numbering the stream follows.
-void send_udp(std::uint16_t port, const std::vector<std::string>& datagrams) {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(port);
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  for (const std::string& text : datagrams) {
-    sendto(fd, text.data(), text.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  }
-  close(fd);
-}
+using testing::free_udp_port;
+using testing::send_udp;
 
 // A FAP frame moving FAP 3 (open_jaw) only.
 std::string jaw_frame(int number, int value) {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "tests/support/facectl_child.hpp"
+#include "tests/support/loopback_udp.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace facectl {
@@ -260,6 +261,39 @@ TEST(ServeProcess, ServesWithATokenStopsOnSigtermAtRestAndKeepsItsLog) {
   EXPECT_NE(events.find("RUNNING -> STOPPING: shutdown requested"), std::string::npos) << events;
   EXPECT_NE(events.find("STOPPING -> IDLE"), std::string::npos) << events;
   EXPECT_NE(events.find(R"("text":"stopped in IDLE")"), std::string::npos) << events;
+}
+
+TEST(ServeProcess, TakesOscFromAnIndependentSenderAndLogsWhatItCounted) {
+  TempDir dir;
+  const std::uint16_t port = testing::free_udp_port();
+  const std::string config = config_with(dir, "osc: { port: " + std::to_string(port) + " }");
+  const std::string log = dir.file("events.jsonl");
+  Child c = testing::spawn_facectl(
+      {"serve", "--config", config, "--listen", "127.0.0.1:0", "--event-log", log});
+  const std::string on = "OSC control on udp 127.0.0.1:" + std::to_string(port);
+  ASSERT_TRUE(
+      testing::wait_until([&] { return read_all(log).find(on) != std::string::npos; }, 60.0))
+      << read_all(c.out_path);
+  const std::string peer =
+      std::string(FACECTL_SOURCE_DIR) + "/tests/firmware-host/inputs/peers/osc_peer.py";
+  ASSERT_EQ(
+      std::system(("python3 " + peer + " send " + std::to_string(port) + " > /dev/null").c_str()),
+      0);
+  ASSERT_TRUE(testing::wait_until(
+      [&] { return read_all(log).find("neck_pan_deg=10") != std::string::npos; }, 20.0))
+      << read_all(log);
+
+  kill(c.pid, SIGTERM);
+  EXPECT_EQ(wait_exit(c), 0) << read_all(c.out_path);
+  const std::string events = read_all(log);
+  EXPECT_NE(events.find("hold expression joy at 0.5"), std::string::npos) << events;
+  EXPECT_NE(events.find("5 datagrams, 5 messages, 3 applied, 1 refused, 1 malformed, "
+                        "1 to unknown addresses"),
+            std::string::npos)
+      << events;
+  EXPECT_NE(events.find("refused: /facectl/signal/jaw_pitch_deg: expected -4..18"),
+            std::string::npos)
+      << events;
 }
 
 }  // namespace
