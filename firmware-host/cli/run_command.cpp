@@ -20,6 +20,7 @@
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/fap/fap_udp_stream.hpp"
 #include "firmware-host/inputs/gamepad_puppeteer.hpp"
+#include "firmware-host/inputs/input_mix.hpp"
 #include "firmware-host/inputs/live_link_face_stream.hpp"
 #include "firmware-host/inputs/recorded_input.hpp"
 #include "firmware-host/inputs/retarget_table.hpp"
@@ -51,17 +52,32 @@ struct RunSession {
   std::optional<RecordedInput> input;       // --input, when it is not a show
   std::optional<Show> input_show;           // --input, when it is
   std::unique_ptr<ShowRecorder> recorder;   // before its writers: they stop first
+  std::optional<InputMixPlan> mix_plan;     // several sources at once (mix:)
+  std::unique_ptr<InputMixer> mixer;        // before the sources that publish into it
   std::unique_ptr<FapMapping> fap_mapping;  // --fap-stream: outlives the stream
   std::unique_ptr<FapUdpStream> fap_stream;
   std::unique_ptr<RetargetTable> retarget;  // --live-link-face: outlives the stream
   std::unique_ptr<LiveLinkFaceStream> live_link_face;
-  std::unique_ptr<ShowPlayer> player;
+  std::unique_ptr<ShowPlayer> player;      // --input's, else the show's
+  std::unique_ptr<ShowPlayer> mixed_show;  // the show, when mixed with --input
   std::unique_ptr<HidGamepad> pad;
   std::unique_ptr<GamepadPuppeteer> puppeteer;
   double end_s = 1e300;
+  bool live = false;  // a gamepad or a stream: the run lasts until a signal or --duration
 
   const ControllerModel& model() const { return head.model(); }
 };
+
+// The sources the options name, as the mix: block names them.
+std::vector<MixSource> run_sources(const RunOptions& options) {
+  std::vector<MixSource> out;
+  if (options.show) out.push_back(MixSource::kShow);
+  if (options.input) out.push_back(MixSource::kInput);
+  if (options.gamepad) out.push_back(MixSource::kGamepad);
+  if (options.fap_stream) out.push_back(MixSource::kFapStream);
+  if (options.live_link_face) out.push_back(MixSource::kLiveLinkFace);
+  return out;
+}
 
 // Stage 1. Everything is loaded and validated before anything is enabled.
 // Throws ConfigError (or another exception) naming what is wrong.
@@ -90,11 +106,16 @@ void load(const RunOptions& options, RunSession& s) {
         "--record-show: expected --gamepad, --input, --fap-stream or --live-link-face (it records "
         "what they perform)");
   }
-  if (options.gamepad + options.fap_stream + options.live_link_face + options.input.has_value() +
-          options.show.has_value() >
-      1) {
-    throw ConfigError(
-        "expected at most one of --show, --input, --gamepad, --fap-stream and --live-link-face");
+  const std::vector<MixSource> sources = run_sources(options);
+  if (sources.size() > 1) {
+    if (!cfg.runtime.mix) {
+      throw ConfigError(
+          "expected at most one of --show, --input, --gamepad, --fap-stream and --live-link-face, "
+          "or a mix: block in " +
+          cfg.runtime.file + " to play several at once (docs/INPUTS.md)");
+    }
+    s.mix_plan =
+        resolve_input_mix(*cfg.runtime.mix, cfg.head.layout, sources, cfg.runtime.show_rate_hz);
   }
   if (options.live_link_face) {
     if (!cfg.runtime.live_link_face) {
@@ -141,14 +162,24 @@ void open_hardware(const RunOptions& options, RunSession& s) {
   open_head(s.head, options.record, false);
 }
 
-// Stage 3. Input: the gamepad (puppeteering), or the show, looping when a
-// duration is given. Throws when the gamepad cannot be opened.
+// Stage 3. Input: the gamepad (puppeteering), a stream, a recorded input or
+// the show, looping when a duration is given; with a mix: block, several of
+// them, each into the mixer. Throws when the gamepad or a socket cannot be opened.
 void open_input(const RunOptions& options, RunSession& s) {
   const ControllerModel& model = s.model();
-  // Whichever source plays records into it (load() checked there is one).
+  // Whatever plays records into it (load() checked there is a source): the
+  // mix when there is one, else the single source.
   if (options.record_show) {
     s.recorder = std::make_unique<ShowRecorder>(model.layout, model.neutral);
   }
+  if (s.mix_plan) {
+    s.mixer = std::make_unique<InputMixer>(std::move(*s.mix_plan), model.neutral, s.head.mailbox,
+                                           s.recorder.get());
+  }
+  const auto mailbox = [&s](MixSource src) {
+    return s.mixer ? &s.mixer->input(src) : &s.head.mailbox;
+  };
+  ShowRecorder* const recorder = s.mixer ? nullptr : s.recorder.get();
   if (options.gamepad) {
     const GamepadConfig& g = *s.head.cfg->runtime.gamepad;
     try {
@@ -158,27 +189,32 @@ void open_input(const RunOptions& options, RunSession& s) {
     }
     s.puppeteer = std::make_unique<GamepadPuppeteer>(
         [p = s.pad.get()](GamepadState& st) { return p->latest(st); }, GamepadMapping(g.terms),
-        model.neutral, s.head.mailbox, g.rate_hz, s.recorder.get());
+        model.neutral, *mailbox(MixSource::kGamepad), g.rate_hz, recorder);
     std::fprintf(
         stderr, "facectl run: puppeteering from gamepad %s; Ctrl-C ends the run\n",
         g.selector.path.empty()
             ? (std::to_string(g.selector.vendor) + ":" + std::to_string(g.selector.product)).c_str()
             : g.selector.path.c_str());
-  } else if (options.fap_stream) {
+  }
+  if (options.fap_stream) {
     // Binding may fail (port in use, address): before anything is enabled.
     s.fap_stream = std::make_unique<FapUdpStream>(*s.fap_mapping, *s.head.cfg->runtime.fap_stream,
-                                                  &s.head.mailbox, s.recorder.get());
+                                                  mailbox(MixSource::kFapStream), recorder);
     std::fprintf(stderr, "facectl run: FAP stream listening on UDP port %u; Ctrl-C ends the run\n",
                  static_cast<unsigned>(s.fap_stream->port()));
-  } else if (options.live_link_face) {
+  }
+  if (options.live_link_face) {
     s.live_link_face = std::make_unique<LiveLinkFaceStream>(
         *s.retarget, model.layout, model.neutral, *s.head.cfg->runtime.live_link_face,
-        &s.head.mailbox, s.recorder.get());
+        mailbox(MixSource::kLiveLinkFace), recorder);
     std::fprintf(stderr,
                  "facectl run: Live Link Face stream listening on UDP port %u; Ctrl-C ends the "
                  "run\n",
                  static_cast<unsigned>(s.live_link_face->port()));
-  } else if (s.input || s.input_show) {
+  }
+  s.live = options.gamepad || options.fap_stream || options.live_link_face;
+  const double rate = s.head.cfg->runtime.show_rate_hz;
+  if (s.input || s.input_show) {
     ShowPlayer::PoseSource source;
     if (s.input) {
       source = [track = &s.input->track](double t, std::array<double, kMaxFaceSignals>& out) {
@@ -190,29 +226,37 @@ void open_input(const RunOptions& options, RunSession& s) {
       };
     }
     const double duration = s.input ? s.input->track.duration() : s.input_show->duration();
-    s.player = std::make_unique<ShowPlayer>(std::move(source), duration, s.head.mailbox,
-                                            s.head.cfg->runtime.show_rate_hz,
-                                            options.duration_s.has_value(), s.recorder.get());
+    // Mixed, an input plays once and then gives its signals to the next source.
+    s.player =
+        std::make_unique<ShowPlayer>(std::move(source), duration, *mailbox(MixSource::kInput), rate,
+                                     options.duration_s.has_value() && !s.mixer, recorder);
+    if (s.mixer) s.player->give_way_when_finished();
     if (s.input) {
       for (const std::string& note : s.input->notes) {
         std::fprintf(stderr, "facectl run: %s: %s\n", options.input->c_str(), note.c_str());
       }
     }
-  } else if (s.head.cfg->show) {
-    s.player = std::make_unique<ShowPlayer>(*s.head.cfg->show, s.head.mailbox,
-                                            s.head.cfg->runtime.show_rate_hz,
-                                            options.duration_s.has_value());
   }
-  s.end_s = options.duration_s ? *options.duration_s
-            : s.input          ? s.input->track.duration()
-            : s.input_show     ? s.input_show->duration()
-            : (s.player)       ? s.head.cfg->show->duration()
-                               : 1e300;
+  // The show plays when named, or alone when nothing else is.
+  if (s.head.cfg->show && (options.show || (!s.player && !s.live))) {
+    (s.player ? s.mixed_show : s.player) = std::make_unique<ShowPlayer>(
+        *s.head.cfg->show, *mailbox(MixSource::kShow), rate, options.duration_s.has_value());
+  }
+  if (options.duration_s) {
+    s.end_s = *options.duration_s;
+  } else if (!s.live && s.player) {  // nothing at all plays: until a signal
+    s.end_s = s.input ? s.input->track.duration() : s.input_show ? s.input_show->duration() : 0.0;
+    if (s.mixed_show || (s.player && !s.input && !s.input_show)) {
+      s.end_s = std::max(s.end_s, s.head.cfg->show->duration());
+    }
+  }
 }
 
 // Stage 4. Start: input, logger and the real-time loop, and ask to enable.
 void start(RunSession& s) {
+  if (s.mixer) s.mixer->start();
   if (s.player) s.player->start();
+  if (s.mixed_show) s.mixed_show->start();
   if (s.fap_stream) s.fap_stream->start();
   if (s.live_link_face) s.live_link_face->start();
   if (s.puppeteer) s.puppeteer->start();
@@ -249,8 +293,9 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
     drain_events(s, tty, fault_text);
     fire_due_injections(s.injections, t, s.head.sim.get(), s.player.get(), s.head.loop.get());
     const SafetyState state = s.head.controller->state();
-    if (!shutdown && (g_signal.load() != 0 || t >= s.end_s ||
-                      (!options.duration_s && s.player && s.player->finished()))) {
+    const bool played_out = !options.duration_s && !s.live && s.player && s.player->finished() &&
+                            (!s.mixed_show || s.mixed_show->finished());
+    if (!shutdown && (g_signal.load() != 0 || t >= s.end_s || played_out)) {
       shutdown = true;
       s.head.controller->request_shutdown();
       if (g_signal.load() != 0) {
@@ -285,9 +330,11 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
 void stop(RunSession& s, bool tty) {
   stop_head_loop(s.head);  // nothing holds once the loop has stopped
   if (s.player) s.player->stop();
+  if (s.mixed_show) s.mixed_show->stop();
   if (s.puppeteer) s.puppeteer->stop();
   if (s.fap_stream) s.fap_stream->stop();
   if (s.live_link_face) s.live_link_face->stop();
+  if (s.mixer) s.mixer->stop();  // after its sources
   if (s.head.writer) {
     // A slow file must not hold the exit: the drain has a budget, and a
     // signal from here on cuts it short (the rows left are counted lost).
@@ -306,9 +353,10 @@ void stop(RunSession& s, bool tty) {
 int write_recorded_show(const RunOptions& options, const ShowRecorder& recorder) {
   if (recorder.keyframes() == 0) {
     std::fprintf(stderr, "facectl run: --record-show: the %s sent nothing; no show written\n",
-                 options.gamepad ? "gamepad"
-                 : options.input ? "input"
-                                 : "stream");
+                 run_sources(options).size() > 1 ? "mix"
+                 : options.gamepad               ? "gamepad"
+                 : options.input                 ? "input"
+                                                 : "stream");
     return 1;
   }
   try {
@@ -396,6 +444,7 @@ int run_command(const RunOptions& options) {
     if (!st.last_error.empty())
       std::printf("  Live Link Face stream: last error: %s\n", st.last_error.c_str());
   }
+  if (s.mixer) std::printf("  mix: %s\n", s.mixer->describe().c_str());
   if (s.recorder) rc = std::max(rc, write_recorded_show(options, *s.recorder));
   return rc;
 }

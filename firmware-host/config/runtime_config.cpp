@@ -8,7 +8,7 @@ RuntimeConfig load_runtime_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path, "");
   root.expect_keys({"runtime", "head", "rig", "expressions", "show", "visemes", "retarget",
                     "hardware", "safety_io", "gamepad", "serve", "fap_stream", "live_link_face",
-                    "osc"});
+                    "osc", "mix"});
   RuntimeConfig cfg;
   cfg.file = path;
   cfg.head_path = resolve_path(path, root["head"].string());
@@ -29,6 +29,7 @@ RuntimeConfig load_runtime_config(const std::string& path) {
   if (auto n = root.get("serve")) cfg.serve = parse_serve_config(*n, path);
   if (auto n = root.get("fap_stream")) cfg.fap_stream = parse_fap_stream_config(*n);
   if (auto n = root.get("live_link_face")) cfg.live_link_face = parse_live_link_face_config(*n);
+  if (auto n = root.get("mix")) cfg.mix = parse_mix_config(*n);
   if (auto n = root.get("osc")) cfg.osc = parse_osc_config(*n);
 
   if (auto rt = root.get("runtime")) {

@@ -52,7 +52,8 @@ void ShowPlayer::run() {
         finished_.store(true, std::memory_order_relaxed);
       }
     }
-    if (!silent_.load(std::memory_order_relaxed)) {
+    const bool gave_way = give_way_ && finished_.load(std::memory_order_relaxed);
+    if (!silent_.load(std::memory_order_relaxed) && !gave_way) {
       source_(t, cmd.values);
       if (recorder_) recorder_->add(static_cast<double>(now - t0) * 1e-9, cmd.values);
       ++cmd.sequence;

@@ -32,6 +32,9 @@ class ShowPlayer {
   // Stops publishing without ending the thread (fault injection: the input goes silent).
   void go_silent() { silent_.store(true, std::memory_order_relaxed); }
   bool finished() const { return finished_.load(std::memory_order_relaxed); }
+  // Once it has played to its end (not looping), publish nothing more, so
+  // that a mix (InputMixer) gives its signals to the next source. Before start().
+  void give_way_when_finished() { give_way_ = true; }
 
  private:
   void run();
@@ -42,6 +45,7 @@ class ShowPlayer {
   ShowRecorder* recorder_;
   double rate_hz_;
   bool loop_;
+  bool give_way_ = false;
   std::thread thread_;
   std::atomic<bool> stop_{false};
   std::atomic<bool> silent_{false};
