@@ -57,8 +57,11 @@ void add_run_command(CLI::App& app, CliOptions& o) {
   run_cmd->add_flag("--live-link-face", o.run.live_link_face,
                     "Play the Live Link Face app's UDP stream (the runtime config's "
                     "live_link_face block) instead of a show (docs/INPUTS.md)");
+  run_cmd->add_flag("--midi", o.run.midi,
+                    "Play MIDI controls and notes from the ALSA sequencer by the runtime config's "
+                    "midi map (docs/INPUTS.md)");
   run_cmd->add_option("--record-show", o.run.record_show,
-                      "With --gamepad, --input, --fap-stream or --live-link-face: write what was "
+                      "With --gamepad, --input, --midi or a stream: write what was "
                       "performed as a show file");
   run_cmd->add_option(
       "--inject", o.run.inject,

@@ -23,6 +23,9 @@ packages=(
   libsndfile1-dev
   # `facectl serve`'s OSC control decodes messages with liblo (docs/INPUTS.md).
   liblo-dev
+  # `facectl run --midi` is an ALSA sequencer client (libasound); its QEMU
+  # test sends a MIDI file to it with alsa-utils' aplaymidi.
+  libasound2-dev alsa-utils
   # The SocketCAN tests run in a QEMU guest (tests/drivers/qemu): the emulator,
   # Debian's kernel with the CAN modules, a static busybox for the initramfs,
   # and can-utils and iproute2 for the guest's candump, cansend and vcan set-up.

@@ -102,7 +102,8 @@ int bench_loop_command(const BenchLoopOptions& options) {
     RealtimeLoop loop(controller, model.rate_hz, full);
     // A pipeline that faults is no longer the pipeline being measured: stop there.
     const auto watch = [&](double elapsed) {
-      fire_due_injections(injections, done + elapsed, hw.get(), &player, &loop);
+      fire_due_injections(
+          injections, done + elapsed, hw.get(), [&player] { player.go_silent(); }, &loop);
       if (!live(controller.state())) left_running_at = done + elapsed;
       return left_running_at.has_value();
     };

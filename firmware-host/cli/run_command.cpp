@@ -22,6 +22,7 @@
 #include "firmware-host/inputs/gamepad_puppeteer.hpp"
 #include "firmware-host/inputs/input_mix.hpp"
 #include "firmware-host/inputs/live_link_face_stream.hpp"
+#include "firmware-host/inputs/midi_input.hpp"
 #include "firmware-host/inputs/recorded_input.hpp"
 #include "firmware-host/inputs/retarget_table.hpp"
 #include "firmware-host/inputs/show_player.hpp"
@@ -58,12 +59,15 @@ struct RunSession {
   std::unique_ptr<FapUdpStream> fap_stream;
   std::unique_ptr<RetargetTable> retarget;  // --live-link-face: outlives the stream
   std::unique_ptr<LiveLinkFaceStream> live_link_face;
+  std::unique_ptr<MidiFaceMap> midi_map;  // --midi: outlives the input
+  std::unique_ptr<MidiInput> midi;
   std::unique_ptr<ShowPlayer> player;      // --input's, else the show's
   std::unique_ptr<ShowPlayer> mixed_show;  // the show, when mixed with --input
   std::unique_ptr<HidGamepad> pad;
   std::unique_ptr<GamepadPuppeteer> puppeteer;
   double end_s = 1e300;
   bool live = false;  // a gamepad or a stream: the run lasts until a signal or --duration
+  std::function<void()> silence_input;  // --inject input_loss: what feeds the tick goes quiet
 
   const ControllerModel& model() const { return head.model(); }
 };
@@ -76,6 +80,7 @@ std::vector<MixSource> run_sources(const RunOptions& options) {
   if (options.gamepad) out.push_back(MixSource::kGamepad);
   if (options.fap_stream) out.push_back(MixSource::kFapStream);
   if (options.live_link_face) out.push_back(MixSource::kLiveLinkFace);
+  if (options.midi) out.push_back(MixSource::kMidi);
   return out;
 }
 
@@ -101,17 +106,33 @@ void load(const RunOptions& options, RunSession& s) {
                       ", found none");
   }
   if (options.record_show && !options.gamepad && !options.input && !options.fap_stream &&
-      !options.live_link_face) {
+      !options.live_link_face && !options.midi) {
     throw ConfigError(
-        "--record-show: expected --gamepad, --input, --fap-stream or --live-link-face (it records "
-        "what they perform)");
+        "--record-show: expected --gamepad, --input, --midi, --fap-stream or --live-link-face (it "
+        "records what they perform)");
+  }
+  if (options.midi) {
+    if (!cfg.runtime.midi) {
+      throw ConfigError("--midi: expected a midi block in " + cfg.runtime.file + ", found none");
+    }
+    s.midi_map = std::make_unique<MidiFaceMap>(
+        resolve_midi_map(*cfg.runtime.midi, cfg.head.layout, cfg.expressions));
   }
   const std::vector<MixSource> sources = run_sources(options);
+  const bool live_alone =
+      sources.size() == 1 && sources[0] != MixSource::kShow && sources[0] != MixSource::kInput;
+  for (const Injection& inj : s.injections) {
+    if (inj.kind == Injection::Kind::kInputLoss && live_alone) {
+      throw ConfigError(
+          "--inject input_loss: expected a show or --input to silence, or several sources "
+          "(mixed); to rehearse losing a gamepad or stream, stop its sender");
+    }
+  }
   if (sources.size() > 1) {
     if (!cfg.runtime.mix) {
       throw ConfigError(
-          "expected at most one of --show, --input, --gamepad, --fap-stream and --live-link-face, "
-          "or a mix: block in " +
+          "expected at most one of --show, --input, --gamepad, --fap-stream, --live-link-face and "
+          "--midi, or a mix: block in " +
           cfg.runtime.file + " to play several at once (docs/INPUTS.md)");
     }
     s.mix_plan =
@@ -212,7 +233,16 @@ void open_input(const RunOptions& options, RunSession& s) {
                  "run\n",
                  static_cast<unsigned>(s.live_link_face->port()));
   }
-  s.live = options.gamepad || options.fap_stream || options.live_link_face;
+  if (options.midi) {
+    s.midi = std::make_unique<MidiInput>(*s.midi_map, model.neutral, *s.head.cfg->runtime.midi,
+                                         mailbox(MixSource::kMidi), recorder);
+    std::fprintf(stderr,
+                 "facectl run: MIDI in on ALSA sequencer port %s (client '%s'); Ctrl-C ends the "
+                 "run\n",
+                 s.midi->address().c_str(), s.head.cfg->runtime.midi->client.c_str());
+  }
+  s.live = options.gamepad || options.fap_stream || options.live_link_face || options.midi;
+
   const double rate = s.head.cfg->runtime.show_rate_hz;
   if (s.input || s.input_show) {
     ShowPlayer::PoseSource source;
@@ -242,9 +272,14 @@ void open_input(const RunOptions& options, RunSession& s) {
     (s.player ? s.mixed_show : s.player) = std::make_unique<ShowPlayer>(
         *s.head.cfg->show, *mailbox(MixSource::kShow), rate, options.duration_s.has_value());
   }
+  if (s.mixer) {
+    s.silence_input = [m = s.mixer.get()] { m->go_silent(); };
+  } else if (s.player) {
+    s.silence_input = [p = s.player.get()] { p->go_silent(); };
+  }
   if (options.duration_s) {
     s.end_s = *options.duration_s;
-  } else if (!s.live && s.player) {  // nothing at all plays: until a signal
+  } else if (!s.live && s.player) {  // until what plays has played; with nothing, a signal
     s.end_s = s.input ? s.input->track.duration() : s.input_show ? s.input_show->duration() : 0.0;
     if (s.mixed_show || (s.player && !s.input && !s.input_show)) {
       s.end_s = std::max(s.end_s, s.head.cfg->show->duration());
@@ -259,6 +294,7 @@ void start(RunSession& s) {
   if (s.mixed_show) s.mixed_show->start();
   if (s.fap_stream) s.fap_stream->start();
   if (s.live_link_face) s.live_link_face->start();
+  if (s.midi) s.midi->start();
   if (s.puppeteer) s.puppeteer->start();
   start_head_loop(s.head);
   s.head.controller->request_enable();
@@ -291,7 +327,7 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     const double t = static_cast<double>(monotonic_ns() - t0) * 1e-9;
     drain_events(s, tty, fault_text);
-    fire_due_injections(s.injections, t, s.head.sim.get(), s.player.get(), s.head.loop.get());
+    fire_due_injections(s.injections, t, s.head.sim.get(), s.silence_input, s.head.loop.get());
     const SafetyState state = s.head.controller->state();
     const bool played_out = !options.duration_s && !s.live && s.player && s.player->finished() &&
                             (!s.mixed_show || s.mixed_show->finished());
@@ -334,6 +370,7 @@ void stop(RunSession& s, bool tty) {
   if (s.puppeteer) s.puppeteer->stop();
   if (s.fap_stream) s.fap_stream->stop();
   if (s.live_link_face) s.live_link_face->stop();
+  if (s.midi) s.midi->stop();
   if (s.mixer) s.mixer->stop();  // after its sources
   if (s.head.writer) {
     // A slow file must not hold the exit: the drain has a budget, and a
@@ -356,6 +393,7 @@ int write_recorded_show(const RunOptions& options, const ShowRecorder& recorder)
                  run_sources(options).size() > 1 ? "mix"
                  : options.gamepad               ? "gamepad"
                  : options.input                 ? "input"
+                 : options.midi                  ? "MIDI input"
                                                  : "stream");
     return 1;
   }
@@ -443,6 +481,15 @@ int run_command(const RunOptions& options) {
     }
     if (!st.last_error.empty())
       std::printf("  Live Link Face stream: last error: %s\n", st.last_error.c_str());
+  }
+  if (s.midi) {
+    const MidiStats st = s.midi->stats();
+    std::printf(
+        "  MIDI: %llu events, %llu controls and %llu notes played, %llu not in the map, at most "
+        "%d senders connected\n",
+        static_cast<unsigned long long>(st.events), static_cast<unsigned long long>(st.controls),
+        static_cast<unsigned long long>(st.notes), static_cast<unsigned long long>(st.unmapped),
+        st.most_senders);
   }
   if (s.mixer) std::printf("  mix: %s\n", s.mixer->describe().c_str());
   if (s.recorder) rc = std::max(rc, write_recorded_show(options, *s.recorder));

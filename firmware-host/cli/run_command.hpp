@@ -18,6 +18,7 @@ struct RunOptions {
   bool fap_stream = false;      // play the runtime file's fap_stream (UDP) instead of a show
   bool live_link_face = false;  // play the runtime file's live_link_face stream (UDP)
   bool gamepad = false;         // puppeteer from the runtime file's gamepad, not a show
+  bool midi = false;            // play the runtime file's midi map (ALSA sequencer)
   // With gamepad, input or a stream: write what was played as a show.
   std::optional<std::string> record_show;
   std::vector<std::string> inject;  // fault rehearsal on simulated hardware

@@ -11,7 +11,7 @@ std::vector<std::string> source_list(const ConfigNode& node) {
     const std::string name = item.string();
     const auto& known = mix_source_names();
     if (std::find(known.begin(), known.end(), name) == known.end()) {
-      item.fail("one of show, input, gamepad, fap_stream, live_link_face");
+      item.fail("one of show, input, gamepad, fap_stream, live_link_face, midi");
     }
     if (std::find(out.begin(), out.end(), name) != out.end()) item.fail("each source once");
     out.push_back(name);
@@ -23,8 +23,8 @@ std::vector<std::string> source_list(const ConfigNode& node) {
 }  // namespace
 
 const std::vector<std::string>& mix_source_names() {
-  static const std::vector<std::string> names = {"show", "input", "gamepad", "fap_stream",
-                                                 "live_link_face"};
+  static const std::vector<std::string> names = {"show",       "input",          "gamepad",
+                                                 "fap_stream", "live_link_face", "midi"};
   return names;
 }
 

@@ -8,7 +8,7 @@ RuntimeConfig load_runtime_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path, "");
   root.expect_keys({"runtime", "head", "rig", "expressions", "show", "visemes", "retarget",
                     "hardware", "safety_io", "gamepad", "serve", "fap_stream", "live_link_face",
-                    "osc", "mix"});
+                    "osc", "mix", "midi"});
   RuntimeConfig cfg;
   cfg.file = path;
   cfg.head_path = resolve_path(path, root["head"].string());
@@ -29,6 +29,7 @@ RuntimeConfig load_runtime_config(const std::string& path) {
   if (auto n = root.get("serve")) cfg.serve = parse_serve_config(*n, path);
   if (auto n = root.get("fap_stream")) cfg.fap_stream = parse_fap_stream_config(*n);
   if (auto n = root.get("live_link_face")) cfg.live_link_face = parse_live_link_face_config(*n);
+  if (auto n = root.get("midi")) cfg.midi = parse_midi_config(*n);
   if (auto n = root.get("mix")) cfg.mix = parse_mix_config(*n);
   if (auto n = root.get("osc")) cfg.osc = parse_osc_config(*n);
 
@@ -80,6 +81,12 @@ RuntimeConfig load_runtime_config(const std::string& path) {
       at.fail("show_rate_hz of at least " + std::to_string(2.0 / cfg.safety.input_timeout_s) +
               " Hz (two commands per input_timeout_ms)");
     }
+  }
+  // The mix, when it has its own rate, stands where the show would.
+  if (cfg.mix && cfg.mix->rate_hz > 0.0 && 2.0 / cfg.mix->rate_hz > cfg.safety.input_timeout_s) {
+    root["mix"]["rate_hz"].fail("a rate_hz of at least " +
+                                std::to_string(2.0 / cfg.safety.input_timeout_s) +
+                                " Hz (two commands per input_timeout_ms)");
   }
   return cfg;
 }

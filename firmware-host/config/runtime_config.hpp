@@ -8,6 +8,7 @@
 #include "firmware-host/config/fap_stream_config.hpp"
 #include "firmware-host/config/hardware_config.hpp"
 #include "firmware-host/config/live_link_face_config.hpp"
+#include "firmware-host/config/midi_config.hpp"
 #include "firmware-host/config/mix_config.hpp"
 #include "firmware-host/config/serve_config.hpp"
 
@@ -46,6 +47,7 @@ struct RuntimeConfig {
   std::optional<FapUdpOptions> fap_stream;     // the live FAP stream (run --fap-stream)
   std::optional<LiveLinkFaceOptions> live_link_face;  // run --live-link-face
   std::optional<UdpListenOptions> osc;                // `facectl serve`'s OSC control
+  std::optional<MidiConfig> midi;                     // run --midi (ALSA sequencer)
   std::optional<MixConfig> mix;                       // several inputs of `facectl run` at once
 };
 

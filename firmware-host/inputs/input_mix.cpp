@@ -96,6 +96,7 @@ InputMixer::InputMixer(InputMixPlan plan, const std::array<double, kMaxFaceSigna
       recorder_(recorder),
       groups_(plan_.group_names.size()) {
   cmd_.values = neutral_;
+  for (Group& g : groups_) g.fade_from = neutral_;
 }
 
 InputMixer::~InputMixer() {
@@ -109,6 +110,7 @@ bool InputMixer::step(std::int64_t now_ns) {
       latest_[s].stamp_ns = scratch_.stamp_ns;
       latest_[s].received_ns = now_ns;
       latest_[s].seen = true;
+      latest_[s].fresh = true;
     }
   }
   const auto live = [&](MixSource s) {
@@ -116,6 +118,7 @@ bool InputMixer::step(std::int64_t now_ns) {
     return l.seen && now_ns - l.received_ns < plan_.stale_ns;
   };
   bool any_live = false;
+  bool news = false;  // a group's source sent a pose since the last publish, or a group fades
   std::int64_t stamp = 0;
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     int winner = -1;
@@ -135,9 +138,21 @@ bool InputMixer::step(std::int64_t now_ns) {
     if (winner >= 0) {
       any_live = true;
       stamp = std::max(stamp, latest_[static_cast<std::size_t>(winner)].stamp_ns);
+      news = news || latest_[static_cast<std::size_t>(winner)].fresh;
     }
+    news = news || now_ns - group.fade_start_ns < plan_.fade_ns;
   }
-  if (!any_live) return false;  // the tick's input watchdog takes over
+  if (!any_live) {
+    // The tick's input watchdog eases to neutral; a source that comes back
+    // fades in from there, as at the start.
+    cmd_.values = neutral_;
+    return false;
+  }
+  // A pose repeated would look fresh to the tick's watchdog (it counts
+  // sequence numbers): only what is new is published, so a source that stops
+  // is noticed by the tick after input_timeout_ms, as without a mix.
+  if (!news || silent_.load(std::memory_order_relaxed)) return false;
+  for (Latest& l : latest_) l.fresh = false;
   for (std::size_t i = 0; i < plan_.signals; ++i) {
     const Group& group = groups_[plan_.group_of[i]];
     const double target = group.current >= 0

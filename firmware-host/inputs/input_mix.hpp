@@ -18,8 +18,8 @@
 namespace facectl {
 
 // The inputs `facectl run` can mix, as the runtime file's `mix:` names them.
-enum class MixSource : std::uint8_t { kShow, kInput, kGamepad, kFapStream, kLiveLinkFace };
-constexpr std::size_t kMixSources = 5;
+enum class MixSource : std::uint8_t { kShow, kInput, kGamepad, kFapStream, kLiveLinkFace, kMidi };
+constexpr std::size_t kMixSources = 6;
 const char* to_string(MixSource s);
 
 // The `mix:` block resolved against the head's signals and the sources this
@@ -43,9 +43,10 @@ InputMixPlan resolve_input_mix(const MixConfig& config, const FaceLayout& layout
 // Several sources at once: each publishes into its own mailbox here, and
 // each step takes, for every group, the first source of its list that sent a
 // pose within stale_ms, crossfading over fade_ms when that changes; a group
-// with none live eases to neutral. When no source at all is live nothing is
-// published, so the tick's input watchdog eases the face to neutral as for a
-// single lost input. The result goes into the tick's mailbox (and the
+// with none live eases to neutral. A mix is published only when a playing
+// source sent something new (or a group fades), and never when no source is
+// live, so the tick's input watchdog sees a lost source as it would without
+// a mix and eases the face to neutral. The result goes into the tick's mailbox (and the
 // recorder), where the sanitiser, envelope and limits apply as to any input.
 // step() allocates nothing; the recorder, when given, does.
 class InputMixer {
@@ -61,6 +62,8 @@ class InputMixer {
 
   void start();  // steps at the plan's rate on its own thread
   void stop();
+  // Publishes nothing more (fault rehearsal: --inject input_loss).
+  void go_silent() { silent_.store(true, std::memory_order_relaxed); }
   // One mix at `now_ns` (CLOCK_MONOTONIC); true when it published.
   bool step(std::int64_t now_ns);
 
@@ -81,6 +84,7 @@ class InputMixer {
     std::int64_t received_ns = 0;  // when step() took it
     std::int64_t stamp_ns = 0;     // when its producer made it
     bool seen = false;
+    bool fresh = false;  // not yet in a published mix
   };
   struct Group {
     int current = -1;
@@ -101,6 +105,7 @@ class InputMixer {
   std::int64_t first_publish_ns_ = -1;
   std::thread thread_;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> silent_{false};
 };
 
 }  // namespace facectl

@@ -7,7 +7,6 @@
 #include "control/clock.hpp"
 #include "firmware-host/config/config_node.hpp"
 #include "firmware-host/config/rig_config.hpp"
-#include "firmware-host/inputs/show_player.hpp"
 #include "firmware-host/run/realtime_loop.hpp"
 #include "sim/devices/sim_hardware.hpp"
 
@@ -72,7 +71,7 @@ void check_injection_buses(const std::vector<Injection>& injections, const RigCo
 }
 
 void fire_due_injections(std::vector<Injection>& injections, double t, SimHardware* sim,
-                         ShowPlayer* player, RealtimeLoop* loop) {
+                         const std::function<void()>& silence_input, RealtimeLoop* loop) {
   for (auto& inj : injections) {
     if (inj.done || t < inj.at_s) continue;
     inj.done = true;
@@ -86,7 +85,7 @@ void fire_due_injections(std::vector<Injection>& injections, double t, SimHardwa
         }
         break;
       case Injection::Kind::kInputLoss:
-        if (player != nullptr) player->go_silent();
+        if (silence_input) silence_input();
         break;
       case Injection::Kind::kOverrunStorm:
         if (loop != nullptr) {

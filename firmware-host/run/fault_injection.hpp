@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,16 +22,16 @@ Injection parse_injection(const std::string& text);
 
 struct RigConfig;
 struct SimHardware;
-class ShowPlayer;
 class RealtimeLoop;
 
 // Throws ConfigError when a bus_fault names no bus of the rig.
 void check_injection_buses(const std::vector<Injection>& injections, const RigConfig& rig);
 
 // Fires, once each, the injections due at `t` seconds on the simulated
-// hardware (estop, bus_fault), the show player (input_loss) and the loop
-// (overrun_storm); a null target skips its kinds.
+// hardware (estop, bus_fault), the input (input_loss: `silence_input`, which
+// makes whatever feeds the tick's mailbox go quiet) and the loop
+// (overrun_storm); a null or empty target skips its kinds.
 void fire_due_injections(std::vector<Injection>& injections, double t, SimHardware* sim,
-                         ShowPlayer* player, RealtimeLoop* loop);
+                         const std::function<void()>& silence_input, RealtimeLoop* loop);
 
 }  // namespace facectl

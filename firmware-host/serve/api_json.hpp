@@ -23,10 +23,6 @@ nlohmann::json telemetry_json(const TelemetryRecord& rec, const ControllerModel&
 nlohmann::json face_geometry_json(const FaceGeometry& geometry);
 nlohmann::json events_json(const EventLog& log, std::size_t limit);
 
-// The pose of POST /api/v1/pose: {"signals": {"jaw_pitch_deg": 6, ...}} over
-// the neutral face. Throws std::invalid_argument naming the key for an
-// unknown signal, a value that is not a number, or one outside the range the
-// tick admits (the envelope for the jaw).
 // Signal `key` (its YAML key, e.g. jaw_pitch_deg) at `v` in its YAML unit:
 // its index and SI value, inside the face's bounds. Throws
 // std::invalid_argument "<where>: no such signal on this head" or
@@ -35,6 +31,10 @@ std::pair<std::size_t, double> checked_signal_value(const ControllerModel& m, co
                                                     const std::string& key, double v,
                                                     const std::string& where);
 
+// The pose of POST /api/v1/pose: {"signals": {"jaw_pitch_deg": 6, ...}} over
+// the neutral face. Throws std::invalid_argument naming the key for an
+// unknown signal, a value that is not a number, or one outside the range the
+// tick admits (the envelope for the jaw).
 FaceDirector::Pose parse_pose_request(const nlohmann::json& body, const ControllerModel& model,
                                       std::string& summary);
 

@@ -22,6 +22,25 @@ void expect_args(const OscMessage& m, std::size_t min, std::size_t max, const ch
   }
 }
 
+// A sender's text as the event log and the API may show it: bytes outside
+// printable ASCII as \xNN (liblo does not check UTF-8, and the API's JSON
+// must stay valid; a terminal must not take escape sequences from the net).
+std::string printable(std::string_view text) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7f) {
+      out.push_back(c);
+    } else {
+      out += "\\x";
+      out.push_back(kHex[u >> 4]);
+      out.push_back(kHex[u & 0xf]);
+    }
+  }
+  return out;
+}
+
 bool known_address(std::string_view a) {
   return a == "/facectl/expression" || (a.starts_with(kSignal) && a.size() > kSignal.size()) ||
          a == "/facectl/neutral" || a == "/facectl/show/play" || a == "/facectl/show/queue" ||
@@ -57,8 +76,9 @@ HeadService::Result OscControl::apply(const OscMessage& m, const std::string& wh
     if (!(weight >= 0.0 && weight <= 1.0)) {
       return {422, m.address + ": weight: expected 0..1, found " + std::to_string(weight)};
     }
-    held_ = service_.head().model().neutral;
-    return service_.hold_expression(who, name, weight);
+    HeadService::Result r = service_.hold_expression(who, name, weight);
+    if (r.status < 300) held_ = service_.head().model().neutral;
+    return r;
   }
   if (a.starts_with(kSignal)) {
     expect_args(m, 1, 1, "one number, the signal's value in its YAML unit");
@@ -76,15 +96,24 @@ HeadService::Result OscControl::apply(const OscMessage& m, const std::string& wh
     if (r.status < 300) held_ = std::move(pose);
     return r;
   }
-  if (a == "/facectl/neutral" || a == "/facectl/show/stop") {
+  if (a == "/facectl/neutral") {
     expect_args(m, 0, 0, "no arguments");
-    held_ = service_.head().model().neutral;
-    return service_.stop_show(who);
+    // Whatever holds the face (a show, an expression, signals): neutral.
+    HeadService::Result r =
+        service_.hold_pose(who, service_.head().model().neutral, "neutral (OSC)");
+    if (r.status < 300) held_ = service_.head().model().neutral;
+    return r;
+  }
+  if (a == "/facectl/show/stop") {
+    expect_args(m, 0, 0, "no arguments");
+    return service_.stop_show(who);  // ends a show; signals set over OSC stay held
   }
   if (a == "/facectl/show/play" || a == "/facectl/show/queue") {
     expect_args(m, 1, 1, "a show name");
-    held_ = service_.head().model().neutral;
-    return service_.play(who, string_arg(m, 0, "a show name"), a == "/facectl/show/queue");
+    HeadService::Result r =
+        service_.play(who, string_arg(m, 0, "a show name"), a == "/facectl/show/queue");
+    if (r.status < 300) held_ = service_.head().model().neutral;
+    return r;
   }
   throw std::logic_error("OscControl::apply: not an address of the address space");
 }
@@ -126,14 +155,15 @@ std::size_t OscControl::handle(const UdpDatagram& d, std::string_view bytes) {
       messages = decode_osc_datagram(bytes);
     } catch (const OscFormatError& e) {
       delta.malformed = 1;
-      delta.last_error = who + ": " + e.what();
+      delta.last_error = who + ": " + printable(e.what());
     }
     for (const OscMessage& m : messages) {
       ++delta.messages;
       if (!known_address(m.address)) {
         ++delta.unknown_address;
-        delta.last_error = who + ": " + m.address + ": no such address (docs/INPUTS.md, \"OSC\")";
-        log_refusal(who, m.address + ": no such address");
+        const std::string why = printable(m.address) + ": no such address";
+        delta.last_error = who + ": " + why + " (docs/INPUTS.md, \"OSC\")";
+        log_refusal(who, why);
         continue;
       }
       HeadService::Result r;
@@ -146,8 +176,9 @@ std::size_t OscControl::handle(const UdpDatagram& d, std::string_view bytes) {
         ++delta.applied;
       } else {
         ++delta.refused;
-        delta.last_error = who + ": " + r.error;
-        log_refusal(who, r.error);
+        const std::string why = printable(r.error);
+        delta.last_error = who + ": " + why;
+        log_refusal(who, why);
       }
     }
   }

@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# Runs facectl's SocketCAN and HID tests inside a QEMU guest, because this
-# machine's kernel has neither CAN nor uhid. The guest is Debian's own kernel
+# Runs facectl's SocketCAN, HID and MIDI tests inside a QEMU guest, because
+# this machine's kernel has neither CAN, uhid nor the ALSA sequencer. The guest is Debian's own kernel
 # (linux-image-amd64) under software emulation (-accel tcg) with an initramfs
 # holding busybox, the guest test binary and its libraries (hidapi, libudev),
-# can-utils (candump, cansend) and iproute2's ip, and the modules can,
-# can-raw, can-dev, vcan, hid, hid-generic and uhid.
+# can-utils (candump, cansend), iproute2's ip, alsa-utils' aplaymidi with
+# ALSA's configuration, and the modules can, can-raw, can-dev, vcan, hid,
+# hid-generic, uhid, and soundcore, snd, snd-timer, snd-seq-device and snd-seq.
 #
 # Inside: vcan0 is created, candump records the wire, the gtest binary runs
 # the real CAN buses against simulated drives and boards and a virtual uhid
-# gamepad against the hidapi reader, and the recorded frames are checked for
+# gamepad against the hidapi reader and MidiInput against aplaymidi playing
+# midi/cc_and_notes.mid, and the recorded frames are checked for
 # the driver's own, byte for byte.
 #
 # With FACECTL_BINARY and HEAD_YAML, the guest also holds a stripped
@@ -28,6 +30,7 @@ skip() { echo "SKIP: $*"; exit 77; }
 command -v qemu-system-x86_64 >/dev/null || skip "qemu-system-x86_64 not installed (package qemu-system-x86)"
 command -v candump >/dev/null || skip "candump not installed (package can-utils)"
 command -v cansend >/dev/null || skip "cansend not installed (package can-utils)"
+command -v aplaymidi >/dev/null || skip "aplaymidi not installed (package alsa-utils)"
 [ -x /bin/busybox ] && ! ldd /bin/busybox >/dev/null 2>&1 || skip "static /bin/busybox missing (package busybox-static)"
 ip_bin=$(command -v ip || true)
 [ -n "$ip_bin" ] || skip "ip not installed (package iproute2)"
@@ -42,10 +45,14 @@ mkdir -p "$root"/{bin,sbin,proc,sys,dev,tmp,lib/modules}
 # shellcheck source=tests/drivers/qemu/initramfs.sh
 source "$(dirname "$0")/initramfs.sh"
 cp /bin/busybox "$root/bin/busybox"
-copy_with_libs "$test_bin" "$(command -v candump)" "$(command -v cansend)"
+copy_with_libs "$test_bin" "$(command -v candump)" "$(command -v cansend)" "$(command -v aplaymidi)"
+mkdir -p "$root/usr/share" "$root/midi"
+cp -r /usr/share/alsa "$root/usr/share/alsa"  # snd_seq_open("default") reads alsa.conf
+cp "$(dirname "$0")/midi/cc_and_notes.mid" "$root/midi/"
 cp "$ip_bin" "$root/sbin/iproute2-ip"
 copy_libs "$ip_bin"
-for m in can can-raw can-dev vcan hid hid-generic uhid; do
+modules="can can-raw can-dev vcan hid hid-generic uhid soundcore snd snd-timer snd-seq-device snd-seq"
+for m in $modules; do
   cp "$(modinfo -k "$kver" -n "$m")" "$root/lib/modules/$m.ko"
 done
 guest_test=$(basename "$test_bin")
@@ -64,7 +71,7 @@ mount -t proc proc /proc
 mount -t sysfs sys /sys
 mount -t devtmpfs dev /dev
 echo "FACECTL-QEMU: kernel \$(uname -r)"
-for m in can can-raw can-dev vcan hid hid-generic uhid; do
+for m in $modules; do
   insmod /lib/modules/\$m.ko && echo "FACECTL-QEMU: loaded \$m" || echo "FACECTL-QEMU: insmod \$m FAILED"
 done
 /sbin/iproute2-ip link add dev vcan0 type vcan
@@ -119,7 +126,7 @@ timeout 900 qemu-system-x86_64 -accel tcg -m 512 -smp 2 -nographic -no-reboot \
 echo "QEMU ran $(( $(date +%s) - start )) s; console log: $work/console.log"
 result=$(grep -a "FACECTL-QEMU-RESULT" "$work/console.log" | tr -d '\r' || true)
 if [ "$result" = "FACECTL-QEMU-RESULT: tests=0 candump=PASS" ]; then
-  echo "PASS: SocketCAN tests on vcan0 and the hidraw gamepad test on uhid in a QEMU guest; candump saw the driver's frames"
+  echo "PASS: SocketCAN tests on vcan0, the hidraw gamepad test on uhid and the ALSA sequencer MIDI test in a QEMU guest; candump saw the driver's frames"
   exit 0
 fi
 echo "FAIL: ${result:-the guest did not report a result}"

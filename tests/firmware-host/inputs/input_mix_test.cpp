@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "firmware-host/config/runtime_config.hpp"
+#include "tests/support/config_block.hpp"
 #include "tests/support/default_head.hpp"
-#include "tests/support/temp_file.hpp"
 
 namespace facectl {
 namespace {
@@ -20,18 +20,10 @@ const FaceLayout& layout() {
 }
 
 MixConfig mix_of(const std::string& yaml) {
-  const testing::TempFile f("mix:\n" + yaml);
-  return parse_mix_config(ConfigNode::load_file(f.path(), "")["mix"]);
+  return testing::parse_block("mix", yaml, parse_mix_config);
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
+using testing::config_error_of;
 
 // mouth (the mandible and orbicularis oris) from the input, else capture;
 // the rest from capture, else the show.
@@ -96,16 +88,17 @@ TEST(InputMix, TheShippedBlockPlaysTheMouthFromSpeechAndTheBrowsFromCapture) {
 
 TEST(InputMix, MistakesAreRefusedAtTheirLine) {
   const std::vector<MixSource> both = {MixSource::kInput, MixSource::kShow};
-  EXPECT_NE(error_of([] { mix_of("  others: [show, microphone]\n"); })
+  EXPECT_NE(config_error_of([] { mix_of("  others: [show, microphone]\n"); })
                 .find(":2:18: mix.others[1]: expected one of show, input, gamepad, fap_stream, "
-                      "live_link_face, found 'microphone'"),
+                      "live_link_face, midi, found 'microphone'"),
             std::string::npos);
-  EXPECT_NE(error_of([] { mix_of("  others: [show, show]\n"); }).find("expected each source once"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { mix_of("  groups: {}\n"); }).find("mix: expected key 'others'"),
+  EXPECT_NE(
+      config_error_of([] { mix_of("  others: [show, show]\n"); }).find("expected each source once"),
+      std::string::npos);
+  EXPECT_NE(config_error_of([] { mix_of("  groups: {}\n"); }).find("mix: expected key 'others'"),
             std::string::npos)
-      << error_of([] { mix_of("  groups: {}\n"); });
-  const std::string none = error_of([&] {
+      << config_error_of([] { mix_of("  groups: {}\n"); });
+  const std::string none = config_error_of([&] {
     resolve_input_mix(mix_of("  groups:\n    lips: { signals: [lip_*], sources: [input] }\n"
                              "  others: [show]\n"),
                       layout(), both, 250.0);
@@ -114,7 +107,7 @@ TEST(InputMix, MistakesAreRefusedAtTheirLine) {
                       "head (jaw_pitch_deg, frontalis_*), found 'lip_*', which matches none"),
             std::string::npos)
       << none;
-  const std::string twice = error_of([&] {
+  const std::string twice = config_error_of([&] {
     resolve_input_mix(mix_of("  groups:\n    a: { signals: [frontalis_*], sources: [input] }\n"
                              "    b: { signals: [frontalis_l], sources: [show] }\n"
                              "  others: [show]\n"),
@@ -123,8 +116,8 @@ TEST(InputMix, MistakesAreRefusedAtTheirLine) {
   EXPECT_NE(twice.find("expected each signal in one group, found frontalis_l in groups a and b"),
             std::string::npos)
       << twice;
-  const std::string unplayed =
-      error_of([&] { resolve_input_mix(mix_of("  others: [show]\n"), layout(), both, 250.0); });
+  const std::string unplayed = config_error_of(
+      [&] { resolve_input_mix(mix_of("  others: [show]\n"), layout(), both, 250.0); });
   EXPECT_EQ(unplayed,
             "mix: expected every source of the run in a group's sources or in others, found input "
             "in none");
@@ -181,13 +174,22 @@ TEST(InputMix, EachGroupPlaysItsFirstLiveSourceAndCrossfadesWhenItGoes) {
   ASSERT_TRUE(out.consume(got));
   EXPECT_DOUBLE_EQ(got.values[lips], 0.3);
   EXPECT_DOUBLE_EQ(got.values[brow], 0.3) << "the others kept capture throughout";
+  mix.step(1520 * kMs);
+  EXPECT_FALSE(out.consume(got)) << "nothing new, no fade: nothing for the tick's watchdog";
 
   // Capture stops too: the others fall to the show, whose last pose is too old.
   mix.step(1700 * kMs);
   EXPECT_EQ(mix.playing(1), -1);
   EXPECT_FALSE(out.consume(got)) << "no source live: nothing published";
-  EXPECT_EQ(mix.describe(),
-            "mouth: neutral (changed source 2 times), others: neutral (changed source 1 time)");
+  // Capture comes back: it fades in from neutral, where the watchdog took the face.
+  publish(mix, MixSource::kLiveLinkFace, 0.3, 1800);
+  ASSERT_TRUE(mix.step(1800 * kMs));
+  ASSERT_TRUE(out.consume(got));
+  EXPECT_DOUBLE_EQ(got.values[brow], 0.0);
+  EXPECT_EQ(
+      mix.describe(),
+      "mouth: live_link_face (changed source 3 times), others: live_link_face (changed source 2 "
+      "times)");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <optional>
+#include <regex>
 #include <thread>
 
 #include "../simulate/simulate_process.hpp"
@@ -144,6 +145,23 @@ TEST(InputProcess, RunMixesSpeechForTheMouthWithTheShowForTheRest) {
   EXPECT_GT(max_in_take(yaml, "zygomaticus_major_l"), 0.5) << yaml.substr(0, 800);
   EXPECT_NEAR(max_in_take(yaml, "neck_tilt_deg"), 5.0, 0.1);
   EXPECT_GT(max_in_take(yaml, "pitch_deg"), 5.0);
+
+  // Losing the input rehearsed on a mix silences the mix: the tick's watchdog
+  // sees it; a stream alone has nothing the rehearsal could silence.
+  r = run_facectl({"run", "--quiet", "--config", tmp / "mix.yaml", "--show", show, "--input",
+                   speech, "--duration", "2.5", "--inject", "input_loss@1.2"},
+                  tmp / "log.txt");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const std::regex stale(R"(stale-input ticks (\d+))");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, stale)) << r.output;
+  EXPECT_GT(std::stoi(m[1]), 500) << r.output;
+  r = run_facectl({"run", "--quiet", "--live-link-face", "--inject", "input_loss@1"},
+                  tmp / "log.txt");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--inject input_loss: expected a show or --input to silence"),
+            std::string::npos)
+      << r.output;
 }
 
 }  // namespace

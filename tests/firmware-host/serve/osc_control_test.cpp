@@ -142,6 +142,29 @@ TEST(OscControl, ARunawaySenderIsCountedWithoutFillingTheEventLog) {
   EXPECT_EQ(logged, 10u) << log;
 }
 
+TEST(OscControl, NeutralLeavesAnExpressionAndStrangeBytesAreLoggedEscaped) {
+  testing::ServedHead head;
+  OscControl osc(head.service(), UdpListenOptions{});
+  send_udp(osc.port(), {osc_string("/facectl/expression") + osc_string(",s") + osc_string("joy")});
+  poll_until(osc, 1);
+  EXPECT_EQ(head.session().director->status().source, FaceDirector::Source::kExpression);
+  send_udp(osc.port(), {osc_string("/facectl/neutral") + osc_string(",")});
+  poll_until(osc, 2);
+  EXPECT_EQ(osc.stats().applied, 2u) << osc.stats().last_error;
+  EXPECT_EQ(head.session().director->status().source, FaceDirector::Source::kPose);
+  EXPECT_NE(testing::read_text(head.log_path()).find("hold pose neutral (OSC)"), std::string::npos);
+  // A refused name with a byte that is not text, and an escape sequence.
+  send_udp(osc.port(),
+           {osc_string("/facectl/expression") + osc_string(",s") + osc_string("j\xff\x1b[2Jy")});
+  poll_until(osc, 3);
+  const OscStats st = osc.stats();
+  EXPECT_EQ(st.refused, 1u);
+  EXPECT_NE(st.last_error.find("no expression 'j\\xff\\x1b[2Jy'"), std::string::npos)
+      << st.last_error;
+  EXPECT_NE(testing::read_text(head.log_path()).find("j\\\\xff\\\\x1b[2Jy"), std::string::npos)
+      << "JSON-escaped backslashes in the log file";
+}
+
 TEST(OscControl, ListensOnLoopbackUnlessAllowedBeyond) {
   testing::ServedHead head;
   UdpListenOptions o;
