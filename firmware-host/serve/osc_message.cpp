@@ -12,6 +12,16 @@ namespace {
 constexpr int kMaxBundleDepth = 4;
 constexpr std::size_t kMaxMessages = 64;
 
+// An argument's value. liblo's argv points into its packed argument data,
+// where a number need not sit on its type's alignment: read the bytes, do
+// not dereference an lo_arg.
+template <typename T>
+T read_arg(const lo_arg* a) {
+  T v;
+  std::memcpy(&v, a, sizeof v);
+  return v;
+}
+
 std::uint32_t big_endian_u32(const char* p) {
   const auto* b = reinterpret_cast<const unsigned char*>(p);
   return (std::uint32_t{b[0]} << 24) | (std::uint32_t{b[1]} << 16) | (std::uint32_t{b[2]} << 8) |
@@ -36,20 +46,20 @@ OscMessage decode_message(std::string_view data) {
   for (int i = 0; i < lo_message_get_argc(m.get()); ++i) {
     switch (types[i]) {
       case LO_INT32:
-        out.args.emplace_back(static_cast<double>(argv[i]->i));
+        out.args.emplace_back(static_cast<double>(read_arg<std::int32_t>(argv[i])));
         break;
       case LO_INT64:
-        out.args.emplace_back(static_cast<double>(argv[i]->h));
+        out.args.emplace_back(static_cast<double>(read_arg<std::int64_t>(argv[i])));
         break;
       case LO_FLOAT:
-        out.args.emplace_back(static_cast<double>(argv[i]->f));
+        out.args.emplace_back(static_cast<double>(read_arg<float>(argv[i])));
         break;
       case LO_DOUBLE:
-        out.args.emplace_back(argv[i]->d);
+        out.args.emplace_back(read_arg<double>(argv[i]));
         break;
       case LO_STRING:
       case LO_SYMBOL:
-        out.args.emplace_back(std::string(&argv[i]->s));
+        out.args.emplace_back(std::string(reinterpret_cast<const char*>(argv[i])));
         break;
       default:
         throw OscFormatError(out.address + ": expected number or string arguments, found type '" +
