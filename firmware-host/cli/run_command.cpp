@@ -486,10 +486,11 @@ int run_command(const RunOptions& options) {
     const MidiStats st = s.midi->stats();
     std::printf(
         "  MIDI: %llu events, %llu controls and %llu notes played, %llu not in the map, at most "
-        "%d senders connected\n",
+        "%d senders connected, %llu overruns\n",
         static_cast<unsigned long long>(st.events), static_cast<unsigned long long>(st.controls),
         static_cast<unsigned long long>(st.notes), static_cast<unsigned long long>(st.unmapped),
-        st.most_senders);
+        st.most_senders, static_cast<unsigned long long>(st.overruns));
+    if (!st.last_error.empty()) std::printf("  MIDI: last error: %s\n", st.last_error.c_str());
   }
   if (s.mixer) std::printf("  mix: %s\n", s.mixer->describe().c_str());
   if (s.recorder) rc = std::max(rc, write_recorded_show(options, *s.recorder));

@@ -82,11 +82,28 @@ RuntimeConfig load_runtime_config(const std::string& path) {
               " Hz (two commands per input_timeout_ms)");
     }
   }
-  // The mix, when it has its own rate, stands where the show would.
-  if (cfg.mix && cfg.mix->rate_hz > 0.0 && 2.0 / cfg.mix->rate_hz > cfg.safety.input_timeout_s) {
-    root["mix"]["rate_hz"].fail("a rate_hz of at least " +
-                                std::to_string(2.0 / cfg.safety.input_timeout_s) +
-                                " Hz (two commands per input_timeout_ms)");
+  // The mix, when it has its own rate, stands where the show would; MIDI
+  // repeats a held pose at its own.
+  const double least_hz = 2.0 / cfg.safety.input_timeout_s;
+  const auto slower = [&](double hz) { return hz > 0.0 && hz < least_hz; };
+  const std::string per = " Hz (two commands per input_timeout_ms)";
+  // The key when written, else its block (a default that no longer fits).
+  const auto at = [&root](const char* block, const char* key) {
+    const ConfigNode b = root[block];
+    return b.get(key).value_or(b);
+  };
+  if (cfg.mix && slower(cfg.mix->rate_hz)) {
+    at("mix", "rate_hz").fail("a rate_hz of at least " + std::to_string(least_hz) + per);
+  }
+  if (cfg.midi && slower(cfg.midi->rate_hz)) {
+    at("midi", "rate_hz").fail("a rate_hz of at least " + std::to_string(least_hz) + per);
+  }
+  // A source lost while another still sends keeps its groups for stale_ms,
+  // unseen by the tick's watchdog: no longer than the watchdog would wait.
+  if (cfg.mix && cfg.mix->stale_ms * 1e-3 > cfg.safety.input_timeout_s + 1e-12) {
+    at("mix", "stale_ms")
+        .fail("a stale_ms of at most input_timeout_ms (" +
+              std::to_string(cfg.safety.input_timeout_s * 1e3) + ")");
   }
   return cfg;
 }

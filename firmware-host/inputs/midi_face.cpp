@@ -65,8 +65,9 @@ MidiFaceState::Applied MidiFaceState::note_on(int channel, int note, int velocit
   if (velocity == 0) return note_off(channel, note);
   for (std::size_t i = 0; i < map_.notes.size(); ++i) {
     if (map_.notes[i].channel == channel && map_.notes[i].note == note) {
-      note_ = static_cast<int>(i);  // the last note pressed wins, as on a mono synth
-      weight_ = std::clamp(velocity, 1, 127) / 127.0;
+      let_go(i);  // pressed again: it moves to the top
+      if (held_count_ == kMaxHeld) let_go(held_[0].note);
+      held_[held_count_++] = {i, std::clamp(velocity, 1, 127) / 127.0};
       return Applied::kNoteOn;
     }
   }
@@ -76,21 +77,37 @@ MidiFaceState::Applied MidiFaceState::note_on(int channel, int note, int velocit
 MidiFaceState::Applied MidiFaceState::note_off(int channel, int note) {
   for (std::size_t i = 0; i < map_.notes.size(); ++i) {
     if (map_.notes[i].channel == channel && map_.notes[i].note == note) {
-      if (note_ == static_cast<int>(i)) note_ = -1;  // releasing an older note changes nothing
+      let_go(i);
       return Applied::kNoteOff;
     }
   }
   return Applied::kUnmapped;
 }
 
+void MidiFaceState::let_go(std::size_t note) {
+  const auto end = held_.begin() + static_cast<std::ptrdiff_t>(held_count_);
+  const auto at =
+      std::find_if(held_.begin(), end, [note](const Held& h) { return h.note == note; });
+  if (at == end) return;
+  std::copy(at + 1, end, at);
+  --held_count_;
+}
+
+void MidiFaceState::release_notes() {
+  held_count_ = 0;
+}
+
 void MidiFaceState::reset() {
-  note_ = -1;
+  held_count_ = 0;
   std::fill(control_moved_.begin(), control_moved_.end(), false);
 }
 
 void MidiFaceState::pose(std::array<double, kMaxFaceSignals>& out) const {
   out = neutral_;
-  if (note_ >= 0) map_.notes[static_cast<std::size_t>(note_)].expression->blend_into(out, weight_);
+  if (held_count_ > 0) {
+    const Held& top = held_[held_count_ - 1];
+    map_.notes[top.note].expression->blend_into(out, top.weight);
+  }
   for (std::size_t i = 0; i < map_.controls.size(); ++i) {
     if (control_moved_[i]) out[map_.controls[i].signal] = control_values_[i];
   }

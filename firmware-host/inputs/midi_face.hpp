@@ -36,9 +36,10 @@ struct MidiFaceMap {
 MidiFaceMap resolve_midi_map(const MidiConfig& config, const FaceLayout& layout,
                              const ExpressionLibrary& expressions);
 
-// The face that MIDI holds: neutral, the expression of the last note still
-// down at its velocity's weight, and every mapped controller's last value
-// over it. Allocates nothing after construction.
+// The face that MIDI holds: neutral, the expression of the last mapped note
+// still down at its velocity's weight (legato: letting go of it falls back to
+// the one pressed before, if still down), and every mapped controller's last
+// value over it. Allocates nothing after construction.
 class MidiFaceState {
  public:
   enum class Applied { kControl, kNoteOn, kNoteOff, kUnmapped };
@@ -48,7 +49,8 @@ class MidiFaceState {
   Applied control(int channel, int cc, int value);       // channel 0..15, value 0..127
   Applied note_on(int channel, int note, int velocity);  // velocity 0 is a note off
   Applied note_off(int channel, int note);
-  void reset();  // back to neutral: no note down, no controller moved
+  void reset();          // back to neutral: no note down, no controller moved
+  void release_notes();  // no note down; controllers stay
   void pose(std::array<double, kMaxFaceSignals>& out) const;
 
  private:
@@ -56,8 +58,16 @@ class MidiFaceState {
   const std::array<double, kMaxFaceSignals> neutral_;
   std::vector<double> control_values_;  // per map control, SI
   std::vector<bool> control_moved_;
-  int note_ = -1;  // index into map_.notes of the note held, -1 none
-  double weight_ = 0.0;
+  // Mapped notes down, oldest first: index into map_.notes and weight. The
+  // oldest falls off when more are down than fit.
+  struct Held {
+    std::size_t note = 0;
+    double weight = 0.0;
+  };
+  static constexpr std::size_t kMaxHeld = 16;
+  std::array<Held, kMaxHeld> held_{};
+  std::size_t held_count_ = 0;
+  void let_go(std::size_t note);
 };
 
 }  // namespace facectl

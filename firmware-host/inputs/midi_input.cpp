@@ -14,10 +14,11 @@ namespace facectl {
 namespace {
 
 std::runtime_error alsa_error(const std::string& what, int err) {
-  std::string text = "MIDI: " + what + ": " + snd_strerror(err);
-  if (err == -ENOENT) text += " (no /dev/snd/seq: load the snd-seq module)";
-  return std::runtime_error(text);
+  return std::runtime_error("MIDI: " + what + ": " + snd_strerror(err));
 }
+
+// alsa-lib prints its own failures to stderr; facectl reports them itself.
+void quiet_alsa(const char*, int, const char*, int, const char*, ...) {}
 
 }  // namespace
 
@@ -25,10 +26,13 @@ MidiInput::MidiInput(const MidiFaceMap& map, const std::array<double, kMaxFaceSi
                      const MidiConfig& config, LatestValueMailbox<FaceCommand>* mailbox,
                      ShowRecorder* recorder)
     : state_(map, neutral), mailbox_(mailbox), recorder_(recorder), rate_hz_(config.rate_hz) {
+  snd_lib_error_set_handler(quiet_alsa);
   int err = snd_seq_open(&seq_, "default", SND_SEQ_OPEN_INPUT, SND_SEQ_NONBLOCK);
   if (err < 0) {
     seq_ = nullptr;
-    throw alsa_error("cannot open the ALSA sequencer", err);
+    std::runtime_error e = alsa_error("cannot open the ALSA sequencer", err);
+    if (err != -ENOENT) throw e;
+    throw std::runtime_error(std::string(e.what()) + " (no /dev/snd/seq: load the snd-seq module)");
   }
   try {
     if ((err = snd_seq_set_client_name(seq_, config.client.c_str())) < 0) {
@@ -88,7 +92,17 @@ int MidiInput::senders() const {
 
 void MidiInput::handle_pending(MidiStats& delta) {
   snd_seq_event_t* ev = nullptr;
-  while (snd_seq_event_input(seq_, &ev) >= 0 && ev != nullptr) {
+  while (true) {
+    const int got = snd_seq_event_input(seq_, &ev);
+    if (got == -ENOSPC) {
+      // The kernel's input pool overflowed and dropped events: a note off
+      // may be among them, so no expression is left held on a guess.
+      ++delta.overruns;
+      delta.last_error = "events dropped: the sequencer's input pool overflowed";
+      state_.release_notes();
+      continue;
+    }
+    if (got < 0 || ev == nullptr) break;
     using Applied = MidiFaceState::Applied;
     Applied a = Applied::kUnmapped;
     bool midi = true;
@@ -151,6 +165,8 @@ void MidiInput::run() {
     stats_.controls += delta.controls;
     stats_.notes += delta.notes;
     stats_.unmapped += delta.unmapped;
+    stats_.overruns += delta.overruns;
+    if (!delta.last_error.empty()) stats_.last_error = delta.last_error;
     stats_.published += published ? 1 : 0;
     stats_.senders = now_senders;
     stats_.most_senders = std::max(stats_.most_senders, now_senders);

@@ -23,7 +23,8 @@ struct MidiStats {
   std::uint64_t notes = 0;     // note ons and offs of mapped notes
   std::uint64_t unmapped = 0;  // controls and notes the map does not name
   std::uint64_t published = 0;
-  int senders = 0;  // subscribed to facectl's port now
+  std::uint64_t overruns = 0;  // times the kernel dropped events (input pool full)
+  int senders = 0;             // subscribed to facectl's port now
   int most_senders = 0;
   std::string last_error;
 };

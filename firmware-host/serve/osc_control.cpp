@@ -98,9 +98,10 @@ HeadService::Result OscControl::apply(const OscMessage& m, const std::string& wh
   }
   if (a == "/facectl/neutral") {
     expect_args(m, 0, 0, "no arguments");
-    // Whatever holds the face (a show, an expression, signals): neutral.
-    HeadService::Result r =
-        service_.hold_pose(who, service_.head().model().neutral, "neutral (OSC)");
+    // Whatever holds the face (a show and its queue, an expression, signals): neutral.
+    HeadService::Result r = service_.stop_show(who);
+    if (r.status < 300)
+      r = service_.hold_pose(who, service_.head().model().neutral, "neutral (OSC)");
     if (r.status < 300) held_ = service_.head().model().neutral;
     return r;
   }

@@ -30,7 +30,6 @@ skip() { echo "SKIP: $*"; exit 77; }
 command -v qemu-system-x86_64 >/dev/null || skip "qemu-system-x86_64 not installed (package qemu-system-x86)"
 command -v candump >/dev/null || skip "candump not installed (package can-utils)"
 command -v cansend >/dev/null || skip "cansend not installed (package can-utils)"
-command -v aplaymidi >/dev/null || skip "aplaymidi not installed (package alsa-utils)"
 [ -x /bin/busybox ] && ! ldd /bin/busybox >/dev/null 2>&1 || skip "static /bin/busybox missing (package busybox-static)"
 ip_bin=$(command -v ip || true)
 [ -n "$ip_bin" ] || skip "ip not installed (package iproute2)"
@@ -45,7 +44,9 @@ mkdir -p "$root"/{bin,sbin,proc,sys,dev,tmp,lib/modules}
 # shellcheck source=tests/drivers/qemu/initramfs.sh
 source "$(dirname "$0")/initramfs.sh"
 cp /bin/busybox "$root/bin/busybox"
-copy_with_libs "$test_bin" "$(command -v candump)" "$(command -v cansend)" "$(command -v aplaymidi)"
+copy_with_libs "$test_bin" "$(command -v candump)" "$(command -v cansend)"
+# Without alsa-utils the guest's MIDI test skips itself; CAN and HID still run.
+if command -v aplaymidi >/dev/null; then copy_with_libs "$(command -v aplaymidi)"; fi
 mkdir -p "$root/usr/share" "$root/midi"
 cp -r /usr/share/alsa "$root/usr/share/alsa"  # snd_seq_open("default") reads alsa.conf
 cp "$(dirname "$0")/midi/cc_and_notes.mid" "$root/midi/"
@@ -118,11 +119,13 @@ INIT
 chmod +x "$root/init"
 pack_initramfs "$work/initramfs.gz"
 
+# no_timer_check: on a busy host the emulated CPU can miss the kernel's
+# IO-APIC timer check at boot and panic ("IO-APIC + timer doesn't work!").
 echo "Booting $kernel in qemu-system-x86_64 -accel tcg with $(du -h "$work/initramfs.gz" | cut -f1) initramfs"
 start=$(date +%s)
 timeout 900 qemu-system-x86_64 -accel tcg -m 512 -smp 2 -nographic -no-reboot \
   -kernel "$kernel" -initrd "$work/initramfs.gz" \
-  -append "console=ttyS0 panic=-1 quiet" </dev/null | tee "$work/console.log" | grep -aE "FACECTL|^\[ |vcan\]|uhid\]" || true
+  -append "console=ttyS0 panic=-1 quiet no_timer_check" </dev/null | tee "$work/console.log" | grep -aE "FACECTL|^\[ |vcan\]|uhid\]" || true
 echo "QEMU ran $(( $(date +%s) - start )) s; console log: $work/console.log"
 result=$(grep -a "FACECTL-QEMU-RESULT" "$work/console.log" | tr -d '\r' || true)
 if [ "$result" = "FACECTL-QEMU-RESULT: tests=0 candump=PASS" ]; then

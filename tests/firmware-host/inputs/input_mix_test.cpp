@@ -123,6 +123,31 @@ TEST(InputMix, MistakesAreRefusedAtTheirLine) {
             "in none");
 }
 
+TEST(InputMix, ASourceMayNotOutstayTheWatchdogNorTheMixRunSlowerThanIt) {
+  const auto error_in = [](const std::string& blocks) {
+    const testing::TempFile f("head: h.yaml\nrig: r.yaml\nexpressions: e.yaml\n" + blocks);
+    return config_error_of([&] { load_runtime_config(f.path()); });
+  };
+  EXPECT_EQ(error_in("mix: { others: [show], stale_ms: 200 }\n"), "accepted");
+  EXPECT_NE(error_in("mix: { others: [show], stale_ms: 300 }\n")
+                .find("mix.stale_ms: expected a stale_ms of at most input_timeout_ms (200"),
+            std::string::npos)
+      << error_in("mix: { others: [show], stale_ms: 300 }\n");
+  EXPECT_NE(error_in("runtime: { input_timeout_ms: 100 }\nmix: { others: [show] }\n")
+                .find(": mix: expected a stale_ms of at most input_timeout_ms (100"),
+            std::string::npos)
+      << "the default 200 ms no longer fits: the block is named";
+  EXPECT_NE(error_in("mix: { others: [show], rate_hz: 5 }\n")
+                .find("mix.rate_hz: expected a rate_hz of at least 10"),
+            std::string::npos);
+  EXPECT_NE(error_in("runtime: { input_timeout_ms: 10 }\nmidi: { notes: [{ channel: 1, note: 60, "
+                     "expression: joy }] }\n")
+                .find(": midi: expected a rate_hz of at least 200"),
+            std::string::npos)
+      << error_in("runtime: { input_timeout_ms: 10 }\nmidi: { notes: [{ channel: 1, note: 60, "
+                  "expression: joy }] }\n");
+}
+
 TEST(InputMix, EachGroupPlaysItsFirstLiveSourceAndCrossfadesWhenItGoes) {
   LatestValueMailbox<FaceCommand> out;
   std::array<double, kMaxFaceSignals> neutral{};

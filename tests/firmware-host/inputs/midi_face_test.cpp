@@ -64,8 +64,17 @@ TEST(MidiFace, NotesHoldTheirExpressionAtTheirVelocityUntilLetGo) {
   EXPECT_EQ(face.note_on(0, 60, 127), MidiFaceState::Applied::kNoteOn);
   face.pose(pose);
   EXPECT_NEAR(pose[smile], joy_smile, 1e-12);
-  // A second note takes over (the last pressed wins); letting the first go changes nothing.
+  // A second note takes over (the last pressed wins); letting it go falls
+  // back to the first, still down (legato); then letting the first go
+  // while the second is down changes nothing.
   EXPECT_EQ(face.note_on(9, 62, 64), MidiFaceState::Applied::kNoteOn);
+  face.pose(pose);
+  EXPECT_NEAR(pose[smile], h.head.neutral[smile], 1e-12);
+  EXPECT_NE(pose, h.head.neutral) << "surprise at 64/127";
+  EXPECT_EQ(face.note_off(9, 62), MidiFaceState::Applied::kNoteOff);
+  face.pose(pose);
+  EXPECT_NEAR(pose[smile], joy_smile, 1e-12) << "back to joy, still down";
+  face.note_on(9, 62, 64);
   EXPECT_EQ(face.note_off(0, 60), MidiFaceState::Applied::kNoteOff);
   face.pose(pose);
   EXPECT_NEAR(pose[smile], h.head.neutral[smile], 1e-12);

@@ -153,10 +153,17 @@ TEST(OscControl, NeutralLeavesAnExpressionAndStrangeBytesAreLoggedEscaped) {
   EXPECT_EQ(osc.stats().applied, 2u) << osc.stats().last_error;
   EXPECT_EQ(head.session().director->status().source, FaceDirector::Source::kPose);
   EXPECT_NE(testing::read_text(head.log_path()).find("hold pose neutral (OSC)"), std::string::npos);
+  // A show queued before neutral does not come back after it.
+  send_udp(osc.port(), {osc_string("/facectl/show/play") + osc_string(",s") + osc_string("demo"),
+                        osc_string("/facectl/show/queue") + osc_string(",s") + osc_string("demo"),
+                        osc_string("/facectl/neutral") + osc_string(",")});
+  poll_until(osc, 5);
+  EXPECT_TRUE(head.session().director->status().queue.empty());
+  EXPECT_EQ(head.session().director->status().source, FaceDirector::Source::kPose);
   // A refused name with a byte that is not text, and an escape sequence.
   send_udp(osc.port(),
            {osc_string("/facectl/expression") + osc_string(",s") + osc_string("j\xff\x1b[2Jy")});
-  poll_until(osc, 3);
+  poll_until(osc, 6);
   const OscStats st = osc.stats();
   EXPECT_EQ(st.refused, 1u);
   EXPECT_NE(st.last_error.find("no expression 'j\\xff\\x1b[2Jy'"), std::string::npos)
