@@ -144,8 +144,9 @@ TEST(InputMix, ASourceMayNotOutstayTheWatchdogNorTheMixRunSlowerThanIt) {
                      "expression: joy }] }\n")
                 .find(": midi: expected a rate_hz of at least 200"),
             std::string::npos)
-      << error_in("runtime: { input_timeout_ms: 10 }\nmidi: { notes: [{ channel: 1, note: 60, "
-                  "expression: joy }] }\n");
+      << error_in(
+             "runtime: { input_timeout_ms: 10 }\nmidi: { notes: [{ channel: 1, note: 60, "
+             "expression: joy }] }\n");
 }
 
 TEST(InputMix, EachGroupPlaysItsFirstLiveSourceAndCrossfadesWhenItGoes) {
