@@ -23,7 +23,7 @@ BUILD_FUZZ="${BUILD_FUZZ:-build-fuzz}"
 FUZZ_NICE="${FUZZ_NICE:-0}"
 
 all_targets=(runtime_config head_config rig_config expressions show fap_file fap_udp recorded_input
-             live_link_face_packet
+             live_link_face_packet osc_datagram
              telemetry_csv modbus_reply custom_can cia402_can hid_report)
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then targets=("${all_targets[@]}"); fi
@@ -57,6 +57,8 @@ fap_files=("$src"/config/fap/*.fap "$src"/tests/firmware-host/fap/files/*.fap
 seed fap_file "${fap_files[@]}"
 seed recorded_input "$src"/tests/firmware-host/inputs/real/*/*.{csv,json,tsv,TextGrid}
 seed live_link_face_packet "$src"/tests/firmware-host/inputs/real/live_link_face_udp/*.bin
+# OSC as python-osc (an independent implementation) encodes it.
+python3 "$src"/tests/firmware-host/inputs/peers/osc_peer.py write "$out/osc_datagram/seeds"
 seed hid_report  # none: the repository holds no captured reports (libFuzzer starts empty)
 seed custom_can  # none: no recorded CAN traffic in the repository
 seed cia402_can
