@@ -22,6 +22,8 @@ int print_run_summary(const RunSummaryInput& in) {
   std::printf("  ticks %llu, configured rate %.3f Hz, measured rate %.4f Hz (%+.4f%%)\n",
               static_cast<unsigned long long>(s.ticks.load()), m.rate_hz, rate,
               (rate / m.rate_hz - 1.0) * 100.0);
+  std::printf("  clock: telemetry time_s 0 is CLOCK_MONOTONIC %.6f s\n",
+              static_cast<double>(s.start_ns.load()) * 1e-9);
   std::printf("  wake latency: p50 %.0f us, p99 %.0f us, p99.9 %.0f us, max %.0f us\n",
               s.wake_latency.percentile(50) * 1e6, s.wake_latency.percentile(99) * 1e6,
               s.wake_latency.percentile(99.9) * 1e6, s.wake_latency.max() * 1e6);

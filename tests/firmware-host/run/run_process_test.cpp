@@ -7,6 +7,7 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -110,6 +111,12 @@ std::string config_with_storm_threshold(int missed_deadlines) {
 // ms have been seen on shared CI VMs) does not end the run in an overrun
 // storm: these tests rehearse other behaviour. The overrun-storm rehearsal
 // itself uses the shipped configuration.
+double monotonic_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+}
+
 const std::string& stall_tolerant_config() {
   static const std::string path = config_with_storm_threshold(100000);
   return path;
@@ -117,9 +124,11 @@ const std::string& stall_tolerant_config() {
 
 TEST(RunProcess, SigtermEasesToRestDisablesAndKeepsEveryTick) {
   facectl::testing::TempFile csv("", ".csv");
+  const double spawned_s = monotonic_s();
   Child c = spawn({"run", "--config", stall_tolerant_config(), "--duration", "30", "--record",
                    csv.path(), "--quiet"});
   ASSERT_TRUE(wait_for_output(c, "ENABLING -> RUNNING")) << read_file(c.out_path);
+  const double running_s = monotonic_s();
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // running a while
   kill(c.pid, SIGTERM);
   const auto t0 = std::chrono::steady_clock::now();
@@ -142,6 +151,15 @@ TEST(RunProcess, SigtermEasesToRestDisablesAndKeepsEveryTick) {
   EXPECT_EQ(last_state(t), "IDLE");
   EXPECT_NE(out.find(std::to_string(t.rows.size()) + " rows written"), std::string::npos) << out;
   EXPECT_NE(out.find(", 0 lost, 0 dropped"), std::string::npos) << out;
+  // The summary says where telemetry's time_s 0 is on CLOCK_MONOTONIC, so
+  // other programs' timestamps line up with it: after the spawn, and at
+  // least the enable ramp (1 s) before RUNNING was seen.
+  const std::string clock = "clock: telemetry time_s 0 is CLOCK_MONOTONIC ";
+  const std::size_t at = out.find(clock);
+  ASSERT_NE(at, std::string::npos) << out;
+  const double start_s = std::stod(out.substr(at + clock.size()));
+  EXPECT_GT(start_s, spawned_s);
+  EXPECT_LT(start_s, running_s - 1.0);
   std::remove(c.out_path.c_str());
 }
 
