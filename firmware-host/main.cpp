@@ -60,6 +60,10 @@ void add_run_command(CLI::App& app, CliOptions& o) {
   run_cmd->add_flag("--midi", o.run.midi,
                     "Play MIDI controls and notes from the ALSA sequencer by the runtime config's "
                     "midi map (docs/INPUTS.md)");
+  run_cmd->add_option("--audio", o.run.audio,
+                      "Play this sound through the runtime config's audio device, with --input "
+                      "(or the show) timed by it and the face leading it by audio.lead_ms "
+                      "(docs/INPUTS.md)");
   run_cmd->add_option("--record-show", o.run.record_show,
                       "With --gamepad, --input, --midi or a stream: write what was "
                       "performed as a show file");

@@ -19,6 +19,7 @@
 #include "drivers/hid/hid_gamepad.hpp"
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/fap/fap_udp_stream.hpp"
+#include "firmware-host/inputs/audio_playback.hpp"
 #include "firmware-host/inputs/gamepad_puppeteer.hpp"
 #include "firmware-host/inputs/input_mix.hpp"
 #include "firmware-host/inputs/live_link_face_stream.hpp"
@@ -61,6 +62,7 @@ struct RunSession {
   std::unique_ptr<LiveLinkFaceStream> live_link_face;
   std::unique_ptr<MidiFaceMap> midi_map;  // --midi: outlives the input
   std::unique_ptr<MidiInput> midi;
+  std::unique_ptr<AudioPlayback> audio;    // --audio: outlives the player that follows it
   std::unique_ptr<ShowPlayer> player;      // --input's, else the show's
   std::unique_ptr<ShowPlayer> mixed_show;  // the show, when mixed with --input
   std::unique_ptr<HidGamepad> pad;
@@ -176,6 +178,9 @@ void load(const RunOptions& options, RunSession& s) {
   if (options.duration_s && !(*options.duration_s > 0.0)) {
     throw ConfigError("--duration: expected a number of seconds > 0");
   }
+  if (options.audio && !options.input && !cfg.show) {
+    throw ConfigError("--audio: expected --input or a show to time by the sound");
+  }
 }
 
 // Stage 2. The hardware, the telemetry recording and the controller.
@@ -243,6 +248,9 @@ void open_input(const RunOptions& options, RunSession& s) {
   }
   s.live = options.gamepad || options.fap_stream || options.live_link_face || options.midi;
 
+  if (options.audio) {
+    s.audio = std::make_unique<AudioPlayback>(*options.audio, s.head.cfg->runtime.audio);
+  }
   const double rate = s.head.cfg->runtime.show_rate_hz;
   if (s.input || s.input_show) {
     ShowPlayer::PoseSource source;
@@ -272,6 +280,12 @@ void open_input(const RunOptions& options, RunSession& s) {
     (s.player ? s.mixed_show : s.player) = std::make_unique<ShowPlayer>(
         *s.head.cfg->show, *mailbox(MixSource::kShow), rate, options.duration_s.has_value());
   }
+  // The sound is the clock: the face shows second t of its track when second
+  // t - lead of the sound is heard.
+  if (s.audio) {
+    s.player->follow([a = s.audio.get(), lead = s.head.cfg->runtime.audio.lead_s](
+                         std::int64_t now) { return a->clock().at(now) + lead; });
+  }
   if (s.mixer) {
     s.silence_input = [m = s.mixer.get()] { m->go_silent(); };
   } else if (s.player) {
@@ -279,6 +293,7 @@ void open_input(const RunOptions& options, RunSession& s) {
   }
   if (options.duration_s) {
     s.end_s = *options.duration_s;
+  } else if (s.audio) {              // when the sound and its track have played out
   } else if (!s.live && s.player) {  // until what plays has played; with nothing, a signal
     s.end_s = s.input ? s.input->track.duration() : s.input_show ? s.input_show->duration() : 0.0;
     if (s.mixed_show || (s.player && !s.input && !s.input_show)) {
@@ -290,6 +305,7 @@ void open_input(const RunOptions& options, RunSession& s) {
 // Stage 4. Start: input, logger and the real-time loop, and ask to enable.
 void start(RunSession& s) {
   if (s.mixer) s.mixer->start();
+  if (s.audio) s.audio->start();
   if (s.player) s.player->start();
   if (s.mixed_show) s.mixed_show->start();
   if (s.fap_stream) s.fap_stream->start();
@@ -330,7 +346,8 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
     fire_due_injections(s.injections, t, s.head.sim.get(), s.silence_input, s.head.loop.get());
     const SafetyState state = s.head.controller->state();
     const bool played_out = !options.duration_s && !s.live && s.player && s.player->finished() &&
-                            (!s.mixed_show || s.mixed_show->finished());
+                            (!s.mixed_show || s.mixed_show->finished()) &&
+                            (!s.audio || s.audio->stats().finished);
     if (!shutdown && (g_signal.load() != 0 || t >= s.end_s || played_out)) {
       shutdown = true;
       s.head.controller->request_shutdown();
@@ -366,6 +383,7 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
 void stop(RunSession& s, bool tty) {
   stop_head_loop(s.head);  // nothing holds once the loop has stopped
   if (s.player) s.player->stop();
+  if (s.audio) s.audio->stop();
   if (s.mixed_show) s.mixed_show->stop();
   if (s.puppeteer) s.puppeteer->stop();
   if (s.fap_stream) s.fap_stream->stop();
@@ -491,6 +509,14 @@ int run_command(const RunOptions& options) {
         static_cast<unsigned long long>(st.notes), static_cast<unsigned long long>(st.unmapped),
         st.most_senders, static_cast<unsigned long long>(st.overruns));
     if (!st.last_error.empty()) std::printf("  MIDI: last error: %s\n", st.last_error.c_str());
+  }
+  if (s.audio) {
+    const AudioStats st = s.audio->stats();
+    std::printf("  audio: %.2f of %.2f s played on '%s', the face %.0f ms ahead, %llu underruns\n",
+                st.played_s, st.file_s, s.head.cfg->runtime.audio.device.c_str(),
+                s.head.cfg->runtime.audio.lead_s * 1e3,
+                static_cast<unsigned long long>(st.underruns));
+    if (!st.last_error.empty()) std::printf("  audio: last error: %s\n", st.last_error.c_str());
   }
   if (s.mixer) std::printf("  mix: %s\n", s.mixer->describe().c_str());
   if (s.recorder) rc = std::max(rc, write_recorded_show(options, *s.recorder));

@@ -15,10 +15,11 @@ struct RunOptions {
   std::optional<std::string> hardware;  // "sim" or "real": overrides the runtime file
   std::optional<std::string> input;     // play this input file instead of the show (docs/INPUTS.md)
   std::optional<std::string> format;    // the input's format; else detected from its content
-  bool fap_stream = false;      // play the runtime file's fap_stream (UDP) instead of a show
-  bool live_link_face = false;  // play the runtime file's live_link_face stream (UDP)
-  bool gamepad = false;         // puppeteer from the runtime file's gamepad, not a show
-  bool midi = false;            // play the runtime file's midi map (ALSA sequencer)
+  bool fap_stream = false;           // play the runtime file's fap_stream (UDP) instead of a show
+  bool live_link_face = false;       // play the runtime file's live_link_face stream (UDP)
+  bool gamepad = false;              // puppeteer from the runtime file's gamepad, not a show
+  bool midi = false;                 // play the runtime file's midi map (ALSA sequencer)
+  std::optional<std::string> audio;  // play this sound, the input (or show) timed by it
   // With gamepad, input or a stream: write what was played as a show.
   std::optional<std::string> record_show;
   std::vector<std::string> inject;  // fault rehearsal on simulated hardware

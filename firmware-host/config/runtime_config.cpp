@@ -8,7 +8,7 @@ RuntimeConfig load_runtime_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path, "");
   root.expect_keys({"runtime", "head", "rig", "expressions", "show", "visemes", "retarget",
                     "hardware", "safety_io", "gamepad", "serve", "fap_stream", "live_link_face",
-                    "osc", "mix", "midi"});
+                    "osc", "mix", "midi", "audio"});
   RuntimeConfig cfg;
   cfg.file = path;
   cfg.head_path = resolve_path(path, root["head"].string());
@@ -32,6 +32,7 @@ RuntimeConfig load_runtime_config(const std::string& path) {
   if (auto n = root.get("midi")) cfg.midi = parse_midi_config(*n);
   if (auto n = root.get("mix")) cfg.mix = parse_mix_config(*n);
   if (auto n = root.get("osc")) cfg.osc = parse_osc_config(*n);
+  if (auto n = root.get("audio")) cfg.audio = parse_audio_config(*n);
 
   if (auto rt = root.get("runtime")) {
     rt->expect_keys({"rate_hz", "realtime", "input_timeout_ms", "overrun_fault_count",

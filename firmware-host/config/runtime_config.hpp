@@ -5,6 +5,7 @@
 
 #include "control/command/command_shaper.hpp"
 #include "control/safety/safety_state_machine.hpp"
+#include "firmware-host/config/audio_config.hpp"
 #include "firmware-host/config/fap_stream_config.hpp"
 #include "firmware-host/config/hardware_config.hpp"
 #include "firmware-host/config/live_link_face_config.hpp"
@@ -49,6 +50,7 @@ struct RuntimeConfig {
   std::optional<UdpListenOptions> osc;                // `facectl serve`'s OSC control
   std::optional<MidiConfig> midi;                     // run --midi (ALSA sequencer)
   std::optional<MixConfig> mix;                       // several inputs of `facectl run` at once
+  AudioConfig audio;                                  // run --audio (ALSA playback)
 };
 
 RuntimeConfig load_runtime_config(const std::string& path);

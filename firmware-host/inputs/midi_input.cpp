@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "control/clock.hpp"
+#include "firmware-host/inputs/alsa_messages.hpp"
 
 namespace facectl {
 namespace {
@@ -17,16 +18,13 @@ std::runtime_error alsa_error(const std::string& what, int err) {
   return std::runtime_error("MIDI: " + what + ": " + snd_strerror(err));
 }
 
-// alsa-lib prints its own failures to stderr; facectl reports them itself.
-void quiet_alsa(const char*, int, const char*, int, const char*, ...) {}
-
 }  // namespace
 
 MidiInput::MidiInput(const MidiFaceMap& map, const std::array<double, kMaxFaceSignals>& neutral,
                      const MidiConfig& config, LatestValueMailbox<FaceCommand>* mailbox,
                      ShowRecorder* recorder)
     : state_(map, neutral), mailbox_(mailbox), recorder_(recorder), rate_hz_(config.rate_hz) {
-  snd_lib_error_set_handler(quiet_alsa);
+  quiet_alsa_lib();
   int err = snd_seq_open(&seq_, "default", SND_SEQ_OPEN_INPUT, SND_SEQ_NONBLOCK);
   if (err < 0) {
     seq_ = nullptr;

@@ -43,7 +43,7 @@ void ShowPlayer::run() {
   FaceCommand cmd;
   while (!stop_.load(std::memory_order_relaxed)) {
     const std::int64_t now = monotonic_ns();
-    double t = static_cast<double>(now - t0) * 1e-9;
+    double t = clock_ ? clock_(now) : static_cast<double>(now - t0) * 1e-9;
     const double duration = duration_s_;
     if (t >= duration) {
       if (loop_ && duration > 0.0) {

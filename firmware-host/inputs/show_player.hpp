@@ -2,6 +2,7 @@
 
 #include <array>
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <thread>
 
@@ -32,6 +33,14 @@ class ShowPlayer {
   // Stops publishing without ending the thread (fault injection: the input goes silent).
   void go_silent() { silent_.store(true, std::memory_order_relaxed); }
   bool finished() const { return finished_.load(std::memory_order_relaxed); }
+  // Times the poses by `clock` (the second of the track at a CLOCK_MONOTONIC
+  // time: the sound's, `facectl run --audio`) instead of its own start.
+  // Before start(); a clocked player does not loop.
+  using Clock = std::function<double(std::int64_t now_ns)>;
+  void follow(Clock clock) {
+    clock_ = std::move(clock);
+    loop_ = false;
+  }
   // Once it has played to its end (not looping), publish nothing more, so
   // that a mix (InputMixer) gives its signals to the next source. Before start().
   void give_way_when_finished() { give_way_ = true; }
@@ -40,6 +49,7 @@ class ShowPlayer {
   void run();
 
   PoseSource source_;
+  Clock clock_;
   double duration_s_;
   LatestValueMailbox<FaceCommand>& mailbox_;
   ShowRecorder* recorder_;
