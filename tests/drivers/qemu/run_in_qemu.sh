@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
-# Runs facectl's SocketCAN, HID and MIDI tests inside a QEMU guest, because
-# this machine's kernel has neither CAN, uhid nor the ALSA sequencer. The guest is Debian's own kernel
+# Runs facectl's SocketCAN, HID, MIDI and audio tests inside a QEMU guest,
+# because this machine's kernel has neither CAN, uhid nor sound. The guest is Debian's own kernel
 # (linux-image-amd64) under software emulation (-accel tcg) with an initramfs
 # holding busybox, the guest test binary and its libraries (hidapi, libudev),
 # can-utils (candump, cansend), iproute2's ip, alsa-utils' aplaymidi with
 # ALSA's configuration, and the modules can, can-raw, can-dev, vcan, hid,
-# hid-generic, uhid, and soundcore, snd, snd-timer, snd-seq-device and snd-seq.
+# hid-generic, uhid, and soundcore, snd, snd-timer, snd-pcm, snd-aloop (the
+# loopback sound card), snd-seq-device and snd-seq.
 #
 # Inside: vcan0 is created, candump records the wire, the gtest binary runs
 # the real CAN buses against simulated drives and boards and a virtual uhid
-# gamepad against the hidapi reader and MidiInput against aplaymidi playing
-# midi/cc_and_notes.mid, and the recorded frames are checked for
+# gamepad against the hidapi reader, MidiInput against aplaymidi playing
+# midi/cc_and_notes.mid and AudioPlayback into the loopback card, captured
+# at its other end; and the recorded frames are checked for
 # the driver's own, byte for byte.
 #
 # With FACECTL_BINARY and HEAD_YAML, the guest also holds a stripped
@@ -52,7 +54,7 @@ cp -r /usr/share/alsa "$root/usr/share/alsa"  # snd_seq_open("default") reads al
 cp "$(dirname "$0")/midi/cc_and_notes.mid" "$root/midi/"
 cp "$ip_bin" "$root/sbin/iproute2-ip"
 copy_libs "$ip_bin"
-modules="can can-raw can-dev vcan hid hid-generic uhid soundcore snd snd-timer snd-seq-device snd-seq"
+modules="can can-raw can-dev vcan hid hid-generic uhid soundcore snd snd-timer snd-pcm snd-aloop snd-seq-device snd-seq"
 for m in $modules; do
   cp "$(modinfo -k "$kver" -n "$m")" "$root/lib/modules/$m.ko"
 done
@@ -129,7 +131,7 @@ timeout 900 qemu-system-x86_64 -accel tcg -m 512 -smp 2 -nographic -no-reboot \
 echo "QEMU ran $(( $(date +%s) - start )) s; console log: $work/console.log"
 result=$(grep -a "FACECTL-QEMU-RESULT" "$work/console.log" | tr -d '\r' || true)
 if [ "$result" = "FACECTL-QEMU-RESULT: tests=0 candump=PASS" ]; then
-  echo "PASS: SocketCAN tests on vcan0, the hidraw gamepad test on uhid and the ALSA sequencer MIDI test in a QEMU guest; candump saw the driver's frames"
+  echo "PASS: SocketCAN tests on vcan0, the hidraw gamepad test on uhid, the ALSA sequencer MIDI test and the loopback audio test in a QEMU guest; candump saw the driver's frames"
   exit 0
 fi
 echo "FAIL: ${result:-the guest did not report a result}"
