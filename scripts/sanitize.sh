@@ -36,6 +36,8 @@ configure() {  # dir cmake-options...
 # Every report is fatal and names its stack; a leak is a finding too.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+# Leaks inside PocketSphinx, which we cannot fix, are suppressed (the file says which).
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/tests/sanitizers/lsan.supp}"
 tsan_supp="$PWD/tests/sanitizers/tsan.supp"
 
 run_asan() {

@@ -21,6 +21,10 @@ packages=(
   # `--input speech.wav`: the speech-driven jaw reads WAV (and FLAC, Ogg)
   # through libsndfile (docs/INPUTS.md).
   libsndfile1-dev
+  # `--format audio_phonemes`: PocketSphinx's allphone recogniser with its US
+  # English acoustic and phone language models, and libsamplerate to bring
+  # speech to the models' 16 kHz (docs/INPUTS.md, "Phonemes from audio").
+  libpocketsphinx-dev libsphinxbase-dev pocketsphinx-en-us libsamplerate0-dev
   # `facectl serve`'s OSC control decodes messages with liblo (docs/INPUTS.md).
   liblo-dev
   # `facectl run --midi` is an ALSA sequencer client (libasound); its QEMU

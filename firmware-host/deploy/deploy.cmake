@@ -66,7 +66,9 @@ set(CPACK_DEBIAN_PACKAGE_SECTION misc)
 # systemd-sysusers (postinst) and the unit.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "systemd")
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "udev")
+# pocketsphinx-en-us: the models `--format audio_phonemes` recognises phones
+# with (docs/INPUTS.md); without them only that format fails, naming it.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "udev, pocketsphinx-en-us")
 set(CPACK_STRIP_FILES ON)
 # postinst creates the user and reloads udev; it neither enables nor starts
 # the service (debian/postinst says why).

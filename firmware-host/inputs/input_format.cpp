@@ -10,7 +10,7 @@
 namespace facectl {
 namespace {
 
-constexpr std::array<std::pair<InputFormat, const char*>, 9> kNames = {{
+constexpr std::array<std::pair<InputFormat, const char*>, 10> kNames = {{
     {InputFormat::kShow, "show"},
     {InputFormat::kFap, "fap"},
     {InputFormat::kLiveLinkFaceCsv, "live_link_face"},
@@ -20,6 +20,7 @@ constexpr std::array<std::pair<InputFormat, const char*>, 9> kNames = {{
     {InputFormat::kRhubarbTsv, "rhubarb_tsv"},
     {InputFormat::kTextGrid, "textgrid"},
     {InputFormat::kAudio, "audio"},
+    {InputFormat::kAudioPhonemes, "audio_phonemes"},
 }};
 
 // The text without a UTF-8 BOM and leading blanks.

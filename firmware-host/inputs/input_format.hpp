@@ -18,10 +18,12 @@ enum class InputFormat {
   kRhubarbTsv,       // Rhubarb Lip Sync mouth cues, TSV export
   kTextGrid,         // Praat TextGrid with a phones tier (Montreal Forced Aligner)
   kAudio,            // speech audio (WAV, FLAC, Ogg): a jaw from its loudness
+  kAudioPhonemes,    // speech audio: lip sync from the phones PocketSphinx hears
 };
 
 // The --format names: show, fap, live_link_face, mediapipe, openface, rhubarb_json,
-// rhubarb_tsv, textgrid, audio.
+// rhubarb_tsv, textgrid, audio, audio_phonemes. Detection gives audio for
+// audio files: phoneme recognition is asked for by name.
 std::optional<InputFormat> parse_input_format(std::string_view name);
 const char* input_format_name(InputFormat format);
 // Every --format name, for messages.

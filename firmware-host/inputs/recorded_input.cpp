@@ -7,6 +7,7 @@
 #include "firmware-host/fap/fap_show.hpp"
 #include "firmware-host/fap/viseme_table.hpp"
 #include "firmware-host/inputs/arkit_capture.hpp"
+#include "firmware-host/inputs/audio_phonemes.hpp"
 #include "firmware-host/inputs/coarticulation.hpp"
 #include "firmware-host/inputs/input_limits.hpp"
 #include "firmware-host/inputs/lip_sync_track.hpp"
@@ -94,10 +95,17 @@ RecordedInput load_recorded_input(const LoadedConfig& cfg, const std::string& pa
     in.format = f;
     return in;
   }
+  if (f == InputFormat::kAudioPhonemes) {
+    in = from_phonemes(cfg, audio_phoneme_track(path), path);
+    in.name = std::filesystem::path(path).filename().string();
+    in.format = f;
+    return in;
+  }
   const std::string text =
       read_input_file(path, f == InputFormat::kFap ? "FAP file" : "input file");
   switch (f) {
-    case InputFormat::kAudio:  // read above: it is not text
+    case InputFormat::kAudio:  // read above: they are not text
+    case InputFormat::kAudioPhonemes:
       break;
     case InputFormat::kShow:
       throw std::logic_error("load_recorded_input: a show is read by Show::load");

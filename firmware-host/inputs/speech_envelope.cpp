@@ -1,15 +1,12 @@
 #include "firmware-host/inputs/speech_envelope.hpp"
 
-#include <sndfile.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
-#include <memory>
 
 #include "firmware-host/config/config_node.hpp"
 #include "firmware-host/inputs/input_limits.hpp"
+#include "firmware-host/inputs/mono_audio_reader.hpp"
 
 namespace facectl {
 namespace {
@@ -88,55 +85,13 @@ PoseTrack speech_envelope_track(const std::string& path, const FaceLayout& layou
                                 const std::array<double, kMaxFaceSignals>& neutral,
                                 const SpeechEnvelopeParams& params,
                                 std::vector<std::string>& notes) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw ConfigError(path + ": expected a regular audio file, found " +
-                      (std::filesystem::exists(path, ec) ? "something else" : "nothing"));
+  MonoAudioReader audio(path, kMaxAudioSeconds);
+  LevelMeter meter(audio.sample_rate(), params.rate_hz);
+  std::vector<float> block;
+  while (audio.read(block, 4096) > 0) {
+    for (float x : block) meter.add(x);
   }
-  SF_INFO info{};
-  const std::unique_ptr<SNDFILE, int (*)(SNDFILE*)> file(sf_open(path.c_str(), SFM_READ, &info),
-                                                         sf_close);
-  if (!file)
-    throw ConfigError(path +
-                      ": expected an audio file libsndfile reads, found: " + sf_strerror(nullptr));
-  if (info.frames <= 0 || info.channels <= 0 || info.samplerate <= 0) {
-    throw ConfigError(path + ": expected audio samples, found none");
-  }
-  if (info.samplerate < kMinAudioRate || info.samplerate > kMaxAudioRate) {
-    throw ConfigError(path + ": expected a sample rate of " + std::to_string(kMinAudioRate) +
-                      " to " + std::to_string(kMaxAudioRate) + " Hz, found " +
-                      std::to_string(info.samplerate));
-  }
-  if (info.channels > 64) {
-    throw ConfigError(path + ": expected at most 64 channels, found " +
-                      std::to_string(info.channels));
-  }
-  const double seconds = static_cast<double>(info.frames) / info.samplerate;
-  if (seconds > kMaxAudioSeconds) {
-    throw ConfigError(path + ": expected at most " + std::to_string(kMaxAudioSeconds) +
-                      " s of audio, found " + std::to_string(seconds));
-  }
-  LevelMeter meter(info.samplerate, params.rate_hz);
-  std::vector<float> block(4096 * static_cast<std::size_t>(info.channels));
-  std::uint64_t bad = 0;  // non-finite or beyond full scale: a float file can hold anything
-  for (;;) {
-    const sf_count_t n = sf_readf_float(file.get(), block.data(), 4096);
-    if (n <= 0) break;
-    for (sf_count_t i = 0; i < n; ++i) {
-      double sum = 0;  // mixed to mono
-      for (int c = 0; c < info.channels; ++c) {
-        const double x = block[static_cast<std::size_t>(i * info.channels + c)];
-        const bool ok = std::isfinite(x) && std::abs(x) <= 1.0;
-        bad += !ok;
-        sum += ok ? x : (std::isfinite(x) ? std::clamp(x, -1.0, 1.0) : 0.0);
-      }
-      meter.add(sum / info.channels);
-    }
-  }
-  if (bad > 0) {
-    notes.push_back("clamped " + std::to_string(bad) +
-                    " samples that were not finite or beyond full scale (NaN read as 0)");
-  }
+  if (audio.clamped() > 0) notes.push_back(audio.clamped_note());
   const std::vector<double> open = openness_of_levels(meter.levels(), params);
   if (open.empty()) throw ConfigError(path + ": expected audio samples, found none");
 
@@ -154,7 +109,7 @@ PoseTrack speech_envelope_track(const std::string& path, const FaceLayout& layou
   std::snprintf(
       note, sizeof note,
       "speech-driven jaw from %.1f s of audio at %d Hz, %d channel(s): opens up to %.0f deg",
-      seconds, info.samplerate, info.channels, params.open_deg);
+      audio.seconds(), audio.sample_rate(), audio.channels(), params.open_deg);
   notes.push_back(note);
   return track;
 }

@@ -86,7 +86,7 @@ TEST(InputFormat, DoesNotGuessAtOtherText) {
 
 TEST(InputFormat, NamesRoundTrip) {
   for (const char* n : {"show", "fap", "live_link_face", "mediapipe", "openface", "rhubarb_json",
-                        "rhubarb_tsv", "textgrid", "audio"}) {
+                        "rhubarb_tsv", "textgrid", "audio", "audio_phonemes"}) {
     const auto f = parse_input_format(n);
     ASSERT_TRUE(f.has_value()) << n;
     EXPECT_STREQ(input_format_name(*f), n);

@@ -69,6 +69,25 @@ TEST(InputProcess, LipSyncLongerThanTwoHoursIsRefusedBeforeItCostsMemory) {
       << r.output;
 }
 
+TEST(InputProcess, SimulateLipSyncsAWavFromItsPhonesWhenAskedAndItsJawByDefault) {
+  const std::string wav = kReal + "/audio/espeak_bilabials.wav";
+  for (const char* format : {"audio_phonemes", ""}) {
+    TempDir tmp;
+    std::vector<std::string> args = {"simulate", "--rig", kRig,        "--input",
+                                     wav,        "--out", tmp / "out", "--quiet"};
+    if (*format != 0) args.insert(args.end(), {"--format", format});
+    const auto r = run_facectl(args, tmp / "log.txt");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const std::string summary = testing::read_text(tmp / "out/summary.json");
+    const std::string kind = *format != 0 ? format : "audio";
+    EXPECT_NE(summary.find("\"kind\": \"" + kind + "\""), std::string::npos)
+        << summary.substr(0, 400);
+    // Phoneme recognition says what it heard; the envelope jaw does not.
+    EXPECT_EQ(summary.find("phones recognised") != std::string::npos, *format != 0)
+        << summary.substr(0, 2000);
+  }
+}
+
 TEST(InputProcess, AnUnknownFormatOrFormatNameIsRefused) {
   TempDir tmp;
   testing::write_text(tmp / "x.txt", "hello\n");
