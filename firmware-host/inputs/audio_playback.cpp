@@ -1,11 +1,9 @@
 #include "firmware-host/inputs/audio_playback.hpp"
 
 #include <alsa/asoundlib.h>
-#include <sndfile.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <vector>
 
 #include "control/clock.hpp"
@@ -16,7 +14,7 @@
 namespace facectl {
 namespace {
 
-constexpr sf_count_t kChunk = 256;  // frames a write: 16 ms at 16 kHz, 5 ms at 48 kHz
+constexpr std::size_t kChunk = 256;  // frames a write: 16 ms at 16 kHz, 5 ms at 48 kHz
 
 std::string alsa_error(int err) {
   return snd_strerror(err);
@@ -25,33 +23,9 @@ std::string alsa_error(int err) {
 }  // namespace
 
 AudioPlayback::AudioPlayback(const std::string& path, const AudioConfig& config)
-    : path_(path), device_(config.device), file_(nullptr, sf_close) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw ConfigError(path + ": expected a regular audio file, found " +
-                      (std::filesystem::exists(path, ec) ? "something else" : "nothing"));
-  }
-  SF_INFO info{};
-  file_.reset(sf_open(path.c_str(), SFM_READ, &info));
-  if (!file_) {
-    throw ConfigError(path +
-                      ": expected an audio file libsndfile reads, found: " + sf_strerror(nullptr));
-  }
-  if (info.frames <= 0 || info.channels <= 0 || info.channels > 64 ||
-      info.samplerate < kMinAudioRate || info.samplerate > kMaxAudioRate) {
-    throw ConfigError(path + ": expected 1 to 64 channels of samples at " +
-                      std::to_string(kMinAudioRate) + " to " + std::to_string(kMaxAudioRate) +
-                      " Hz, found " + std::to_string(info.channels) + " channels at " +
-                      std::to_string(info.samplerate) + " Hz");
-  }
-  rate_ = info.samplerate;
-  channels_ = info.channels;
-  frames_ = info.frames;
-  stats_.file_s = static_cast<double>(frames_) / rate_;
-  if (stats_.file_s > kMaxAudioSeconds) {
-    throw ConfigError(path + ": expected at most " + std::to_string(kMaxAudioSeconds) +
-                      " s of audio, found " + std::to_string(stats_.file_s));
-  }
+    : path_(path), device_(config.device), reader_(path, kMaxAudioSeconds) {
+  rate_ = reader_.sample_rate();
+  stats_.file_s = reader_.seconds();
   quiet_alsa_lib();
   int err = snd_pcm_open(&pcm_, device_.c_str(), SND_PCM_STREAM_PLAYBACK, 0);
   if (err < 0) {
@@ -70,6 +44,16 @@ AudioPlayback::AudioPlayback(const std::string& path, const AudioConfig& config)
     throw ConfigError("audio.device '" + device_ + "': cannot play mono 16-bit at " +
                       std::to_string(rate_) + " Hz: " + alsa_error(err) +
                       " (a plughw: device converts)");
+  }
+  // Each status then says when, on CLOCK_MONOTONIC, the device last moved
+  // its position: the clock is set for that moment, not for when it was
+  // asked (a device may move its position a period at a time).
+  snd_pcm_sw_params_t* sw = nullptr;
+  snd_pcm_sw_params_alloca(&sw);
+  if (snd_pcm_sw_params_current(pcm_, sw) == 0 &&
+      snd_pcm_sw_params_set_tstamp_mode(pcm_, sw, SND_PCM_TSTAMP_ENABLE) == 0 &&
+      snd_pcm_sw_params_set_tstamp_type(pcm_, sw, SND_PCM_TSTAMP_TYPE_MONOTONIC) == 0) {
+    snd_pcm_sw_params(pcm_, sw);  // without it, the clock is set for the time it was asked
   }
 }
 
@@ -92,13 +76,24 @@ AudioStats AudioPlayback::stats() const {
   return stats_;
 }
 
-// The frame heard now is the last one written less what the device still
-// holds (snd_pcm_delay: buffered plus the hardware's own delay).
+// The frame heard is the last one written less what the device still holds
+// (the delay: buffered plus the hardware's own), at the status's timestamp.
 void AudioPlayback::publish(bool running) {
+  snd_pcm_status_t* status = nullptr;
+  snd_pcm_status_alloca(&status);
   snd_pcm_sframes_t delay = 0;
-  if (snd_pcm_delay(pcm_, &delay) < 0) delay = 0;
-  const std::int64_t now = monotonic_ns();
-  const bool moving = running && snd_pcm_state(pcm_) == SND_PCM_STATE_RUNNING;
+  bool moving = false;
+  const int err = snd_pcm_status(pcm_, status);
+  const std::int64_t asked = monotonic_ns();
+  std::int64_t now = asked;
+  if (err == 0) {
+    delay = snd_pcm_status_get_delay(status);
+    moving = running && snd_pcm_status_get_state(status) == SND_PCM_STATE_RUNNING;
+    snd_htimestamp_t ts{};
+    snd_pcm_status_get_htstamp(status, &ts);
+    const std::int64_t at = static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+    if (at > 0 && at <= asked && asked - at < 1'000'000'000) now = at;
+  }
   if (moving && started_ns_ == 0) started_ns_ = now;
   double heard_s = static_cast<double>(std::max<std::int64_t>(0, written_ - delay)) / rate_;
   // A device without a clock (ALSA's null, a file plugin) takes the sound
@@ -111,23 +106,18 @@ void AudioPlayback::publish(bool running) {
 }
 
 void AudioPlayback::run() {
-  std::vector<float> in(static_cast<std::size_t>(kChunk * channels_));
-  std::vector<std::int16_t> out(static_cast<std::size_t>(kChunk));
+  std::vector<float> in;
+  std::vector<std::int16_t> out;
   std::string error;
   std::uint64_t underruns = 0;
   while (!stop_.load(std::memory_order_relaxed) && error.empty()) {
-    const sf_count_t n = sf_readf_float(file_.get(), in.data(), kChunk);
-    if (n <= 0) break;
-    for (sf_count_t i = 0; i < n; ++i) {
-      double sum = 0;  // mixed to mono; NaN as silence, beyond full scale clamped
-      for (int c = 0; c < channels_; ++c) {
-        const double x = in[static_cast<std::size_t>(i * channels_ + c)];
-        sum += std::isfinite(x) ? std::clamp(x, -1.0, 1.0) : 0.0;
-      }
-      out[static_cast<std::size_t>(i)] =
-          static_cast<std::int16_t>(std::lround(sum / channels_ * 32767.0));
+    const auto n = static_cast<snd_pcm_sframes_t>(reader_.read(in, kChunk));
+    if (n == 0) break;
+    out.resize(in.size());
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      out[i] = static_cast<std::int16_t>(std::lround(in[i] * 32767.0));
     }
-    sf_count_t done = 0;
+    snd_pcm_sframes_t done = 0;
     while (done < n && !stop_.load(std::memory_order_relaxed)) {
       const snd_pcm_sframes_t w =
           snd_pcm_writei(pcm_, out.data() + done, static_cast<snd_pcm_uframes_t>(n - done));

@@ -2,16 +2,15 @@
 
 #include <atomic>
 #include <cstdint>
-#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
 
 #include "firmware-host/config/audio_config.hpp"
 #include "firmware-host/inputs/audio_clock.hpp"
+#include "firmware-host/inputs/mono_audio_reader.hpp"
 
-typedef struct _snd_pcm snd_pcm_t;      // NOLINT: alsa/asoundlib.h's own declaration
-typedef struct sf_private_tag SNDFILE;  // NOLINT: sndfile.h's own declaration
+typedef struct _snd_pcm snd_pcm_t;  // NOLINT: alsa/asoundlib.h's own declaration
 
 namespace facectl {
 
@@ -50,11 +49,9 @@ class AudioPlayback {
 
   std::string path_;
   std::string device_;
-  std::unique_ptr<SNDFILE, int (*)(SNDFILE*)> file_;
+  MonoAudioReader reader_;  // read on the audio thread, a chunk at a time
   snd_pcm_t* pcm_ = nullptr;
   int rate_ = 0;
-  int channels_ = 0;
-  std::int64_t frames_ = 0;
   std::int64_t written_ = 0;     // frames handed to ALSA
   std::int64_t started_ns_ = 0;  // when the device first ran
   AudioClock clock_;
