@@ -18,7 +18,7 @@ shaped face command (face.jaw_pitch) and the actuator command of the
 jaw's opening strut (cmd.jaw_digastric) first moving, then reaching 50% and
 90% of the step. Prints the run summaries' loop figures and stream counters.
 
-Usage: scripts/bench_live_input.py [FACECTL] [--steps N]
+Usage: scripts/bench_live_input.py [FACECTL] [--steps N] [--rounds N]
 """
 import argparse
 import csv
@@ -171,7 +171,8 @@ def step_latencies(sent, tele, t0):
 
 
 def summary_lines(out):
-    keep = ("wake latency", "tick compute", "overruns", "Live Link Face stream", "stale-input")
+    keep = ("wake latency", "tick compute", "overruns", "Live Link Face stream", "stale-input",
+            "final state")
     return [line.strip() for line in out.splitlines() if any(k in line for k in keep)]
 
 
@@ -180,12 +181,14 @@ def main():
     ap.add_argument("facectl", nargs="?", default=os.path.join(ROOT, "build/firmware-host/facectl"))
     ap.add_argument("--steps", type=int, default=40)
     ap.add_argument("--loop-cpu", type=int, default=1, help="runtime.realtime.cpu of the config")
+    ap.add_argument("--rounds", type=int, default=1,
+                    help="run the three phases this many times, alternating (the machine varies)")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as work:
         others = os.sched_getaffinity(0) - {a.loop_cpu}
         phases = (("quiet", False, others), ("flood, senders off the loop's CPU", True, others),
                   ("flood, senders on any CPU", True, None))
-        for name, flooding, cpus in phases:
+        for name, flooding, cpus in [p for _ in range(a.rounds) for p in phases]:
             sent, tele, t0, out, flood_s = run_phase(a.facectl, work, name.split(",")[0] + str(
                 len(name)), a.steps, flooding, cpus)
             lat = step_latencies(sent, tele, t0)
