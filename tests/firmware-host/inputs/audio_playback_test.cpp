@@ -95,19 +95,23 @@ void write_tone(const std::string& path) {
   SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
   ASSERT_NE(f, nullptr) << sf_strerror(nullptr);
   std::vector<float> s(16000 * 13 / 10, 0.0F);
-  for (int i = 8000; i < 12800; ++i) s[i] = static_cast<float>(0.5 * std::sin(2 * M_PI * 440.0 * i / 16000.0));
+  for (int i = 8000; i < 12800; ++i)
+    s[i] = static_cast<float>(0.5 * std::sin(2 * M_PI * 440.0 * i / 16000.0));
   sf_writef_float(f, s.data(), static_cast<sf_count_t>(s.size()));
   sf_close(f);
 }
 
-// The shipped runtime file with paths made absolute and an audio: block.
+// The shipped runtime file with paths made absolute and its audio: block
+// replaced.
 std::string config_with_audio(const TempDir& tmp, const std::string& audio) {
   const std::string dir = std::string(FACECTL_SOURCE_DIR) + "/config/";
   std::ifstream in(dir + "facectl.yaml");
   std::string text;
   const std::regex relative(R"(^(\w+): (\S+\.yaml)$)");
+  bool in_audio = false;  // the shipped audio: block, replaced below
   for (std::string line; std::getline(in, line);) {
-    text += std::regex_replace(line, relative, "$1: " + dir + "$2") + "\n";
+    if (!line.empty() && line[0] != ' ' && line[0] != '#') in_audio = line == "audio:";
+    if (!in_audio) text += std::regex_replace(line, relative, "$1: " + dir + "$2") + "\n";
   }
   const std::string path = tmp / ("audio" + std::to_string(audio.size()) + ".yaml");
   testing::write_text(path, text + "audio:\n" + audio);
