@@ -178,8 +178,13 @@ void load(const RunOptions& options, RunSession& s) {
   if (options.duration_s && !(*options.duration_s > 0.0)) {
     throw ConfigError("--duration: expected a number of seconds > 0");
   }
-  if (options.audio && !options.input && !cfg.show) {
-    throw ConfigError("--audio: expected --input or a show to time by the sound");
+  // What plays by the sound's clock: the input, else the show, which plays
+  // only when named or when nothing live does.
+  const bool live = options.gamepad || options.fap_stream || options.live_link_face || options.midi;
+  if (options.audio && !options.input && !(cfg.show && (options.show || !live))) {
+    throw ConfigError(
+        "--audio: expected --input or --show to time by the sound (a live source has no "
+        "timeline)");
   }
 }
 
@@ -282,7 +287,7 @@ void open_input(const RunOptions& options, RunSession& s) {
   }
   // The sound is the clock: the face shows second t of its track when second
   // t - lead of the sound is heard.
-  if (s.audio) {
+  if (s.audio && s.player) {
     s.player->follow([a = s.audio.get(), lead = s.head.cfg->runtime.audio.lead_s](
                          std::int64_t now) { return a->clock().at(now) + lead; });
   }
@@ -305,7 +310,6 @@ void open_input(const RunOptions& options, RunSession& s) {
 // Stage 4. Start: input, logger and the real-time loop, and ask to enable.
 void start(RunSession& s) {
   if (s.mixer) s.mixer->start();
-  if (s.audio) s.audio->start();
   if (s.player) s.player->start();
   if (s.mixed_show) s.mixed_show->start();
   if (s.fap_stream) s.fap_stream->start();
@@ -345,6 +349,9 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
     drain_events(s, tty, fault_text);
     fire_due_injections(s.injections, t, s.head.sim.get(), s.silence_input, s.head.loop.get());
     const SafetyState state = s.head.controller->state();
+    // The sound starts with the head's motion, not during the enable ramp;
+    // until then its player holds the track's first pose.
+    if (s.audio && state == SafetyState::kRunning) s.audio->start();
     const bool played_out = !options.duration_s && !s.live && s.player && s.player->finished() &&
                             (!s.mixed_show || s.mixed_show->finished()) &&
                             (!s.audio || s.audio->stats().finished);
@@ -516,6 +523,10 @@ int run_command(const RunOptions& options) {
                 st.played_s, st.file_s, s.head.cfg->runtime.audio.device.c_str(),
                 s.head.cfg->runtime.audio.lead_s * 1e3,
                 static_cast<unsigned long long>(st.underruns));
+    if (st.started_ns != 0) {
+      std::printf("  audio: second 0 of the sound heard at CLOCK_MONOTONIC %.6f s\n",
+                  static_cast<double>(st.started_ns) * 1e-9);
+    }
     if (!st.last_error.empty()) std::printf("  audio: last error: %s\n", st.last_error.c_str());
   }
   if (s.mixer) std::printf("  mix: %s\n", s.mixer->describe().c_str());

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 
@@ -12,14 +13,17 @@ namespace facectl {
 class AudioClock {
  public:
   // At `now_ns` the listener hears second `media_s` of the file; `running`:
-  // the sound moves on with time (false before the device has started).
-  void set(std::int64_t now_ns, double media_s, bool running) {
+  // the sound moves on with time (false before the device has started, or
+  // while it is stalled), but not past `limit_s` (what has been written: a
+  // device that stops unnoticed must not carry the face past its sound).
+  void set(std::int64_t now_ns, double media_s, bool running, double limit_s) {
     const std::uint32_t s = seq_.load(std::memory_order_relaxed);
     seq_.store(s + 1, std::memory_order_relaxed);
     std::atomic_thread_fence(std::memory_order_release);
     ns_.store(now_ns, std::memory_order_relaxed);
     media_.store(media_s, std::memory_order_relaxed);
     running_.store(running, std::memory_order_relaxed);
+    limit_.store(limit_s, std::memory_order_relaxed);
     seq_.store(s + 2, std::memory_order_release);
   }
 
@@ -31,9 +35,11 @@ class AudioClock {
       const std::int64_t ns = ns_.load(std::memory_order_relaxed);
       const double media = media_.load(std::memory_order_relaxed);
       const bool running = running_.load(std::memory_order_relaxed);
+      const double limit = limit_.load(std::memory_order_relaxed);
       std::atomic_thread_fence(std::memory_order_acquire);
       if ((s1 & 1U) == 0 && seq_.load(std::memory_order_relaxed) == s1) {
-        return running ? media + static_cast<double>(now_ns - ns) * 1e-9 : media;
+        if (!running) return media;
+        return std::max(media, std::min(media + static_cast<double>(now_ns - ns) * 1e-9, limit));
       }
     }
   }
@@ -43,6 +49,7 @@ class AudioClock {
   std::atomic<std::int64_t> ns_{0};
   std::atomic<double> media_{0.0};
   std::atomic<bool> running_{false};
+  std::atomic<double> limit_{0.0};
 };
 
 }  // namespace facectl

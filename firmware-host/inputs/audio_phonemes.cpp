@@ -26,24 +26,25 @@ PhonemeTrack audio_phoneme_track(const std::string& path, const PhoneModel& mode
   speech.samples = {};  // freed before the poses are made
 
   PhonemeTrackBuilder b(path);
-  int spoken = 0;
   for (const RecognizedPhone& p : phones) {
     const double start = p.first_frame / kPhoneFramesPerSecond;
     if (start >= speech.seconds) continue;  // the padding of the last partial frame
     const double end = std::min((p.last_frame + 1) / kPhoneFramesPerSecond, speech.seconds);
     const int viseme = viseme_of_recognized(p.phone, end - start);
-    spoken += viseme != kVisemeNone;
     b.add(start, end, p.phone, viseme, 0);
   }
   if (b.last_end() == 0.0) b.add(0.0, speech.seconds, "SIL", kVisemeNone, 0);
   PhonemeTrack track = b.finish(speech.seconds);
   track.notes.insert(track.notes.begin(), speech.notes.begin(), speech.notes.end());
+  // Counted from the track: the builder may drop a segment too short to keep.
+  std::size_t pauses = 0;
+  for (const auto& seg : track.segments) pauses += seg.viseme == kVisemeNone;
   char note[200];
   std::snprintf(note, sizeof note,
-                "%d phones recognised (and %zu pauses or noises) in %.1f s of audio at %d Hz by "
+                "%zu phones recognised (and %zu pauses or noises) in %.1f s of audio at %d Hz by "
                 "PocketSphinx allphone with %s",
-                spoken, track.segments.size() - static_cast<std::size_t>(spoken), speech.seconds,
-                speech.source_rate, model.acoustic_dir.c_str());
+                track.segments.size() - pauses, pauses, speech.seconds, speech.source_rate,
+                model.acoustic_dir.c_str());
   track.notes.push_back(note);
   return track;
 }

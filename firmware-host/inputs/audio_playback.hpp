@@ -10,7 +10,8 @@
 #include "firmware-host/inputs/audio_clock.hpp"
 #include "firmware-host/inputs/mono_audio_reader.hpp"
 
-typedef struct _snd_pcm snd_pcm_t;  // NOLINT: alsa/asoundlib.h's own declaration
+typedef struct _snd_pcm snd_pcm_t;                // NOLINT: alsa/asoundlib.h's own declaration
+typedef struct _snd_pcm_status snd_pcm_status_t;  // NOLINT: likewise
 
 namespace facectl {
 
@@ -19,10 +20,11 @@ struct AudioStats {
   double file_s = 0.0;          // its length
   std::uint64_t underruns = 0;  // the device ran dry (recovered; the sound paused)
   bool finished = false;        // played to the end, or stopped by an error
+  std::int64_t started_ns = 0;  // CLOCK_MONOTONIC when second 0 was heard; 0 before
   std::string last_error;       // the device failing mid-run (the poses go on, timed by the clock)
 };
 
-// `facectl run --audio FILE` (docs/INPUTS.md, "Audio"): plays a sound file
+// `facectl run --audio FILE` (docs/INPUTS.md, "Playing the sound"): plays a sound file
 // (anything libsndfile reads, mixed to mono) through an ALSA PCM on its own
 // thread, and keeps an AudioClock of which second of it is heard, from the
 // device's delay after each write. The player of the input or show reads
@@ -36,8 +38,8 @@ class AudioPlayback {
   AudioPlayback(const AudioPlayback&) = delete;
   AudioPlayback& operator=(const AudioPlayback&) = delete;
 
-  void start();
-  void stop();  // stops the sound at once (snd_pcm_drop)
+  void start();  // once; later calls do nothing
+  void stop();   // stops the sound at once (snd_pcm_drop)
 
   const AudioClock& clock() const { return clock_; }
   AudioStats stats() const;
@@ -45,7 +47,10 @@ class AudioPlayback {
 
  private:
   void run();
-  void publish(bool running);
+  void publish();
+  bool wait_for_device(std::int64_t& progress_ns, double& progress_s, std::string& error);
+  static std::int64_t status_time(const snd_pcm_status_t* status, bool trigger);
+  double real_time_cap(std::int64_t now) const;
 
   std::string path_;
   std::string device_;
@@ -53,7 +58,9 @@ class AudioPlayback {
   snd_pcm_t* pcm_ = nullptr;
   int rate_ = 0;
   std::int64_t written_ = 0;     // frames handed to ALSA
-  std::int64_t started_ns_ = 0;  // when the device first ran
+  std::int64_t started_ns_ = 0;  // when the device started: second 0 heard
+  std::int64_t first_write_ns_ = 0;
+  double heard_s_ = 0.0;  // the sound's second at the last status
   AudioClock clock_;
   std::thread thread_;
   std::atomic<bool> stop_{false};

@@ -27,9 +27,7 @@ void RealtimeLoop::run(const std::atomic<bool>& stop) {
   const std::uint64_t skipped_before = stats_.skipped.load(std::memory_order_relaxed);
   LoopTimer timer(rate_hz_);
   const std::int64_t t0 = monotonic_ns();
-  if (stats_.start_ns.load(std::memory_order_relaxed) == 0) {
-    stats_.start_ns.store(t0, std::memory_order_relaxed);
-  }
+  stats_.start_ns.store(t0, std::memory_order_relaxed);
   timer.start(t0);
   const double period = static_cast<double>(timer.period_ns()) * 1e-9;
   double compute = 0.0;

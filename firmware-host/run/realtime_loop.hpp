@@ -18,7 +18,7 @@ struct LoopStats {
   std::atomic<std::uint64_t> overruns{0};
   std::atomic<std::uint64_t> skipped{0};
   std::atomic<std::int64_t> first_wake_ns{0};
-  // CLOCK_MONOTONIC (ns) of the first run's start: telemetry's time_s 0, so
+  // CLOCK_MONOTONIC (ns) of the last run's start: telemetry's time_s 0, so
   // telemetry lines up with other programs' clocks (packets sent, audio).
   std::atomic<std::int64_t> start_ns{0};
   std::atomic<std::int64_t> last_wake_ns{0};
