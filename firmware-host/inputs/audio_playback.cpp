@@ -25,7 +25,7 @@ std::string alsa_error(snd_pcm_sframes_t err) {
 }  // namespace
 
 AudioPlayback::AudioPlayback(const std::string& path, const AudioConfig& config)
-    : path_(path), device_(config.device), reader_(path, kMaxAudioSeconds) {
+    : device_(config.device), reader_(path, kMaxAudioSeconds) {
   rate_ = reader_.sample_rate();
   stats_.file_s = reader_.seconds();
   quiet_alsa_lib();
@@ -107,8 +107,8 @@ void AudioPlayback::publish() {
     clock_.set(now, heard_s_, false, heard_s_);
     return;
   }
-  const std::int64_t now =
-      status_time(status, false) != 0 ? status_time(status, false) : monotonic_ns();
+  const std::int64_t stamped = status_time(status, false);
+  const std::int64_t now = stamped != 0 ? stamped : monotonic_ns();
   // When the device started: second 0 of the sound was heard then.
   if (started_ns_ == 0) {
     const std::int64_t trigger = status_time(status, true);

@@ -52,7 +52,6 @@ class AudioPlayback {
   static std::int64_t status_time(const snd_pcm_status_t* status, bool trigger);
   double real_time_cap(std::int64_t now) const;
 
-  std::string path_;
   std::string device_;
   MonoAudioReader reader_;  // read on the audio thread, a chunk at a time
   snd_pcm_t* pcm_ = nullptr;
