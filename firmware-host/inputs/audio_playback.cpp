@@ -103,7 +103,11 @@ void AudioPlayback::publish() {
   if (snd_pcm_status(pcm_, status) < 0) return;
   const snd_pcm_state_t state = snd_pcm_status_get_state(status);
   if (state != SND_PCM_STATE_RUNNING && state != SND_PCM_STATE_DRAINING) {
+    // Stand where the clock had got to (never behind it: the face must not
+    // jump back when a drain ends or an underrun is noticed a period late),
+    // but not past what was written.
     const std::int64_t now = monotonic_ns();
+    heard_s_ = std::min(std::max(heard_s_, clock_.at(now)), static_cast<double>(written_) / rate_);
     clock_.set(now, heard_s_, false, heard_s_);
     return;
   }

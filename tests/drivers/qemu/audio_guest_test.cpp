@@ -154,11 +154,14 @@ TEST(AudioInGuest, TheClockFollowsTheDeviceInRealTime) {
   std::printf(
       "the tone heard at %.1f ms, the clock said %.1f ms; it stepped back at most %.2f ms\n",
       heard * 1e3, predicted * 1e3, most_back * 1e3);
-  EXPECT_LT(most_back, 0.002) << "the face must not jump back";
-  // Seen here: heard 0.2 to 5.3 ms after the clock said. The capture wakes a
-  // period (12.5 ms) at a time and reads 5 ms at a time, so its times are
-  // late by up to that.
-  EXPECT_NEAR(heard, predicted, 0.012);
+  // Between statuses the clock runs on by the system's time; the next status
+  // may put it up to about a millisecond back (seen: 1.18 ms in the guest).
+  EXPECT_LT(most_back, 0.003) << "the face must not jump back";
+  // Seen here: heard 0.2 to 11.1 ms after the clock said. The capture wakes
+  // a period (12.5 ms) at a time and reads 5 ms at a time, so its times are
+  // late by up to 17.5 ms, and never early.
+  EXPECT_GT(heard - predicted, -0.003);
+  EXPECT_LT(heard - predicted, 0.0175);
 }
 
 }  // namespace
