@@ -24,7 +24,7 @@ FUZZ_NICE="${FUZZ_NICE:-0}"
 
 all_targets=(runtime_config head_config rig_config expressions show fap_file fap_udp recorded_input
              live_link_face_packet osc_datagram
-             telemetry_csv modbus_reply custom_can cia402_can hid_report)
+             telemetry_csv modbus_reply custom_can cia402_can hid_report dynamixel2_status)
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then targets=("${all_targets[@]}"); fi
 
@@ -62,6 +62,7 @@ python3 "$src"/tests/firmware-host/inputs/peers/osc_peer.py write "$out/osc_data
 seed hid_report  # none: the repository holds no captured reports (libFuzzer starts empty)
 seed custom_can  # none: no recorded CAN traffic in the repository
 seed cia402_can
+seed dynamixel2_status  # none: the e-Manual's status packets are in the unit test
 # Every input a finding was fixed for (tests/fuzz/regressions/TARGET) runs again.
 for d in "$src"/tests/fuzz/regressions/*/; do
   t=$(basename "$d")
