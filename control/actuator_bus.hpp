@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string_view>
 
@@ -24,6 +25,19 @@ struct BusStatus {
 // actuators per bus, in the rig's bus order. Every method is called from the
 // real-time tick: it must not allocate, lock or block. Backends that need
 // blocking I/O (Modbus) hand data to their own I/O thread.
+// What a smart servo reports besides its position (docs/SAFETY.md,
+// "Drive-level protection"). NaN: the bus does not report that value.
+struct ActuatorHealth {
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  double temperature_c = kNone;
+  double load = kNone;       // signed fraction of the servo's maximum torque
+  double current_a = kNone;  // signed motor current
+  double voltage_v = kNone;  // supply voltage at the servo
+  // The device's own hardware error bits (its protocol's), 0 = none; a
+  // servo that sets one has switched its output off by itself.
+  std::uint32_t hardware_error = 0;
+};
+
 class ActuatorBus {
  public:
   virtual ~ActuatorBus() = default;
@@ -49,6 +63,9 @@ class ActuatorBus {
   // return, the flags say which outputs are on.
   virtual void set_actuators_enabled(std::span<std::uint8_t> enabled) = 0;
   virtual BusStatus status() const = 0;
+  // Latest health per actuator of this bus; buses that report none leave
+  // `health` as it is.
+  virtual void read_health(std::span<ActuatorHealth> /*health*/) {}
 };
 
 // Hardware seam for the safety I/O: an e-stop input and a power-enable output.

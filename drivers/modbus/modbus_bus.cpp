@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "control/clock.hpp"
+#include "control/realtime/atomic_max.hpp"
 #include "drivers/modbus/modbus_timeouts.hpp"
 
 namespace facectl {
@@ -24,12 +25,6 @@ bool known_baud(long baud) {
     if (b == baud) return true;
   }
   return false;
-}
-
-void atomic_max(std::atomic<std::uint64_t>& a, std::uint64_t v) {
-  std::uint64_t cur = a.load(std::memory_order_relaxed);
-  while (v > cur && !a.compare_exchange_weak(cur, v, std::memory_order_relaxed)) {
-  }
 }
 
 }  // namespace

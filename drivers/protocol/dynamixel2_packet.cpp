@@ -181,43 +181,51 @@ std::size_t encode_sync_write(std::uint16_t address, std::uint16_t length,
   return w.finish();
 }
 
-ParseResult parse_status(std::span<const std::uint8_t> in, Status& status,
-                         std::span<std::uint8_t> params) {
-  status = Status{};
+namespace {
+
+// parse_packet's work, the first `lead.size()` unstuffed bytes (a status
+// packet's error byte) going to `lead` and the rest to `params`.
+ParseResult parse_into(std::span<const std::uint8_t> in, Packet& packet,
+                       std::span<std::uint8_t> lead, std::span<std::uint8_t> params) {
+  packet = Packet{};
   for (std::size_t h = 0; h + 4 <= in.size(); ++h) {
     if (in[h] != 0xFF || in[h + 1] != 0xFF || in[h + 2] != 0xFD || in[h + 3] != 0x00) continue;
     if (h + kHeaderSize > in.size()) {
-      status.consumed = h;
+      packet.consumed = h;
       return ParseResult::kIncomplete;
     }
     const std::uint16_t length = get16(in, h + 5);
     if (!valid_id(in[h + 4]) || length < 3 || length > kMaxLength) {
-      status.consumed = h + 1;  // not a packet after all: look again from the next byte
+      packet.consumed = h + 1;  // not a packet after all: look again from the next byte
       return ParseResult::kBadLength;
     }
     const std::size_t end = h + kHeaderSize + length;
     if (end > in.size()) {
-      status.consumed = h;
+      packet.consumed = h;
       return ParseResult::kIncomplete;
     }
-    status.consumed = end;
-    status.id = in[h + 4];
+    packet.consumed = end;
+    packet.id = in[h + 4];
     if (crc16(in.subspan(h, end - 2 - h)) != get16(in, end - 2)) return ParseResult::kBadCrc;
-    if (in[h + kHeaderSize] != kStatus) return ParseResult::kNotStatus;
-    if (length < 4) return ParseResult::kBadLength;
-    status.error = in[h + kHeaderSize + 1];
+    packet.instruction = in[h + kHeaderSize];
     // Unstuff: drop the 0xFD that follows each FF FF FD.
     std::size_t n = 0;
     int ff = 0;
     bool skip = false;
-    for (std::size_t i = h + kHeaderSize + 2; i < end - 2; ++i) {
+    for (std::size_t i = h + kHeaderSize + 1; i < end - 2; ++i) {
       const std::uint8_t b = in[i];
       if (skip) {
         skip = false;
         if (b == 0xFD) continue;
       }
-      if (n >= params.size()) return ParseResult::kBadLength;
-      params[n++] = b;
+      if (n < lead.size()) {
+        lead[n] = b;
+      } else if (n - lead.size() < params.size()) {
+        params[n - lead.size()] = b;
+      } else {
+        return ParseResult::kBadLength;
+      }
+      ++n;
       if (b == 0xFD && ff >= 2) {
         skip = true;
         ff = 0;
@@ -225,11 +233,48 @@ ParseResult parse_status(std::span<const std::uint8_t> in, Status& status,
         ff = b == 0xFF ? ff + 1 : 0;
       }
     }
-    status.param_count = n;
+    if (n < lead.size()) return ParseResult::kBadLength;
+    packet.param_count = n - lead.size();
     return ParseResult::kOk;
   }
-  status.consumed = in.size() > 3 ? in.size() - 3 : 0;  // a header may start in the last 3 bytes
+  packet.consumed = in.size() > 3 ? in.size() - 3 : 0;  // a header may start in the last 3 bytes
   return ParseResult::kIncomplete;
+}
+
+}  // namespace
+
+ParseResult parse_packet(std::span<const std::uint8_t> in, Packet& packet,
+                         std::span<std::uint8_t> params) {
+  return parse_into(in, packet, {}, params);
+}
+
+ParseResult parse_status(std::span<const std::uint8_t> in, Status& status,
+                         std::span<std::uint8_t> params) {
+  status = Status{};
+  Packet p;
+  std::uint8_t error = 0;
+  ParseResult r = parse_into(in, p, {&error, 1}, params);
+  if (r == ParseResult::kOk && p.instruction != kStatus) r = ParseResult::kNotStatus;
+  // A short packet that is not a status packet is not ours to judge either.
+  if (r == ParseResult::kBadLength && p.consumed > 0 && p.instruction != 0 &&
+      p.instruction != kStatus) {
+    r = ParseResult::kNotStatus;
+  }
+  status.id = p.id;
+  status.consumed = p.consumed;
+  if (r == ParseResult::kOk) {
+    status.error = error;
+    status.param_count = p.param_count;
+  }
+  return r;
+}
+
+std::size_t encode_status(std::uint8_t id, std::uint8_t error, std::span<const std::uint8_t> params,
+                          std::span<std::uint8_t> out) {
+  PacketWriter w(id, kStatus, out);
+  w.put(error);
+  w.put(params);
+  return w.finish();
 }
 
 }  // namespace facectl::dxl2

@@ -75,6 +75,14 @@ std::size_t encode_sync_write(std::uint16_t address, std::uint16_t length,
                               std::span<const std::uint8_t> ids, std::span<const std::uint8_t> data,
                               std::span<std::uint8_t> out);
 
+// Any packet read from the wire (the simulated servo reads instructions).
+struct Packet {
+  std::uint8_t id = 0;
+  std::uint8_t instruction = 0;
+  std::size_t param_count = 0;
+  std::size_t consumed = 0;  // bytes of the input up to the packet's end
+};
+
 // A status packet read from the wire.
 struct Status {
   std::uint8_t id = 0;
@@ -99,5 +107,15 @@ const char* parse_result_name(ParseResult r);
 // also for kBadCrc and kNotStatus.
 ParseResult parse_status(std::span<const std::uint8_t> in, Status& status,
                          std::span<std::uint8_t> params);
+// The same for any packet: its instruction, and everything after it up to
+// the CRC unstuffed into `params` (kNotStatus is never returned).
+ParseResult parse_packet(std::span<const std::uint8_t> in, Packet& packet,
+                         std::span<std::uint8_t> params);
+
+// A status packet (instruction 0x55): the error byte, then the parameters.
+// What a servo sends; the simulated servo's encoder. Returns its size, 0 if
+// `out` is too small.
+std::size_t encode_status(std::uint8_t id, std::uint8_t error, std::span<const std::uint8_t> params,
+                          std::span<std::uint8_t> out);
 
 }  // namespace facectl::dxl2
