@@ -26,9 +26,7 @@ namespace {
 using Level = DoctorFinding::Level;
 
 std::string fmt(const char* f, double a, double b = 0, double c = 0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, f, a, b, c);
-  return buf;
+  return doctor_format(f, a, b, c);
 }
 
 void add(DoctorReport& r, Level level, std::string text) {
@@ -53,6 +51,12 @@ struct Rtt {
 
 }  // namespace
 
+std::string doctor_format(const char* format, double a, double b, double c) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, format, a, b, c);
+  return buf;
+}
+
 bool DoctorReport::has_problems() const {
   return std::any_of(findings.begin(), findings.end(),
                      [](const DoctorFinding& f) { return f.level == Level::kProblem; });
@@ -76,6 +80,19 @@ std::optional<int> usb_serial_latency_timer_ms(const std::string& device,
   return ms;
 }
 
+DoctorFinding usb_latency_finding(const std::string& device) {
+  const auto lt = usb_serial_latency_timer_ms(device);
+  if (!lt) return {Level::kOk, device + " is not a USB serial adapter with a latency timer"};
+  if (*lt > 1) {
+    return {Level::kWarning,
+            fmt("USB serial latency timer %.0f ms adds up to that to every reply; set it to 1: "
+                "echo 1 > /sys/class/tty/",
+                *lt) +
+                device.substr(device.rfind('/') + 1) + "/device/latency_timer"};
+  }
+  return {Level::kOk, fmt("USB serial latency timer %.0f ms", *lt)};
+}
+
 DoctorReport diagnose_modbus(const std::string& bus, const ModbusEndpoint& ep,
                              const std::vector<ActuatorModel>& actuators,
                              const ModbusTiming& timing, int samples,
@@ -94,18 +111,7 @@ DoctorReport diagnose_modbus(const std::string& bus, const ModbusEndpoint& ep,
             timing.response_timeout_s * 1000, timing.byte_timeout_s * 1000, timing.max_retries));
   }
   if (!ep.tcp) {
-    const auto lt = usb_serial_latency_timer_ms(ep.device);
-    if (!lt) {
-      add(r, Level::kOk, ep.device + " is not a USB serial adapter with a latency timer");
-    } else if (*lt > 1) {
-      add(r, Level::kWarning,
-          fmt("USB serial latency timer %.0f ms adds up to that to every reply; set it to 1: "
-              "echo 1 > /sys/class/tty/",
-              *lt) +
-              ep.device.substr(ep.device.rfind('/') + 1) + "/device/latency_timer");
-    } else {
-      add(r, Level::kOk, fmt("USB serial latency timer %.0f ms", *lt));
-    }
+    r.findings.push_back(usb_latency_finding(ep.device));
   }
   std::map<int, int> channels;  // unit -> channels used
   for (const auto& a : actuators) {

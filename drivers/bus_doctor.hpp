@@ -7,6 +7,7 @@
 #include "control/actuator_model.hpp"
 #include "drivers/can/can_bus_options.hpp"
 #include "drivers/can/can_transport.hpp"
+#include "drivers/dynamixel/dynamixel_options.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
 
 namespace facectl {
@@ -31,6 +32,13 @@ struct DoctorReport {
 std::optional<int> usb_serial_latency_timer_ms(const std::string& device,
                                                const std::string& sysfs = "/sys");
 
+// printf of up to three numbers into a finding's text.
+std::string doctor_format(const char* format, double a, double b = 0, double c = 0);
+
+// The latency timer's finding for a serial device (ok, or a warning above
+// 1 ms with the command that fixes it).
+DoctorFinding usb_latency_finding(const std::string& device);
+
 // Modbus: connects with `timing`, reads every board's input registers
 // `samples` times and reports round-trip times, failures, the board's own
 // status and channel count, and known bad defaults (libmodbus's 500 ms
@@ -49,5 +57,14 @@ DoctorReport diagnose_can(const std::string& bus, CanTransport& transport,
                           const std::string& protocol, const std::vector<ActuatorModel>& actuators,
                           const CanBusOptions& options, double tick_hz, long bitrate,
                           double listen_s = 0.5);
+
+// DYNAMIXEL: pings every servo of the rig `samples` times (round trip,
+// model, firmware), reads what would stop or surprise a run (Hardware Error
+// Status, torque already on, the Return Delay Time the bus would rewrite,
+// temperature, voltage, a position outside the rig's hard range) and asks
+// the whole bus who answers (a broadcast PING), naming IDs not in the rig.
+DoctorReport diagnose_dynamixel(const std::string& bus, const std::string& device, long baud,
+                                const std::vector<ActuatorModel>& actuators,
+                                const DynamixelOptions& options, int samples = 20);
 
 }  // namespace facectl

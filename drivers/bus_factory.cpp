@@ -5,6 +5,7 @@
 #include "drivers/can/cia402_bus.hpp"
 #include "drivers/can/custom_can_bus.hpp"
 #include "drivers/can/socketcan_transport.hpp"
+#include "drivers/dynamixel/dynamixel_bus.hpp"
 
 namespace facectl {
 
@@ -15,6 +16,11 @@ RealBus make_bus(const BusSpec& spec, const std::vector<ActuatorModel>& actuator
     out.bus = std::make_unique<ModbusBus>(
         spec.name, ModbusEndpoint::parse(spec.type, spec.endpoint, spec.bitrate), actuators,
         initial, spec.modbus, spec.modbus_registers);
+    return out;
+  }
+  if (spec.type == "dynamixel") {
+    out.bus = std::make_unique<DynamixelBus>(spec.name, spec.endpoint, spec.bitrate, actuators,
+                                             initial, spec.dynamixel);
     return out;
   }
   if (spec.type != "can") {

@@ -9,8 +9,8 @@
 
 #include "control/clock.hpp"
 #include "control/realtime/atomic_max.hpp"
+#include "drivers/dynamixel/dynamixel_link.hpp"
 #include "drivers/protocol/dynamixel2_packet.hpp"
-#include "drivers/serial/serial_port.hpp"
 
 namespace facectl {
 
@@ -120,8 +120,6 @@ DynamixelBus::DynamixelBus(std::string name, std::string device, long baud,
   port_lost_ = name_ + ": serial port " + device_ + " lost or cannot be opened";
   measured_ = last_feedback_;
   tx_.resize(dxl2::max_packet_size(4 + count_ * 5));
-  rx_.resize(4096);
-  params_.resize(256);
   const std::int64_t now = monotonic_ns();
   for (auto& s : servos_) s->last_ok_ns = now;  // the silence runs from start-up
   thread_ = std::thread([this] { io_loop(); });
@@ -130,13 +128,13 @@ DynamixelBus::DynamixelBus(std::string name, std::string device, long baud,
 DynamixelBus::~DynamixelBus() {
   stop_.store(true, std::memory_order_release);
   if (thread_.joinable()) thread_.join();
-  if (port_) {
+  if (link_) {
     // Torque off on the way out, whatever the controller did: one broadcast
     // sync write, which no servo answers.
     std::vector<std::uint8_t> ids, zeros(count_, 0);
     for (const auto& s : servos_) ids.push_back(s->id);
     const std::size_t n = dxl2::encode_sync_write(dxl_x::kTorqueEnable, 1, ids, zeros, tx_);
-    if (n > 0) port_->write_all({tx_.data(), n}, seconds_ns(0.05));
+    if (n > 0) link_->send({tx_.data(), n}, seconds_ns(0.05));
   }
 }
 
@@ -241,6 +239,7 @@ void DynamixelBus::io_loop() {
   while (!stop_.load(std::memory_order_acquire)) {
     const std::int64_t start = monotonic_ns();
     if (open_port(start)) run_cycle(start);
+    publish_counters();
     stats_.cycles.fetch_add(1, std::memory_order_relaxed);
     atomic_max(stats_.max_cycle_ns, static_cast<std::uint64_t>(monotonic_ns() - start));
     feedback_.publish(measured_);
@@ -253,12 +252,12 @@ void DynamixelBus::io_loop() {
 }
 
 bool DynamixelBus::open_port(std::int64_t now_ns) {
-  if (port_) return true;
+  if (link_) return true;
   if (now_ns - last_open_attempt_ns_ < seconds_ns(options_.reconnect_interval_s)) return false;
   const bool reopening = last_open_attempt_ns_ > 0;
   last_open_attempt_ns_ = now_ns;
   try {
-    port_ = std::make_unique<SerialPort>(device_, baud_);
+    link_ = std::make_unique<DynamixelLink>(device_, baud_);
   } catch (const std::runtime_error&) {
     port_reason_.store(port_lost_.c_str(), std::memory_order_release);
     return false;
@@ -270,13 +269,29 @@ bool DynamixelBus::open_port(std::int64_t now_ns) {
 }
 
 void DynamixelBus::lose_port(const char* reason) {
-  port_.reset();
+  publish_counters();
+  const DynamixelLink::Counters& c = link_->counters();
+  counted_.status_packets += c.status_packets;
+  counted_.timeouts += c.timeouts;
+  counted_.bad_crc += c.bad_crc;
+  counted_.bad_packets += c.bad_packets;
+  link_.reset();
   port_reason_.store(reason, std::memory_order_release);
   for (auto& s : servos_) {
     s->stage = Stage::kSetUp;
     s->on.store(false, std::memory_order_release);
     s->ready.store(false, std::memory_order_release);
   }
+}
+
+void DynamixelBus::publish_counters() {
+  if (!link_) return;
+  const DynamixelLink::Counters& c = link_->counters();
+  stats_.status_packets.store(counted_.status_packets + c.status_packets,
+                              std::memory_order_relaxed);
+  stats_.timeouts.store(counted_.timeouts + c.timeouts, std::memory_order_relaxed);
+  stats_.bad_crc.store(counted_.bad_crc + c.bad_crc, std::memory_order_relaxed);
+  stats_.bad_packets.store(counted_.bad_packets + c.bad_packets, std::memory_order_relaxed);
 }
 
 void DynamixelBus::fail(Servo& s, const char* reason) {
@@ -288,7 +303,7 @@ void DynamixelBus::run_cycle(std::int64_t now_ns) {
   if (commands_.consume(fresh)) current_ = fresh;
   for (auto& sp : servos_) {
     Servo& s = *sp;
-    if (!port_) return;
+    if (!link_) return;
     if (s.stage == Stage::kSetUp) {
       if (set_up(s)) {
         s.stage = Stage::kReady;
@@ -306,12 +321,12 @@ void DynamixelBus::run_cycle(std::int64_t now_ns) {
       switch_torque(s, false);
     }
   }
-  if (!port_) return;
+  if (!link_) return;
   sync_write_goals();
-  if (!port_) return;
+  if (!link_) return;
   sync_read_feedback(now_ns);
   for (auto& sp : servos_) {
-    if (port_ && sp->alert) check_hardware_error(*sp);
+    if (link_ && sp->alert) check_hardware_error(*sp);
   }
 }
 
@@ -422,8 +437,7 @@ void DynamixelBus::sync_write_goals() {
   if (n == 0) return;
   const std::size_t len =
       dxl2::encode_sync_write(dxl_x::kGoalPosition, 4, {ids, n}, {data, 4 * n}, tx_);
-  if (!port_->write_all({tx_.data(), len}, seconds_ns(options_.response_timeout_s) +
-                                               seconds_ns(serial_byte_s(baud_) * static_cast<double>(len)))) {
+  if (!link_->send({tx_.data(), len}, seconds_ns(options_.response_timeout_s))) {
     lose_port(port_lost_.c_str());
   }
 }
@@ -438,30 +452,24 @@ void DynamixelBus::sync_read_feedback(std::int64_t now_ns) {
   if (n == 0) return;
   const std::size_t len =
       dxl2::encode_sync_read(dxl_x::kFeedbackAddress, dxl_x::kFeedbackLength, {ids, n}, tx_);
-  rx_len_ = 0;
-  port_->discard_input();
-  const double byte_s = serial_byte_s(baud_);
-  if (!port_->write_all({tx_.data(), len},
-                        seconds_ns(options_.response_timeout_s + byte_s * static_cast<double>(len)))) {
+  if (!link_->send({tx_.data(), len}, seconds_ns(options_.response_timeout_s))) {
     lose_port(port_lost_.c_str());
     return;
   }
   // Each servo answers in the order of the request, after the one before it
   // and its own return delay.
-  const double reply_s = byte_s * static_cast<double>(kStatusOverhead + dxl_x::kFeedbackLength) +
-                         options_.return_delay_us * 1e-6;
-  const std::int64_t deadline = monotonic_ns() + seconds_ns(byte_s * static_cast<double>(len)) +
-                                seconds_ns(options_.response_timeout_s + reply_s * static_cast<double>(n));
-  receive(
+  const double reply_s =
+      link_->wire_s(kStatusOverhead + dxl_x::kFeedbackLength) + options_.return_delay_us * 1e-6;
+  const std::int64_t deadline =
+      monotonic_ns() + seconds_ns(link_->wire_s(len) + options_.response_timeout_s +
+                                  reply_s * static_cast<double>(n));
+  const int got = link_->receive(
       static_cast<int>(n), deadline,
       [&](std::uint8_t id, std::uint8_t error, std::span<const std::uint8_t> p) {
         for (auto& sp : servos_) {
           Servo& s = *sp;
           if (s.id != id || s.stage == Stage::kSetUp) continue;
-          if ((error & 0x7F) != 0 || p.size() != dxl_x::kFeedbackLength) {
-            stats_.bad_packets.fetch_add(1, std::memory_order_relaxed);
-            return;
-          }
+          if ((error & 0x7F) != 0 || p.size() != dxl_x::kFeedbackLength) return;
           s.answered = true;
           s.alert = s.alert || (error & dxl2::kErrorAlert) != 0;
           s.last_ok_ns = now_ns;
@@ -484,7 +492,10 @@ void DynamixelBus::sync_read_feedback(std::int64_t now_ns) {
           return;
         }
       });
-  if (!port_) return;
+  if (got < 0) {
+    lose_port(port_lost_.c_str());
+    return;
+  }
   for (auto& sp : servos_) {
     Servo& s = *sp;
     if (s.stage == Stage::kSetUp || s.answered) continue;
@@ -515,29 +526,17 @@ void DynamixelBus::check_hardware_error(Servo& s) {
 
 bool DynamixelBus::transact(Servo& s, std::span<const std::uint8_t> packet,
                             std::span<std::uint8_t> data) {
-  rx_len_ = 0;
-  port_->discard_input();
-  const double byte_s = serial_byte_s(baud_);
-  if (!port_->write_all(packet, seconds_ns(options_.response_timeout_s + byte_s * static_cast<double>(packet.size())))) {
+  std::uint8_t error = 0;
+  const DynamixelLink::Reply r = link_->request(s.id, packet, data, options_.response_timeout_s,
+                                                options_.return_delay_us * 1e-6, &error);
+  if (r == DynamixelLink::Reply::kLost) {
     lose_port(port_lost_.c_str());
     return false;
   }
-  const double reply_s =
-      byte_s * static_cast<double>(kStatusOverhead + data.size()) + options_.return_delay_us * 1e-6;
-  const std::int64_t deadline =
-      monotonic_ns() + seconds_ns(byte_s * static_cast<double>(packet.size()) + reply_s + options_.response_timeout_s);
-  bool ok = false;
-  receive(1, deadline, [&](std::uint8_t id, std::uint8_t error, std::span<const std::uint8_t> p) {
-    if (id != s.id || (error & 0x7F) != 0 || p.size() != data.size()) {
-      stats_.bad_packets.fetch_add(1, std::memory_order_relaxed);
-      return;
-    }
-    s.alert = s.alert || (error & dxl2::kErrorAlert) != 0;
-    std::copy(p.begin(), p.end(), data.begin());
-    s.last_ok_ns = monotonic_ns();
-    ok = true;
-  });
-  return ok;
+  if (r != DynamixelLink::Reply::kOk) return false;
+  s.alert = s.alert || (error & dxl2::kErrorAlert) != 0;
+  s.last_ok_ns = monotonic_ns();
+  return true;
 }
 
 bool DynamixelBus::read_register(Servo& s, std::uint16_t address, std::span<std::uint8_t> data) {
@@ -550,44 +549,6 @@ bool DynamixelBus::write_register(Servo& s, std::uint16_t address,
                                   std::span<const std::uint8_t> data) {
   const std::size_t n = dxl2::encode_write(s.id, address, data, tx_);
   return transact(s, {tx_.data(), n}, {});
-}
-
-template <typename OnStatus>
-int DynamixelBus::receive(int want, std::int64_t deadline_ns, OnStatus&& on_status) {
-  int got = 0;
-  while (got < want) {
-    dxl2::Status st;
-    const dxl2::ParseResult r = dxl2::parse_status({rx_.data(), rx_len_}, st, params_);
-    if (st.consumed > 0) {
-      std::memmove(rx_.data(), rx_.data() + st.consumed, rx_len_ - st.consumed);
-      rx_len_ -= st.consumed;
-    }
-    if (r == dxl2::ParseResult::kOk) {
-      ++got;
-      stats_.status_packets.fetch_add(1, std::memory_order_relaxed);
-      on_status(st.id, st.error, std::span<const std::uint8_t>(params_.data(), st.param_count));
-      continue;
-    }
-    if (r == dxl2::ParseResult::kBadCrc) stats_.bad_crc.fetch_add(1, std::memory_order_relaxed);
-    if (r == dxl2::ParseResult::kBadLength) {
-      stats_.bad_packets.fetch_add(1, std::memory_order_relaxed);
-    }
-    // kNotStatus: our own request echoed by a half-duplex adapter.
-    if (r != dxl2::ParseResult::kIncomplete) continue;
-    if (rx_len_ == rx_.size()) rx_len_ = 0;  // a packet longer than any reply: noise
-    const std::int64_t left = deadline_ns - monotonic_ns();
-    if (left <= 0) break;
-    const long n = port_->read_some({rx_.data() + rx_len_, rx_.size() - rx_len_}, left);
-    if (n < 0) {
-      lose_port(port_lost_.c_str());
-      return got;
-    }
-    rx_len_ += static_cast<std::size_t>(n);
-  }
-  if (got < want) {
-    stats_.timeouts.fetch_add(static_cast<std::uint64_t>(want - got), std::memory_order_relaxed);
-  }
-  return got;
 }
 
 }  // namespace facectl

@@ -11,13 +11,12 @@
 #include "control/actuator_bus.hpp"
 #include "control/actuator_model.hpp"
 #include "control/realtime/latest_value_mailbox.hpp"
+#include "drivers/dynamixel/dynamixel_link.hpp"
 #include "drivers/dynamixel/dynamixel_options.hpp"
 #include "drivers/protocol/dynamixel_x_table.hpp"
 #include "drivers/protocol/wire_encoding.hpp"
 
 namespace facectl {
-
-class SerialPort;
 
 // Counters of the I/O thread, readable from any thread.
 struct DynamixelStats {
@@ -96,10 +95,7 @@ class DynamixelBus final : public ActuatorBus {
   bool transact(Servo& s, std::span<const std::uint8_t> packet, std::span<std::uint8_t> data);
   bool read_register(Servo& s, std::uint16_t address, std::span<std::uint8_t> data);
   bool write_register(Servo& s, std::uint16_t address, std::span<const std::uint8_t> data);
-  // Reads status packets until `want` arrived or the deadline passed.
-  // Each good packet goes to on_status(id, error, params).
-  template <typename OnStatus>
-  int receive(int want, std::int64_t deadline_ns, OnStatus&& on_status);
+  void publish_counters();
   void fail(Servo& s, const char* reason);
   void lose_port(const char* reason);
 
@@ -119,12 +115,12 @@ class DynamixelBus final : public ActuatorBus {
   std::atomic<std::uint32_t> epoch_{0};  // +1 on every enable: older commands are never sent
 
   // I/O thread side.
-  std::unique_ptr<SerialPort> port_;
+  std::unique_ptr<DynamixelLink> link_;
+  DynamixelLink::Counters counted_;  // of the links lost before this one
   std::int64_t last_open_attempt_ns_ = -1'000'000'000'000;
   Command current_;
   Feedback measured_;
-  std::vector<std::uint8_t> tx_, rx_, params_;
-  std::size_t rx_len_ = 0;
+  std::vector<std::uint8_t> tx_;
   std::string port_lost_;  // static reason
   std::atomic<const char*> port_reason_{nullptr};
 

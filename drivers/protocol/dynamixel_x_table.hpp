@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -36,6 +37,13 @@ inline constexpr int kBusWatchdogUnitMs = 20;
 // through Present Temperature.
 inline constexpr std::uint16_t kFeedbackAddress = kPresentLoad;
 inline constexpr std::uint16_t kFeedbackLength = kPresentTemperature + 1 - kPresentLoad;  // 21
+
+// Bytes on the wire in one I/O cycle of `servos` servos: the Sync Write of
+// the goals (14 + 5 n), the Sync Read request (14 + n) and one status
+// packet per servo (11 + 21), byte stuffing aside.
+constexpr std::size_t cycle_bytes(std::size_t servos) {
+  return (14 + 5 * servos) + (14 + servos) + servos * (11 + kFeedbackLength);
+}
 
 // Hardware Error Status bits (the "Shutdown" item): the servo has switched
 // its torque off by itself and keeps it off until rebooted.

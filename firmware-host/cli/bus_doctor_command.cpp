@@ -33,6 +33,15 @@ DoctorReport diagnose(const BusConfig& bus, const std::vector<ActuatorModel>& ac
     }
     return r;
   }
+  if (bus.is_dynamixel()) {
+    DoctorReport r = diagnose_dynamixel(bus.name, bus.endpoint, bus.bitrate, actuators,
+                                        bus.dynamixel, options.samples);
+    r.findings.insert(
+        r.findings.begin(),
+        {budget.verdict == BusBudgetResult::Verdict::kOk ? Level::kOk : Level::kWarning,
+         "wire time: " + budget.text});
+    return r;
+  }
   std::unique_ptr<SocketCanTransport> transport;
   try {
     transport = std::make_unique<SocketCanTransport>(bus.endpoint, bus.can.fd);

@@ -132,6 +132,49 @@ void parse_modbus(const ConfigNode& node, BusConfig& bus) {
   }
 }
 
+void parse_dynamixel(const ConfigNode& node, BusConfig& bus) {
+  bus.endpoint = node["device"].string();
+  bus.bitrate = node["baud"].integer();
+  // The rates an X-series servo's Baud Rate (8) item can be set to.
+  bool known = false;
+  for (const long b :
+       {9600L, 57600L, 115200L, 1'000'000L, 2'000'000L, 3'000'000L, 4'000'000L, 4'500'000L}) {
+    known = known || b == bus.bitrate;
+  }
+  if (!known) {
+    node["baud"].fail(
+        "a rate a DYNAMIXEL X servo runs at: 9600, 57600, 115200, 1000000, 2000000, 3000000, "
+        "4000000 or 4500000");
+  }
+  DynamixelOptions& o = bus.dynamixel;
+  if (auto n = node.get("response_timeout_ms"))
+    o.response_timeout_s = n->number_in(1.0, 100.0) * 1e-3;
+  if (auto n = node.get("fault_after_ms")) o.fault_after_s = n->number_in(5.0, 10'000.0) * 1e-3;
+  if (auto n = node.get("cycle_ms")) o.cycle_period_s = n->number_in(1.0, 100.0) * 1e-3;
+  if (auto n = node.get("reconnect_ms"))
+    o.reconnect_interval_s = n->number_in(1.0, 10'000.0) * 1e-3;
+  if (auto n = node.get("return_delay_us")) {
+    o.return_delay_us = static_cast<int>(n->integer_in(0, 508));
+    if (o.return_delay_us % 2 != 0) n->fail("an even number of microseconds (the unit is 2 us)");
+  }
+  if (auto n = node.get("watchdog_ms")) {
+    o.bus_watchdog_ms = static_cast<int>(n->integer_in(0, 2540));
+    if (o.bus_watchdog_ms % 20 != 0) n->fail("0 (off) or a multiple of 20 ms (the servo's unit)");
+  }
+  if (auto n = node.get("write_position_limits")) o.write_position_limits = n->boolean();
+  if (o.fault_after_s <= o.response_timeout_s) {
+    const ConfigNode at = node.get("fault_after_ms") ? node["fault_after_ms"] : node;
+    at.fail("fault_after_ms above response_timeout_ms (" +
+                std::to_string(std::lround(o.response_timeout_s * 1e3)) + " ms)",
+            std::to_string(std::lround(o.fault_after_s * 1e3)) + " ms");
+  }
+  // The servo stops itself when we fall silent: not before a cycle could come.
+  if (o.bus_watchdog_ms != 0 && o.bus_watchdog_ms < 2.0 * o.cycle_period_s * 1e3) {
+    node["watchdog_ms"].fail("0 (off) or at least twice cycle_ms (" +
+                             std::to_string(std::lround(2.0 * o.cycle_period_s * 1e3)) + " ms)");
+  }
+}
+
 }  // namespace
 
 BusConfig parse_bus_config(const ConfigNode& node) {
@@ -164,8 +207,13 @@ BusConfig parse_bus_config(const ConfigNode& node) {
     }
     node.expect_keys(keys);
     parse_modbus(node, bus);
+  } else if (bus.type == "dynamixel") {
+    node.expect_keys({"name", "type", "device", "baud", "response_timeout_ms", "fault_after_ms",
+                      "cycle_ms", "reconnect_ms", "return_delay_us", "watchdog_ms",
+                      "write_position_limits"});
+    parse_dynamixel(node, bus);
   } else {
-    node["type"].fail("one of: can, modbus_rtu, modbus_tcp");
+    node["type"].fail("one of: can, modbus_rtu, modbus_tcp, dynamixel");
   }
   return bus;
 }

@@ -16,6 +16,7 @@ struct BusConfig : BusSpec {
 
   bool is_can() const { return type == "can"; }
   bool is_modbus() const { return type == "modbus_rtu" || type == "modbus_tcp"; }
+  bool is_dynamixel() const { return type == "dynamixel"; }
   bool is_cia402() const { return is_can() && can_protocol == "cia402"; }
 };
 

@@ -3,8 +3,11 @@
 #include <cstdio>
 #include <map>
 
+#include "drivers/protocol/dynamixel2_packet.hpp"
+#include "drivers/protocol/dynamixel_x_table.hpp"
 #include "drivers/protocol/modbus_register_map.hpp"
 #include "drivers/protocol/modbus_rtu_wire.hpp"
+#include "drivers/serial/serial_port.hpp"
 
 namespace facectl {
 namespace {
@@ -78,6 +81,34 @@ BusBudgetResult budget_modbus(const BusConfig& bus,
   return r;
 }
 
+BusBudgetResult budget_dynamixel(const BusConfig& bus,
+                                 const std::vector<const ActuatorConfig*>& acts) {
+  for (const ActuatorConfig* a : acts) {
+    if (a->model.address < 0 || a->model.address > dxl2::kMaxId) {
+      throw ConfigError(a->where + ": rig.actuators '" + a->model.name +
+                        "'.address: expected a servo ID 0.." + std::to_string(dxl2::kMaxId) +
+                        " on DYNAMIXEL bus " + bus.name + ", found " +
+                        std::to_string(a->model.address));
+    }
+  }
+  BusBudgetResult r;
+  const DynamixelOptions& o = bus.dynamixel;
+  const double bytes = static_cast<double>(dxl_x::cycle_bytes(acts.size()));
+  const double wire_s = bytes * serial_byte_s(bus.bitrate) +
+                        static_cast<double>(acts.size()) * o.return_delay_us * 1e-6;
+  r.load = wire_s / o.cycle_period_s;
+  r.verdict = r.load > 1.0 ? BusBudgetResult::Verdict::kWarning : BusBudgetResult::Verdict::kOk;
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "%s: %zu servos, %.0f bytes per I/O cycle = %.2f ms at %ld baud, %.0f%% of the "
+                "%g ms cycle%s",
+                bus.name.c_str(), acts.size(), bytes, wire_s * 1e3, bus.bitrate, 100.0 * r.load,
+                o.cycle_period_s * 1e3,
+                r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)" : "");
+  r.text = buf;
+  return r;
+}
+
 }  // namespace
 
 std::vector<BusBudgetResult> check_bus_budgets(const RigConfig& rig, double tick_hz) {
@@ -87,7 +118,9 @@ std::vector<BusBudgetResult> check_bus_budgets(const RigConfig& rig, double tick
     for (const ActuatorConfig& a : rig.actuators) {
       if (a.model.bus == bus.name) acts.push_back(&a);
     }
-    BusBudgetResult r = bus.is_can() ? budget_can(bus, acts, tick_hz) : budget_modbus(bus, acts);
+    BusBudgetResult r = bus.is_can()         ? budget_can(bus, acts, tick_hz)
+                        : bus.is_dynamixel() ? budget_dynamixel(bus, acts)
+                                             : budget_modbus(bus, acts);
     r.bus = bus.name;
     r.where = bus.where;
     out.push_back(std::move(r));

@@ -25,6 +25,32 @@ std::string number(double v) {
                     expected + ", found " + found);
 }
 
+// An X-series servo in position control: 4096 pulses a turn, goal and
+// present position in 4 bytes; without an encoding, 0 deg is its centre.
+void check_dynamixel_encoding(ActuatorConfig& actuator, const BusConfig& bus, double per_unit) {
+  ActuatorEncoding& e = actuator.model.encoding;
+  if (actuator.model.kind != ActuatorKind::kRotary) {
+    throw ConfigError(actuator.where + ": actuator " + actuator.model.name +
+                      ": expected kind rotary on DYNAMIXEL bus " + bus.name + ", found linear");
+  }
+  if (!actuator.has_encoding) e = {ActuatorEncoding::Raw::kInt32, 4096.0 / 360.0, 2048.0};
+  if (e.raw != ActuatorEncoding::Raw::kInt32) {
+    refuse(actuator, "raw int32 on DYNAMIXEL bus " + bus.name + " (positions are 4 bytes)",
+           std::string("raw ") + raw_name(e.raw));
+  }
+  for (const double si : {actuator.model.limits.position_min, actuator.model.limits.position_max}) {
+    const double pulses = std::nearbyint(si / per_unit * e.scale + e.offset);
+    if (pulses < 0 || pulses > 4095) {
+      refuse(
+          actuator,
+          "the hardware range within 0..4095 pulses (one turn, position control mode) on "
+          "DYNAMIXEL bus " +
+              bus.name,
+          "position " + number(si / per_unit) + " deg encoding to " + number(pulses) + " pulses");
+    }
+  }
+}
+
 }  // namespace
 
 void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
@@ -48,6 +74,10 @@ void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
   }
   const double per_unit = si_per_yaml(actuator.model.kind);
   const char* unit = yaml_unit(actuator.model.kind);
+  if (bus.is_dynamixel()) {
+    check_dynamixel_encoding(actuator, bus, per_unit);
+    return;
+  }
   // A CiA 402 drive counts with the actuator's int32 encoding or, without
   // one, the bus's counts_per_rev / counts_per_mm.
   const bool drive = bus.is_cia402();

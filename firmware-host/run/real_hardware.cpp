@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "drivers/dynamixel/dynamixel_bus.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
 
 namespace facectl {
@@ -25,6 +26,22 @@ void check_modbus_answers(const ModbusBus& bus, const ModbusTiming& timing) {
                                    : std::string(bus.name()) + ": " +
                                          std::to_string(bus.board_count() - bus.boards_answered()) +
                                          " of its boards do not answer");
+}
+
+// Waits until every servo of a DYNAMIXEL bus has been set up (it answered,
+// is an X-series servo without a hardware error), or a fault names the one
+// that is not.
+void check_dynamixel_ready(const DynamixelBus& bus, const DynamixelOptions& options) {
+  const auto limit = std::chrono::steady_clock::now() +
+                     std::chrono::duration<double>(2.0 * options.fault_after_s + 0.5);
+  while (std::chrono::steady_clock::now() < limit) {
+    if (bus.ready() && !bus.status().fault) return;
+    if (bus.status().fault) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const BusStatus s = bus.status();
+  throw std::runtime_error(s.fault ? std::string(s.reason)
+                                   : std::string(bus.name()) + ": its servos are not all set up");
 }
 
 }  // namespace
@@ -61,6 +78,10 @@ std::unique_ptr<RealHardware> make_real_hardware(const ControllerModel& model,
       check_modbus_answers(*mb, it->modbus);
       hw->notes.push_back(it->name + ": " + std::to_string(mb->board_count()) +
                           " Modbus boards answer at " + it->endpoint);
+    } else if (auto* db = dynamic_cast<DynamixelBus*>(rb.bus.get())) {
+      check_dynamixel_ready(*db, it->dynamixel);
+      hw->notes.push_back(it->name + ": " + std::to_string(actuators.size()) +
+                          " DYNAMIXEL servos set up at " + it->endpoint);
     } else {
       hw->notes.push_back(rb.budget + " on " + it->endpoint);
     }

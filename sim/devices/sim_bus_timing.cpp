@@ -4,6 +4,7 @@
 
 #include "drivers/protocol/can_bus_budget.hpp"
 #include "drivers/protocol/custom_can_frames.hpp"
+#include "drivers/protocol/dynamixel_x_table.hpp"
 #include "drivers/protocol/modbus_register_map.hpp"
 #include "drivers/protocol/modbus_rtu_wire.hpp"
 
@@ -52,11 +53,25 @@ SimBusTiming rtu_timing(const BusSpec& bus, std::span<const int> addresses) {
   return t;
 }
 
+// One Sync Write carries every goal: they land when it ends; the cycle is
+// the whole exchange (dxl_x::cycle_bytes) at the cycle period.
+SimBusTiming dynamixel_timing(const BusSpec& bus, std::span<const int> addresses) {
+  SimBusTiming t;
+  const double byte_s = 10.0 / static_cast<double>(bus.bitrate);
+  const std::size_t n = addresses.size();
+  t.arrival_s.assign(n, static_cast<double>(14 + 5 * n) * byte_s);
+  t.timing.cycle_time_s = static_cast<double>(dxl_x::cycle_bytes(n)) * byte_s +
+                          static_cast<double>(n) * bus.dynamixel.return_delay_us * 1e-6;
+  t.timing.load = t.timing.cycle_time_s / bus.dynamixel.cycle_period_s;
+  return t;
+}
+
 }  // namespace
 
 SimBusTiming sim_bus_timing(const BusSpec& bus, std::span<const int> addresses, double tick_hz) {
   if (bus.type == "can") return can_timing(bus, addresses, tick_hz);
   if (bus.type == "modbus_rtu") return rtu_timing(bus, addresses);
+  if (bus.type == "dynamixel") return dynamixel_timing(bus, addresses);
   SimBusTiming t;  // modbus_tcp: the network's latency; its load is not modelled
   t.arrival_s.assign(addresses.size(), bus.modbus.network_latency_s);
   t.timing.cycle_time_s = bus.modbus.network_latency_s;

@@ -1,5 +1,6 @@
 // `bus doctor` against real peers: the libmodbus server with simulated boards,
-// and simulated CAN devices on the in-process wire.
+// simulated CAN devices on the in-process wire, and simulated DYNAMIXEL
+// servos on a pty.
 #include "drivers/bus_doctor.hpp"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
+#include "sim/devices/dynamixel_pty_wire.hpp"
 #include "sim/devices/memory_can_link.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "tests/drivers/can_test_axes.hpp"
@@ -124,6 +126,31 @@ TEST(BusDoctor, CustomBoardsAreHeardAndErrorFramesAndOverloadAreProblems) {
   EXPECT_TRUE(has(r, L::kProblem, "board 4: not heard"));
   EXPECT_TRUE(has(r, L::kProblem, "error frames: bus-off x1"));
   EXPECT_TRUE(has(r, L::kProblem, "108.0% of 1000000 bit/s (refused"));
+}
+
+TEST(BusDoctor, DynamixelNamesEachServosStateAndOnesNotInTheRig) {
+  std::vector<std::unique_ptr<sim::DynamixelServoSim>> servos;
+  servos.push_back(std::make_unique<sim::DynamixelServoSim>(1, 1060, 2048));
+  servos.push_back(std::make_unique<sim::DynamixelServoSim>(2, 1020, 2048));
+  servos.push_back(std::make_unique<sim::DynamixelServoSim>(7, 1060, 2048));  // not in the rig
+  servos[1]->raise_hardware_error(0x04);                                      // overheating
+  sim::DynamixelPtyWire wire(std::move(servos));
+  std::vector<ActuatorModel> acts = testing::rotary_axes(3);  // IDs 1, 2, 3; +-30 deg
+  for (auto& a : acts) a.encoding = {ActuatorEncoding::Raw::kInt32, 4096.0 / 360.0, 2048.0};
+  const std::uint64_t writes_before = wire.requests_of(0x03) + wire.requests_of(0x83);
+  const DoctorReport r = diagnose_dynamixel("dxl", wire.device(), 1'000'000, acts, {}, 5);
+  std::printf("%s", r.to_text().c_str());
+  EXPECT_TRUE(has(r, L::kOk, "servo 1 (axis1): XL430-W250, firmware 46, 5/5 PINGs answered"));
+  EXPECT_TRUE(has(r, L::kOk, "servo 1 (axis1): Return Delay Time 500 us; facectl writes 0 us"));
+  EXPECT_TRUE(has(r, L::kOk, "servo 1 (axis1): 12.0 V, 28 deg C"));
+  EXPECT_TRUE(has(r, L::kOk, "servo 2 (axis2): XM430-W350"));
+  EXPECT_TRUE(has(r, L::kProblem, "servo 2 (axis2): Hardware Error Status: overheating"));
+  EXPECT_TRUE(has(r, L::kProblem, "servo 3 (axis3): no answer to 5 PINGs"));
+  EXPECT_TRUE(has(r, L::kWarning, "servo ID 7 answers but is not in the rig"));
+  EXPECT_TRUE(has(r, L::kOk, "3 servo(s) answered a broadcast PING"));
+  EXPECT_TRUE(r.has_problems());
+  // Read-only: no WRITE, no SYNC WRITE reached the servos.
+  EXPECT_EQ(wire.requests_of(0x03) + wire.requests_of(0x83), writes_before);
 }
 
 }  // namespace

@@ -362,3 +362,68 @@ TEST(RigEncoding, AnActuatorWithoutEncodingTakesItsBusDefault) {
 
 }  // namespace
 }  // namespace facectl
+
+namespace facectl {
+namespace {
+
+const std::string kDxl = "type: dynamixel, device: /dev/ttyUSB0, baud: 1000000";
+
+TEST(BusConfig, DynamixelKeysReachTheOptions) {
+  TempFile f(rig(kDxl + ", response_timeout_ms: 4, fault_after_ms: 60, cycle_ms: 8, "
+                        "return_delay_us: 20, watchdog_ms: 200, write_position_limits: false"));
+  const BusConfig b = load_rig_config(f.path(), head().layout).buses.at(0);
+  EXPECT_EQ(b.endpoint, "/dev/ttyUSB0");
+  EXPECT_EQ(b.bitrate, 1000000);
+  EXPECT_DOUBLE_EQ(b.dynamixel.response_timeout_s, 0.004);
+  EXPECT_DOUBLE_EQ(b.dynamixel.fault_after_s, 0.06);
+  EXPECT_DOUBLE_EQ(b.dynamixel.cycle_period_s, 0.008);
+  EXPECT_EQ(b.dynamixel.return_delay_us, 20);
+  EXPECT_EQ(b.dynamixel.bus_watchdog_ms, 200);
+  EXPECT_FALSE(b.dynamixel.write_position_limits);
+}
+
+TEST(BusConfig, BadDynamixelKeysNameTheirPositionKeyExpectedAndFound) {
+  EXPECT_EQ(budget_error(rig("type: dynamixel, device: /dev/ttyUSB0, baud: 250000")),
+            "RIG:4:64: rig.buses[0].baud: expected a rate a DYNAMIXEL X servo runs at: 9600, "
+            "57600, 115200, 1000000, 2000000, 3000000, 4000000 or 4500000, found '250000'");
+  EXPECT_EQ(budget_error(rig(kDxl + ", watchdog_ms: 30")),
+            "RIG:4:86: rig.buses[0].watchdog_ms: expected 0 (off) or a multiple of 20 ms (the "
+            "servo's unit), found '30'");
+  EXPECT_EQ(budget_error(rig(kDxl + ", return_delay_us: 3")),
+            "RIG:4:90: rig.buses[0].return_delay_us: expected an even number of microseconds "
+            "(the unit is 2 us), found '3'");
+  EXPECT_EQ(budget_error(rig(kDxl + ", response_timeout_ms: 50, fault_after_ms: 40")),
+            "RIG:4:114: rig.buses[0].fault_after_ms: expected fault_after_ms above "
+            "response_timeout_ms (50 ms), found 40 ms");
+  EXPECT_EQ(budget_error(rig(kDxl + ", cycle_ms: 20, watchdog_ms: 20")),
+            "RIG:4:100: rig.buses[0].watchdog_ms: expected 0 (off) or at least twice cycle_ms "
+            "(40 ms), found '20'");
+}
+
+TEST(RigEncoding, DynamixelServosTakePulsesOfOneTurn) {
+  // Without an encoding: 4096 pulses a turn, 0 deg at the centre.
+  TempFile f(encoded_rig(kDxl, ""));
+  const RigConfig r = load_rig_config(f.path(), head().layout);
+  EXPECT_EQ(r.actuators.at(0).model.encoding.raw, ActuatorEncoding::Raw::kInt32);
+  EXPECT_DOUBLE_EQ(r.actuators.at(0).model.encoding.scale, 4096.0 / 360.0);
+  EXPECT_DOUBLE_EQ(r.actuators.at(0).model.encoding.offset, 2048.0);
+  const std::string low = encoded_rig(kDxl, "{ raw: int32, scale: 11.377778, offset: 0 }");
+  EXPECT_EQ(budget_error(low),
+            at(low) +
+                ": actuator a1 encoding: expected the hardware range within 0..4095 pulses (one "
+                "turn, position control mode) on DYNAMIXEL bus b0, found position -6 deg "
+                "encoding to -68 pulses");
+  const std::string narrow = encoded_rig(kDxl, "{ raw: uint16, scale: 11.377778, offset: 2048 }");
+  EXPECT_EQ(budget_error(narrow), at(narrow) +
+                                      ": actuator a1 encoding: expected raw int32 on DYNAMIXEL "
+                                      "bus b0 (positions are 4 bytes), found raw uint16");
+  std::vector<BusBudgetResult> results;
+  EXPECT_EQ(budget_error(rig(kDxl, 10), 1000.0, &results), "ok");
+  // Ten servos at 1 Mbit/s: 64 + 24 + 320 bytes, 4.08 ms of the 5 ms cycle.
+  EXPECT_EQ(results.at(0).text,
+            "b0: 10 servos, 408 bytes per I/O cycle = 4.08 ms at 1000000 baud, 82% of the 5 ms "
+            "cycle");
+}
+
+}  // namespace
+}  // namespace facectl

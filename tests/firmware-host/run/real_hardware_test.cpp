@@ -8,10 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "control/clock.hpp"
 #include "control/controller.hpp"
+#include "drivers/protocol/wire_encoding.hpp"
+#include "sim/devices/dynamixel_pty_wire.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "sim/devices/sim_gpio_chip.hpp"
 #include "tests/drivers/can_test_axes.hpp"
@@ -44,6 +48,43 @@ GpioOpener sim_gpio(SimGpioChip*& chip, bool estop_pressed = false) {
   };
 }
 
+// A 1 kHz loop of the controller on real hardware, commanding the jaw.
+struct TickLoop {
+  TickLoop(const ControllerModel& m, RealHardware& hw)
+      : model(m), controller(m, hw.seams, hw.io(), {&mailbox, nullptr, &events}) {}
+
+  // Ticks until done() or `limit`; true if done.
+  template <typename Done>
+  bool run(std::chrono::milliseconds limit, Done done) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto next = t0;
+    while (std::chrono::steady_clock::now() - t0 < limit) {
+      next += 1ms;
+      std::this_thread::sleep_until(next);
+      FaceCommand cmd;
+      cmd.values = model.neutral;
+      cmd.values[model.layout.jaw_pitch()] = jaw_rad;
+      cmd.sequence = ++tick;
+      cmd.stamp_ns = monotonic_ns();
+      mailbox.publish(cmd);
+      TickTiming t;
+      t.tick = tick;
+      t.now_ns = cmd.stamp_ns;
+      t.dt_s = 0.001;
+      controller.tick(t);
+      if (done()) return true;
+    }
+    return false;
+  }
+
+  const ControllerModel& model;
+  LatestValueMailbox<FaceCommand> mailbox;
+  SpscRing<TransitionEvent> events{64};
+  Controller controller;
+  double jaw_rad = 0.1;
+  std::uint64_t tick = 0;
+};
+
 TEST(RealHardware, AModbusTcpRigRunsThroughTheConfigAndTheGpioEstopStopsIt) {
   sim::ModbusActuatorBoard board(1, three_channels());
   auto server = sim::ModbusBoardServer::tcp({&board});
@@ -57,32 +98,9 @@ TEST(RealHardware, AModbusTcpRigRunsThroughTheConfigAndTheGpioEstopStopsIt) {
   EXPECT_EQ(hw->notes.at(0),
             "modbus0: 1 Modbus boards answer at 127.0.0.1:" + std::to_string(server->port()));
 
-  LatestValueMailbox<FaceCommand> mailbox;
-  SpscRing<TransitionEvent> events(64);
-  const ControllerModel& model = cfg.built.model;
-  Controller controller(model, hw->seams, hw->io(), {&mailbox, nullptr, &events});
-  std::uint64_t tick = 0;
-  auto run = [&](std::chrono::milliseconds limit, auto done) {
-    const auto t0 = std::chrono::steady_clock::now();
-    auto next = t0;
-    while (std::chrono::steady_clock::now() - t0 < limit) {
-      next += 1ms;
-      std::this_thread::sleep_until(next);
-      FaceCommand cmd;
-      cmd.values = model.neutral;
-      cmd.values[model.layout.jaw_pitch()] = 0.1;  // rad
-      cmd.sequence = ++tick;
-      cmd.stamp_ns = monotonic_ns();
-      mailbox.publish(cmd);
-      TickTiming t;
-      t.tick = tick;
-      t.now_ns = cmd.stamp_ns;
-      t.dt_s = 0.001;
-      controller.tick(t);
-      if (done()) return true;
-    }
-    return false;
-  };
+  TickLoop loop(cfg.built.model, *hw);
+  Controller& controller = loop.controller;
+  auto run = [&](std::chrono::milliseconds limit, auto done) { return loop.run(limit, done); };
   EXPECT_FALSE(hw->io().estop_active()) << "released before the run starts";
   controller.request_enable();
   ASSERT_TRUE(run(5000ms, [&] { return controller.state() == SafetyState::kRunning; }))
@@ -225,6 +243,73 @@ TEST(RealHardware, RealHardwareWithoutASafetyIoBlockIsRefused) {
                   ": hardware: real: expected a safety_io block (the e-stop input and the "
                   "power-enable output), found none; nothing is enabled without an e-stop");
   }
+}
+
+// The shipped DYNAMIXEL hobby rig, its port pointed at ten simulated XL430s
+// standing at their actuators' rest: set up, enabled bumplessly, the jaw
+// commanded through its four-bar linkage, and the e-stop drops the torque.
+TEST(RealHardware, TheShippedDynamixelRigDrivesSimulatedServos) {
+  std::ifstream in(std::string(FACECTL_SOURCE_DIR) + "/config/rigs/hobby_dynamixel.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto rig_on = [&](const std::string& device) {
+    std::string r = text.str();
+    const std::string from = "device: /dev/ttyUSB0";
+    r.replace(r.find(from), from.size(), "device: " + device);
+    return r;
+  };
+  // Where each servo stands: its actuator's rest, in its pulses.
+  std::vector<std::unique_ptr<sim::DynamixelServoSim>> servos;
+  {
+    testing::TempFile rig(rig_on("/dev/null"));
+    testing::TempFile runtime(testing::ModbusTcpRig::runtime_text(rig.path(), "sim"));
+    const LoadedConfig cfg = load_config(runtime.path());
+    for (const ActuatorModel& a : cfg.built.model.actuators) {
+      const WireEncoding enc(a.kind, a.encoding);
+      servos.push_back(
+          std::make_unique<sim::DynamixelServoSim>(static_cast<std::uint8_t>(a.address), 1060,
+                                                   static_cast<std::int32_t>(enc.encode(a.rest))));
+    }
+  }
+  ASSERT_EQ(servos.size(), 10u);
+  sim::DynamixelPtyWire wire(std::move(servos));
+  testing::TempFile rig(rig_on(wire.device()));
+  testing::TempFile runtime(testing::ModbusTcpRig::runtime_text(rig.path(), "sim"));
+  const LoadedConfig cfg = load_config(runtime.path());
+  SimGpioChip* chip = nullptr;
+  auto hw = make_real_hardware(cfg.built.model, cfg, sim_gpio(chip));
+  EXPECT_EQ(hw->notes.at(0), "servos: 10 DYNAMIXEL servos set up at " + wire.device());
+
+  TickLoop loop(cfg.built.model, *hw);
+  loop.jaw_rad = 0.0;
+  Controller& controller = loop.controller;
+  auto run = [&](std::chrono::milliseconds limit, auto done) { return loop.run(limit, done); };
+  std::int32_t rest_goal = 0;
+  wire.with_servo(1, [&](sim::DynamixelServoSim& s) { rest_goal = s.present(); });
+  controller.request_enable();
+  ASSERT_TRUE(run(5000ms, [&] { return controller.state() == SafetyState::kRunning; }))
+      << to_string(controller.state()) << " " << hw->seams.at(0)->status().reason;
+  bool torque = false;
+  wire.with_servo(1, [&](sim::DynamixelServoSim& s) { torque = s.torque(); });
+  EXPECT_TRUE(torque);
+  // Open the jaw 10 deg: the horn turns through the linkage, away from rest.
+  loop.jaw_rad = 10.0 * 3.14159265358979 / 180.0;
+  std::int32_t goal = rest_goal;
+  ASSERT_TRUE(run(3000ms,
+                  [&] {
+                    wire.with_servo(1, [&](sim::DynamixelServoSim& s) { goal = s.goal(); });
+                    return std::abs(goal - rest_goal) > 100;
+                  }))
+      << goal << " vs rest " << rest_goal;
+  EXPECT_EQ(controller.state(), SafetyState::kRunning) << hw->seams.at(0)->status().reason;
+
+  chip->set_physical(3, true);  // e-stop pressed
+  ASSERT_TRUE(run(100ms, [&] { return controller.state() == SafetyState::kEstop; }));
+  EXPECT_FALSE(chip->physical(4)) << "power dropped in ESTOP";
+  ASSERT_TRUE(run(500ms, [&] {
+    wire.with_servo(1, [&](sim::DynamixelServoSim& s) { torque = s.torque(); });
+    return !torque;
+  })) << "torque off in ESTOP";
 }
 
 }  // namespace

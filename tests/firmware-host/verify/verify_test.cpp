@@ -265,7 +265,8 @@ TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
             std::string::npos)
       << found[0]["message"];
   // The shipped rigs' servos can do what their limits ask.
-  for (const char* shipped : {"/config/rigs/default.yaml", "/config/rigs/hobby.yaml"}) {
+  for (const char* shipped : {"/config/rigs/default.yaml", "/config/rigs/hobby.yaml",
+                              "/config/rigs/hobby_dynamixel.yaml"}) {
     const auto proof = verify::prove(load_rig(kSource + shipped));
     const auto* f = find_failure(proof.findings, "capability");
     EXPECT_EQ(f, nullptr) << shipped << ": " << f->subject << ": " << f->message;

@@ -1,0 +1,48 @@
+#include "drivers/dynamixel/dynamixel_link.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facectl {
+namespace {
+
+constexpr std::size_t kStatusOverhead = 11;  // header, id, length, 0x55, error, CRC
+
+std::int64_t seconds_ns(double s) {
+  return static_cast<std::int64_t>(std::llround(s * 1e9));
+}
+
+}  // namespace
+
+DynamixelLink::DynamixelLink(const std::string& device, long baud)
+    : port_(device, baud), rx_(4096), params_(1024) {}
+
+bool DynamixelLink::send(std::span<const std::uint8_t> packet, std::int64_t timeout_ns) {
+  rx_len_ = 0;
+  port_.discard_input();  // a late reply must not answer this request
+  return port_.write_all(packet, timeout_ns + seconds_ns(wire_s(packet.size())));
+}
+
+DynamixelLink::Reply DynamixelLink::request(std::uint8_t id, std::span<const std::uint8_t> packet,
+                                            std::span<std::uint8_t> data, double response_s,
+                                            double return_delay_s, std::uint8_t* error) {
+  if (!send(packet, seconds_ns(response_s))) return Reply::kLost;
+  const double wait_s =
+      wire_s(packet.size() + kStatusOverhead + data.size()) + return_delay_s + response_s;
+  Reply reply = Reply::kNoReply;
+  const int got =
+      receive(1, monotonic_ns() + seconds_ns(wait_s),
+              [&](std::uint8_t from, std::uint8_t err, std::span<const std::uint8_t> p) {
+                if (error != nullptr) *error = err;
+                if (from != id || (err & 0x7F) != 0 || p.size() != data.size()) {
+                  ++counters_.bad_packets;
+                  reply = Reply::kBad;
+                  return;
+                }
+                std::copy(p.begin(), p.end(), data.begin());
+                reply = Reply::kOk;
+              });
+  return got < 0 ? Reply::kLost : reply;
+}
+
+}  // namespace facectl
