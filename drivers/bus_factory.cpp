@@ -6,6 +6,8 @@
 #include "drivers/can/custom_can_bus.hpp"
 #include "drivers/can/socketcan_transport.hpp"
 #include "drivers/dynamixel/dynamixel_bus.hpp"
+#include "drivers/i2c/i2c_dev_transport.hpp"
+#include "drivers/i2c/pca9685_bus.hpp"
 
 namespace facectl {
 
@@ -21,6 +23,17 @@ RealBus make_bus(const BusSpec& spec, const std::vector<ActuatorModel>& actuator
   if (spec.type == "dynamixel") {
     out.bus = std::make_unique<DynamixelBus>(spec.name, spec.endpoint, spec.bitrate, actuators,
                                              initial, spec.dynamixel);
+    return out;
+  }
+  if (spec.type == "pca9685") {
+    std::unique_ptr<I2cTransport> transport;
+    try {
+      transport = std::make_unique<I2cDevTransport>(spec.endpoint);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error("bus " + spec.name + ": " + e.what());
+    }
+    out.bus = std::make_unique<Pca9685Bus>(spec.name, std::move(transport), actuators, initial,
+                                           spec.pca9685);
     return out;
   }
   if (spec.type != "can") {

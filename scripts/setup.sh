@@ -8,6 +8,8 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libmodbus-dev libgpiod-dev libhidapi-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libpng-dev libglpk-dev
+  # PCA9685 PWM boards over i2c-dev: libi2c's SMBus calls (<i2c/smbus.h>).
+  libi2c-dev
   # `facectl serve`'s HTTP server and its HTTPS (OpenSSL), the test that
   # checks it against docs/openapi.yaml (tests/firmware-host/serve/
   # openapi_conformance_test.py), and openssl, which makes the HTTPS test's

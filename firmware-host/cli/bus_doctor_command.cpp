@@ -7,6 +7,8 @@
 
 #include "drivers/bus_doctor.hpp"
 #include "drivers/can/socketcan_transport.hpp"
+#include "drivers/i2c/i2c_dev_transport.hpp"
+#include "drivers/i2c/pca9685_doctor.hpp"
 #include "firmware-host/config/head_config.hpp"
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/config/rig_config.hpp"
@@ -21,6 +23,21 @@ using Level = DoctorFinding::Level;
 DoctorReport diagnose(const BusConfig& bus, const std::vector<ActuatorModel>& actuators,
                       const BusBudgetResult& budget, const BusDoctorOptions& options,
                       double tick_hz) {
+  if (bus.is_pca9685()) {
+    DoctorReport r;
+    try {
+      I2cDevTransport transport(bus.endpoint);
+      r = diagnose_pca9685(bus.name, transport, actuators, bus.pca9685, options.samples);
+    } catch (const std::runtime_error& e) {
+      r.bus = bus.name + " (PCA9685 on " + bus.endpoint + ")";
+      r.findings.push_back({Level::kProblem, std::string("cannot open: ") + e.what()});
+    }
+    r.findings.insert(
+        r.findings.begin(),
+        {budget.verdict == BusBudgetResult::Verdict::kOk ? Level::kOk : Level::kWarning,
+         "wire time: " + budget.text});
+    return r;
+  }
   if (bus.is_modbus()) {
     DoctorReport r =
         diagnose_modbus(bus.name, ModbusEndpoint::parse(bus.type, bus.endpoint, bus.bitrate),

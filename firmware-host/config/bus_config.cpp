@@ -175,6 +175,29 @@ void parse_dynamixel(const ConfigNode& node, BusConfig& bus) {
   }
 }
 
+// ---- PCA9685 PWM boards over i2c-dev (docs/CONFIG.md, "PCA9685 buses").
+void parse_pca9685(const ConfigNode& node, BusConfig& bus) {
+  node.expect_keys({"name", "type", "device", "boards", "pwm_hz", "i2c_khz", "cycle_ms"});
+  bus.endpoint = node["device"].string();
+  if (bus.endpoint.empty()) node["device"].fail("an i2c-dev device such as /dev/i2c-1", "\"\"");
+  Pca9685Options& o = bus.pca9685;
+  if (auto n = node.get("boards")) {
+    o.boards.clear();
+    for (const ConfigNode& b : n->items()) {
+      const int address = static_cast<int>(b.integer_in(0x40, 0x7F));
+      for (const int seen : o.boards) {
+        if (seen == address) b.fail("a board address not listed before", std::to_string(address));
+      }
+      o.boards.push_back(address);
+    }
+    if (o.boards.empty()) n->fail("at least one board address (0x40..0x7F)", "an empty list");
+  }
+  // The data sheet's range with the internal 25 MHz oscillator.
+  if (auto n = node.get("pwm_hz")) o.pwm_hz = n->number_in(24.0, 1526.0);
+  if (auto n = node.get("i2c_khz")) o.i2c_hz = n->integer_in(10, 1000) * 1000;
+  if (auto n = node.get("cycle_ms")) o.cycle_period_s = n->number_in(1.0, 1000.0) * 1e-3;
+}
+
 }  // namespace
 
 BusConfig parse_bus_config(const ConfigNode& node) {
@@ -212,8 +235,10 @@ BusConfig parse_bus_config(const ConfigNode& node) {
                       "cycle_ms", "reconnect_ms", "return_delay_us", "watchdog_ms",
                       "write_position_limits"});
     parse_dynamixel(node, bus);
+  } else if (bus.type == "pca9685") {
+    parse_pca9685(node, bus);
   } else {
-    node["type"].fail("one of: can, modbus_rtu, modbus_tcp, dynamixel");
+    node["type"].fail("one of: can, modbus_rtu, modbus_tcp, dynamixel, pca9685");
   }
   return bus;
 }

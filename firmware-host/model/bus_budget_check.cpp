@@ -7,6 +7,8 @@
 #include "drivers/protocol/dynamixel_x_table.hpp"
 #include "drivers/protocol/modbus_register_map.hpp"
 #include "drivers/protocol/modbus_rtu_wire.hpp"
+#include "drivers/protocol/pca9685_registers.hpp"
+#include "drivers/protocol/pca9685_wire.hpp"
 #include "drivers/serial/serial_port.hpp"
 
 namespace facectl {
@@ -109,6 +111,39 @@ BusBudgetResult budget_dynamixel(const BusConfig& bus,
   return r;
 }
 
+// PCA9685: the I2C clocks of one I/O cycle (pca9685_cycle_bits) against the
+// cycle, one PWM period unless cycle_ms says otherwise.
+BusBudgetResult budget_pca9685(const BusConfig& bus,
+                               const std::vector<const ActuatorConfig*>& acts) {
+  BusBudgetResult r;
+  const int boards = static_cast<int>(bus.pca9685.boards.size());
+  std::vector<int> addresses;
+  for (const ActuatorConfig* a : acts) {
+    if (a->model.address < 1 || a->model.address > pca9685::kChannels * boards) {
+      throw ConfigError(a->where + ": rig.actuators '" + a->model.name + "'.address: expected 1.." +
+                        std::to_string(pca9685::kChannels * boards) + " on PCA9685 bus " +
+                        bus.name + " (16 channels per listed board), found " +
+                        std::to_string(a->model.address));
+    }
+    addresses.push_back(a->model.address);
+  }
+  const double clocks = pca9685_cycle_bits(addresses, boards).total;
+  const double wire_s = clocks / static_cast<double>(bus.pca9685.i2c_hz);
+  const double hz = pca9685::frequency_of(pca9685::prescale_for(bus.pca9685.pwm_hz));
+  const double period_s = pca9685_cycle_period_s(bus.pca9685);
+  r.load = wire_s / period_s;
+  r.verdict = r.load > 1.0 ? BusBudgetResult::Verdict::kWarning : BusBudgetResult::Verdict::kOk;
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "%s: %d PCA9685 boards, %.0f I2C clocks per I/O cycle = %.2f ms at %ld kHz, "
+                "%.0f%% of the %.3g ms cycle (PWM %.2f Hz)%s",
+                bus.name.c_str(), boards, clocks, wire_s * 1e3, bus.pca9685.i2c_hz / 1000,
+                100.0 * r.load, period_s * 1e3, hz,
+                r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)" : "");
+  r.text = buf;
+  return r;
+}
+
 }  // namespace
 
 std::vector<BusBudgetResult> check_bus_budgets(const RigConfig& rig, double tick_hz) {
@@ -120,6 +155,7 @@ std::vector<BusBudgetResult> check_bus_budgets(const RigConfig& rig, double tick
     }
     BusBudgetResult r = bus.is_can()         ? budget_can(bus, acts, tick_hz)
                         : bus.is_dynamixel() ? budget_dynamixel(bus, acts)
+                        : bus.is_pca9685()   ? budget_pca9685(bus, acts)
                                              : budget_modbus(bus, acts);
     r.bus = bus.name;
     r.where = bus.where;

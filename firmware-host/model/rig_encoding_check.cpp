@@ -8,6 +8,7 @@
 #include "control/units.hpp"
 #include "drivers/protocol/cia402_counts.hpp"
 #include "drivers/protocol/custom_can_frames.hpp"
+#include "drivers/protocol/pca9685_registers.hpp"
 #include "drivers/protocol/wire_encoding.hpp"
 
 namespace facectl {
@@ -64,6 +65,24 @@ void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
     refuse(actuator,
            "raw int16 or uint16 on Modbus bus " + bus.name + " (one register per channel)",
            "raw int32");
+  }
+  if (bus.is_pca9685()) {
+    // The raw value is the pulse in µs; it must fit inside one PWM period.
+    if (!actuator.has_encoding || e.raw != ActuatorEncoding::Raw::kUint16) {
+      refuse(actuator, "raw uint16 on PCA9685 bus " + bus.name + " (the pulse width in µs)",
+             actuator.has_encoding ? std::string("raw ") + raw : "no encoding");
+    }
+    const double period_us = 1e6 / pca9685::frequency_of(pca9685::prescale_for(bus.pca9685.pwm_hz));
+    for (const double si :
+         {actuator.model.limits.position_min, actuator.model.limits.position_max}) {
+      const double us = std::nearbyint(si / si_per_yaml(actuator.model.kind) * e.scale + e.offset);
+      if (us <= 0.0 || us >= period_us) {
+        refuse(actuator,
+               "pulses inside the " + number(period_us) + " µs PWM period of bus " + bus.name,
+               "position " + number(si / si_per_yaml(actuator.model.kind)) + " " +
+                   yaml_unit(actuator.model.kind) + " giving " + number(us) + " µs");
+      }
+    }
   }
   if (bus.is_can() && !bus.is_cia402()) {
     if (bus.can.width == custom_can::Width::kInt16 && e.raw == ActuatorEncoding::Raw::kInt32) {

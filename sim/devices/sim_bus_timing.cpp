@@ -7,6 +7,7 @@
 #include "drivers/protocol/dynamixel_x_table.hpp"
 #include "drivers/protocol/modbus_register_map.hpp"
 #include "drivers/protocol/modbus_rtu_wire.hpp"
+#include "drivers/protocol/pca9685_wire.hpp"
 
 namespace facectl {
 namespace {
@@ -66,12 +67,28 @@ SimBusTiming dynamixel_timing(const BusSpec& bus, std::span<const int> addresses
   return t;
 }
 
+// PCA9685: a channel's pulse changes when its board's last block write ends;
+// boards are served in list order.
+SimBusTiming pca9685_timing(const BusSpec& bus, std::span<const int> addresses) {
+  SimBusTiming t;
+  const int boards = static_cast<int>(bus.pca9685.boards.size());
+  const Pca9685CycleBits bits = pca9685_cycle_bits(addresses, boards);
+  const double clock_s = 1.0 / static_cast<double>(bus.pca9685.i2c_hz);
+  for (int a : addresses) {
+    t.arrival_s.push_back(bits.written.at(pca9685_place(a, boards).board) * clock_s);
+  }
+  t.timing.cycle_time_s = bits.total * clock_s;
+  t.timing.load = t.timing.cycle_time_s / pca9685_cycle_period_s(bus.pca9685);
+  return t;
+}
+
 }  // namespace
 
 SimBusTiming sim_bus_timing(const BusSpec& bus, std::span<const int> addresses, double tick_hz) {
   if (bus.type == "can") return can_timing(bus, addresses, tick_hz);
   if (bus.type == "modbus_rtu") return rtu_timing(bus, addresses);
   if (bus.type == "dynamixel") return dynamixel_timing(bus, addresses);
+  if (bus.type == "pca9685") return pca9685_timing(bus, addresses);
   SimBusTiming t;  // modbus_tcp: the network's latency; its load is not modelled
   t.arrival_s.assign(addresses.size(), bus.modbus.network_latency_s);
   t.timing.cycle_time_s = bus.modbus.network_latency_s;

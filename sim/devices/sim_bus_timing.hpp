@@ -19,7 +19,9 @@ struct BusTiming {
 //   CiA 402: the SYNC after every drive's RPDO (the drives latch on SYNC);
 // - Modbus RTU: the end of the board's write request and its 3.5-character
 //   silence, boards served in unit order, each a write and a read;
-// - Modbus TCP: the configured network latency.
+// - Modbus TCP: the configured network latency;
+// - PCA9685: the end of the board's last LEDn block write at the bus's
+//   i2c_khz, boards served in list order (pca9685_cycle_bits).
 struct SimBusTiming {
   BusTiming timing;
   std::vector<double> arrival_s;  // per actuator, in the order of `addresses`

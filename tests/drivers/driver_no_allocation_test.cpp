@@ -12,12 +12,14 @@
 #include "drivers/can/cia402_bus.hpp"
 #include "drivers/can/custom_can_bus.hpp"
 #include "drivers/dynamixel/dynamixel_bus.hpp"
+#include "drivers/i2c/pca9685_bus.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
 #include "sim/devices/dynamixel_pty_wire.hpp"
 #include "sim/devices/memory_can_link.hpp"
+#include "sim/devices/memory_i2c_bus.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "tests/drivers/can_test_axes.hpp"
 #include "tests/support/allocation_counter.hpp"
@@ -158,6 +160,35 @@ TEST(DriverNoAllocation, DynamixelBusAllocatesNothingInTheTick) {
   }
   EXPECT_GT(wire.requests_of(0x83), 20u) << "sync writes of the goals";
   EXPECT_TRUE(bus.status().fault) << "servo 2 muted";
+  EXPECT_EQ(total, 0);
+}
+
+TEST(DriverNoAllocation, Pca9685BusAllocatesNothingInTheTick) {
+  auto i2c = std::make_unique<sim::MemoryI2cBus>();
+  i2c->attach(0x40);  // 0x41 stays silent: a fault in the status
+  std::vector<ActuatorModel> acts = testing::rotary_axes(4);
+  for (auto& a : acts) a.encoding = {ActuatorEncoding::Raw::kUint16, 10.0, 1500.0};
+  acts[3].address = 17;
+  Pca9685Options o;
+  o.boards = {0x40, 0x41};
+  o.cycle_period_s = 0.001;
+  Pca9685Bus bus("pwm0", std::move(i2c), acts, std::vector<double>(4, 0.0), o);
+  std::vector<double> cmd(4, 2 * kDeg), meas(4);
+  std::array<std::uint8_t, 4> flags{1, 0, 1, 1};
+  long total = 0;
+  for (int k = 0; k < 300; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    total += allocations_in([&] {
+      if (k == 1) bus.set_enabled(true);
+      if (k == 100) bus.set_actuators_enabled(flags);
+      bus.read({0, 0.001}, meas);
+      bus.write({0, 0.001}, cmd);
+      (void)bus.status();
+      if (k == 299) bus.set_enabled(false);
+    });
+  }
+  EXPECT_GT(bus.status().frames_sent, 50u);
+  EXPECT_TRUE(bus.status().fault);
   EXPECT_EQ(total, 0);
 }
 

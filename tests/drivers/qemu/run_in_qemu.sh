@@ -1,18 +1,21 @@
 #!/usr/bin/env bash
-# Runs facectl's SocketCAN, HID, MIDI and audio tests inside a QEMU guest,
-# because this machine's kernel has neither CAN, uhid nor sound. The guest is Debian's own kernel
+# Runs facectl's SocketCAN, HID, MIDI, audio and I2C tests inside a QEMU
+# guest, because this machine's kernel has neither CAN, uhid, sound nor
+# i2c-stub. The guest is Debian's own kernel
 # (linux-image-amd64) under software emulation (-accel tcg) with an initramfs
 # holding busybox, the guest test binary and its libraries (hidapi, libudev),
 # can-utils (candump, cansend), iproute2's ip, alsa-utils' aplaymidi with
 # ALSA's configuration, and the modules can, can-raw, can-dev, vcan, hid,
 # hid-generic, uhid, and soundcore, snd, snd-timer, snd-pcm, snd-aloop (the
-# loopback sound card), snd-seq-device and snd-seq.
+# loopback sound card), snd-seq-device and snd-seq, and i2c-dev and i2c-stub
+# (an SMBus adapter with register files at 0x40 and 0x41).
 #
 # Inside: vcan0 is created, candump records the wire, the gtest binary runs
 # the real CAN buses against simulated drives and boards and a virtual uhid
 # gamepad against the hidapi reader, MidiInput against aplaymidi playing
 # midi/cc_and_notes.mid and AudioPlayback into the loopback card, captured
-# at its other end; and the recorded frames are checked for
+# at its other end, Pca9685Bus on the i2c-stub adapter through i2c-dev;
+# and the recorded frames are checked for
 # the driver's own, byte for byte.
 #
 # With FACECTL_BINARY and HEAD_YAML, the guest also holds a stripped
@@ -58,6 +61,11 @@ modules="can can-raw can-dev vcan hid hid-generic uhid soundcore snd snd-timer s
 for m in $modules; do
   cp "$(modinfo -k "$kver" -n "$m")" "$root/lib/modules/$m.ko"
 done
+# PCA9685 over i2c-dev: i2c-dev and the SMBus stub adapter (neither depends
+# on another module), loaded with two chips at 0x40 and 0x41 in the INIT.
+for m in i2c-dev i2c-stub; do
+  cp "$(modinfo -k "$kver" -n "$m")" "$root/lib/modules/$m.ko"
+done
 guest_test=$(basename "$test_bin")
 if [ -n "$facectl_bin" ]; then
   copy_with_libs "$facectl_bin"
@@ -77,6 +85,8 @@ echo "FACECTL-QEMU: kernel \$(uname -r)"
 for m in $modules; do
   insmod /lib/modules/\$m.ko && echo "FACECTL-QEMU: loaded \$m" || echo "FACECTL-QEMU: insmod \$m FAILED"
 done
+insmod /lib/modules/i2c-dev.ko && echo "FACECTL-QEMU: loaded i2c-dev" || echo "FACECTL-QEMU: insmod i2c-dev FAILED"
+insmod /lib/modules/i2c-stub.ko chip_addr=0x40,0x41 && echo "FACECTL-QEMU: loaded i2c-stub chip_addr=0x40,0x41 (\$(cat /sys/class/i2c-adapter/*/name))" || echo "FACECTL-QEMU: insmod i2c-stub FAILED"
 /sbin/iproute2-ip link add dev vcan0 type vcan
 /sbin/iproute2-ip link set up vcan0
 /sbin/iproute2-ip link add dev vcan1 type vcan
@@ -131,7 +141,7 @@ timeout 900 qemu-system-x86_64 -accel tcg -m 512 -smp 2 -nographic -no-reboot \
 echo "QEMU ran $(( $(date +%s) - start )) s; console log: $work/console.log"
 result=$(grep -a "FACECTL-QEMU-RESULT" "$work/console.log" | tr -d '\r' || true)
 if [ "$result" = "FACECTL-QEMU-RESULT: tests=0 candump=PASS" ]; then
-  echo "PASS: SocketCAN tests on vcan0, the hidraw gamepad test on uhid, the ALSA sequencer MIDI test and the loopback audio test in a QEMU guest; candump saw the driver's frames"
+  echo "PASS: SocketCAN tests on vcan0, the hidraw gamepad test on uhid, the ALSA sequencer MIDI test, the loopback audio test and the PCA9685 test on i2c-stub in a QEMU guest; candump saw the driver's frames"
   exit 0
 fi
 echo "FAIL: ${result:-the guest did not report a result}"

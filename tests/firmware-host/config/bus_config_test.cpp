@@ -360,6 +360,106 @@ TEST(RigEncoding, AnActuatorWithoutEncodingTakesItsBusDefault) {
   EXPECT_EQ(load_rig_config(i16.path(), head().layout).actuators[0].model.encoding.scale, 100.0);
 }
 
+// ---- PCA9685 buses (docs/CONFIG.md, "PCA9685").
+
+const std::string kPca = "type: pca9685, device: /dev/i2c-1";
+const std::string kServoUs = "{ raw: uint16, scale: 10, offset: 1500 }";
+
+// `count` servos on a PCA9685 bus, addresses 1..count, pulses 1440..1700 µs.
+std::string pca_rig(const std::string& bus, int count) {
+  std::string s = "rig:\n  name: t\n  buses:\n    - { name: b0, " + bus + " }\n  actuators:\n";
+  for (int i = 1; i <= count; ++i) {
+    s += "    - { name: a" + std::to_string(i) +
+         ", kind: rotary, bus: b0, address: " + std::to_string(i) +
+         ", position_deg: { min: -6, max: 20 }, max_velocity_deg_s: 100, "
+         "max_acceleration_deg_s2: 1000, rest_deg: 0, map: { terms: { jaw_pitch_deg: 1 } }, "
+         "encoding: " +
+         kServoUs + " }\n";
+  }
+  return s;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(BusConfig, Pca9685KeysReachTheOptions) {
+  TempFile f(pca_rig(kPca + ", boards: [0x40, 0x41], pwm_hz: 60, i2c_khz: 400, cycle_ms: 10", 1));
+  const BusConfig b = load_rig_config(f.path(), head().layout).buses.at(0);
+  EXPECT_TRUE(b.is_pca9685());
+  EXPECT_EQ(b.endpoint, "/dev/i2c-1");
+  EXPECT_EQ(b.pca9685.boards, (std::vector<int>{0x40, 0x41}));
+  EXPECT_DOUBLE_EQ(b.pca9685.pwm_hz, 60.0);
+  EXPECT_EQ(b.pca9685.i2c_hz, 400'000);
+  EXPECT_DOUBLE_EQ(b.pca9685.cycle_period_s, 0.010);
+  TempFile g(pca_rig(kPca, 1));  // defaults
+  const BusConfig d = load_rig_config(g.path(), head().layout).buses.at(0);
+  EXPECT_EQ(d.pca9685.boards, (std::vector<int>{0x40}));
+  EXPECT_DOUBLE_EQ(d.pca9685.pwm_hz, 50.0);
+  EXPECT_EQ(d.pca9685.i2c_hz, 100'000);
+}
+
+TEST(BusConfig, BadPca9685KeysNameTheirPositionKeyExpectedAndFound) {
+  const auto err = [](const std::string& bus) { return budget_error(pca_rig(bus, 1)); };
+  std::string e = err(kPca + ", boards: [0x40, 0x40]");
+  EXPECT_TRUE(contains(e, "RIG:4:") && contains(e,
+                                                "rig.buses[0].boards[1]: expected a board "
+                                                "address not listed before, found 64"))
+      << e;
+  e = err(kPca + ", boards: [0x20]");
+  EXPECT_TRUE(contains(e, "rig.buses[0].boards[0]: expected an integer in [64, 127]")) << e;
+  e = err(kPca + ", boards: []");
+  EXPECT_TRUE(contains(e, "rig.buses[0].boards: expected at least one board address")) << e;
+  e = err(kPca + ", pwm_hz: 2000");
+  EXPECT_TRUE(contains(e, "rig.buses[0].pwm_hz: expected a number in [24, 1526], found '2000'"))
+      << e;
+  e = err(kPca + ", baud: 115200");
+  EXPECT_TRUE(contains(e,
+                       "rig.buses[0].baud: expected one of: name, type, device, boards, "
+                       "pwm_hz, i2c_khz, cycle_ms, found unknown key 'baud'"))
+      << e;
+  e = budget_error(pca_rig("type: pca9685", 1));
+  EXPECT_TRUE(contains(e, "rig.buses[0]") && contains(e, "device")) << e;
+}
+
+TEST(BusBudget, Pca9685ClocksPerCycleAt100And400Khz) {
+  // 10 channels on one board: writes of 8 and 2 channels (308 + 92 clocks)
+  // and the MODE1 read (39): 439 clocks in a 1 / 50.03 Hz cycle.
+  std::vector<BusBudgetResult> r;
+  EXPECT_EQ(budget_error(pca_rig(kPca, 10), 1000.0, &r), "ok");
+  EXPECT_TRUE(contains(r.at(0).text, "439 I2C clocks per I/O cycle = 4.39 ms at 100 kHz, 22%"))
+      << r.at(0).text;
+  EXPECT_EQ(budget_error(pca_rig(kPca + ", i2c_khz: 400", 10), 1000.0, &r), "ok");
+  EXPECT_TRUE(contains(r.at(0).text, "= 1.10 ms at 400 kHz, 5%")) << r.at(0).text;
+  // Two full boards at 100 kHz in a 5 ms cycle cannot keep up: a warning.
+  const std::string busy =
+      budget_error(pca_rig(kPca + ", boards: [0x40, 0x41], cycle_ms: 5", 32), 1000.0, &r);
+  EXPECT_TRUE(contains(busy, "warning: b0: 2 PCA9685 boards, 1310 I2C clocks")) << busy;
+  // Address 17 needs a second board.
+  const std::string far = budget_error(pca_rig(kPca, 17));
+  EXPECT_TRUE(contains(far, "rig.actuators 'a17'.address: expected 1..16 on PCA9685 bus b0"))
+      << far;
+}
+
+TEST(RigEncoding, Pca9685TakesAMicrosecondPulseInsideThePeriod) {
+  const std::string none = encoded_rig(kPca, "");
+  EXPECT_TRUE(contains(budget_error(none),
+                       "expected raw uint16 on PCA9685 bus b0 (the pulse "
+                       "width in µs), found no encoding"))
+      << budget_error(none);
+  const std::string i16 = encoded_rig(kPca, "{ raw: int16, scale: 10, offset: 1500 }");
+  EXPECT_EQ(budget_error(i16), at(i16) +
+                                   ": actuator a1 encoding: expected raw uint16 on PCA9685 bus b0 "
+                                   "(the pulse width in µs), found raw int16");
+  EXPECT_EQ(budget_error(encoded_rig(kPca, kServoUs)), "ok");
+  // pwm_hz 1000 runs at 1017.25 Hz (PRE_SCALE 5): 983 µs, too short for 1440..1700 µs.
+  const std::string fast = encoded_rig(kPca + ", pwm_hz: 1000", kServoUs);
+  EXPECT_TRUE(contains(budget_error(fast),
+                       "expected pulses inside the 983.04 µs PWM period of "
+                       "bus b0, found position -6 deg giving 1440 µs"))
+      << budget_error(fast);
+}
+
 }  // namespace
 }  // namespace facectl
 

@@ -4,6 +4,7 @@
 // (sampling never finds a command outside it).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -14,6 +15,7 @@
 #include "tests/support/edited_rig.hpp"
 #include "tests/support/sample_count.hpp"
 #include "tests/support/temp_file.hpp"
+#include "tests/support/text_files.hpp"
 
 namespace facectl {
 namespace {
@@ -89,9 +91,11 @@ TEST(Verify, PassesBothShippedRigs) {
   o.rig = kSource + "/config/rigs/default.yaml";
   o.shows = {kSource + "/config/shows/demo.yaml"};
   EXPECT_EQ(verify_command(o), 0);
-  o.rig = kSource + "/config/rigs/hobby.yaml";
   o.shows.clear();
-  EXPECT_EQ(verify_command(o), 0);
+  for (const char* hobby_rig : {"hobby", "hobby_pca9685"}) {
+    o.rig = kSource + "/config/rigs/" + hobby_rig + ".yaml";
+    EXPECT_EQ(verify_command(o), 0) << hobby_rig;
+  }
 }
 
 TEST(Verify, ARigWithActuatorCoupledLimitsPassesItsAdversarialSearch) {
@@ -264,13 +268,28 @@ TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
                 "max_acceleration_deg_s2 4000 deg/s^2 > the servo's 400 deg/s^2"),
             std::string::npos)
       << found[0]["message"];
-  // The shipped rigs' servos can do what their limits ask.
-  for (const char* shipped : {"/config/rigs/default.yaml", "/config/rigs/hobby.yaml",
-                              "/config/rigs/hobby_dynamixel.yaml"}) {
-    const auto proof = verify::prove(load_rig(kSource + shipped));
+  // Every shipped rig's servos can do what its limits ask.
+  int shipped = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kSource + "/config/rigs")) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++shipped;
+    const auto proof = verify::prove(load_rig(entry.path().string()));
     const auto* f = find_failure(proof.findings, "capability");
-    EXPECT_EQ(f, nullptr) << shipped << ": " << f->subject << ": " << f->message;
+    EXPECT_EQ(f, nullptr) << entry.path() << ": " << f->subject << ": " << f->message;
   }
+  EXPECT_GE(shipped, 4);  // default, hobby, hobby_dynamixel, hobby_pca9685
+}
+
+// hobby_pca9685.yaml copies hobby.yaml's head (the schema has no include):
+// only the bus may differ.
+TEST(Verify, HobbyPca9685IsTheHobbyHeadOnAPca9685) {
+  const auto from_envelope = [](const std::string& text) {
+    return text.substr(text.find("  # Hobby jaws rarely yaw"));
+  };
+  const std::string modbus = testing::read_text(kSource + "/config/rigs/hobby.yaml");
+  const std::string pca = testing::read_text(kSource + "/config/rigs/hobby_pca9685.yaml");
+  EXPECT_EQ(from_envelope(pca), from_envelope(modbus));
+  EXPECT_NE(pca.find("type: pca9685"), std::string::npos);
 }
 
 // A neck servo slower than the rig's limit cannot follow: the static check

@@ -72,5 +72,24 @@ TEST(SimBusTiming, ModbusTcpAddsItsConfiguredNetworkLatency) {
   EXPECT_EQ(t.timing.load, 0.0);
 }
 
+TEST(SimBusTiming, Pca9685PulsesChangeAtTheEndOfTheirBoardsWrites) {
+  BusSpec bus;
+  bus.type = "pca9685";
+  bus.pca9685.boards = {0x40, 0x41};
+  // Board 0x40: channels 0..9, writes of 8 and 2 channels = 308 + 92 clocks,
+  // then its MODE1 read (39); board 0x41: channel 1 alone, 2 + 9 · 6 = 56.
+  const std::vector<int> addresses = {1, 10, 18};
+  const SimBusTiming t = sim_bus_timing(bus, addresses, 1000.0);
+  ASSERT_EQ(t.arrival_s.size(), 3U);
+  EXPECT_NEAR(t.arrival_s[0], 400e-5, 1e-12);  // 400 clocks at 100 kHz
+  EXPECT_NEAR(t.arrival_s[1], 400e-5, 1e-12);
+  EXPECT_NEAR(t.arrival_s[2], (439 + 56) * 1e-5, 1e-12);
+  EXPECT_NEAR(t.timing.cycle_time_s, (439 + 56 + 39) * 1e-5, 1e-12);
+  // Against one period of 50.03 Hz (PRE_SCALE 121).
+  EXPECT_NEAR(t.timing.load, 534e-5 * 25e6 / (4096.0 * 122), 1e-9);
+  bus.pca9685.i2c_hz = 400'000;
+  EXPECT_NEAR(sim_bus_timing(bus, addresses, 1000.0).arrival_s[0], 1e-3, 1e-12);
+}
+
 }  // namespace
 }  // namespace facectl
