@@ -36,6 +36,10 @@ packages=(
   # Debian's kernel with the CAN modules, a static busybox for the initramfs,
   # and can-utils and iproute2 for the guest's candump, cansend and vcan set-up.
   qemu-system-x86 linux-image-amd64 busybox-static can-utils iproute2
+  # The GPIO test in that guest builds the kernel's gpio-sim module out of
+  # tree (tests/drivers/qemu/build_gpio_sim.sh): Debian's kernel source and
+  # the headers of linux-image-amd64's kernel.
+  linux-source-6.1 linux-headers-amd64
   # The `facectl simulate` HTML report test takes a headless screenshot (tests/simulate).
   chromium
   # The sanitizer builds and the libFuzzer targets (scripts/sanitize.sh,

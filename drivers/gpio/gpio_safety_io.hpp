@@ -28,7 +28,8 @@ struct GpioSafetyConfig {
 // is non-blocking; called from the tick.
 //
 // The e-stop is active from the first tick that reads an active edge or
-// level, even for a pulse shorter than a tick (the edge is queued). It is
+// level, even for a pulse shorter than a tick (the edge is queued; an edge
+// the levels read do not account for counts as a press). It is
 // released only after the line has stayed inactive for release_debounce_s,
 // so contact bounce cannot release it early. An unreadable line is a fault
 // and reads as pressed.
@@ -49,7 +50,8 @@ class GpioSafetyIo final : public SafetyIo {
   int estop_ = -1;
   int power_ = -1;
   int led_ = -1;
-  bool pressed_ = true;  // until the first read says otherwise
+  bool pressed_ = true;            // until the first read says otherwise
+  bool last_level_active_ = true;  // the level the last read saw
   std::int64_t last_active_ns_ = 0;
   bool power_on_ = false;
   std::int64_t led_phase_ns_ = 0;

@@ -18,6 +18,10 @@
 # and the recorded frames are checked for
 # the driver's own, byte for byte.
 #
+# GPIO: build_gpio_sim.sh builds the gpio-sim simulator (and irq_sim, which
+# it needs) for the guest's kernel; the guest loads them with configfs, and
+# the GPIO safety I/O tests make gpio-sim chips through configfs.
+#
 # With FACECTL_BINARY and HEAD_YAML, the guest also holds a stripped
 # `facectl` and the head file, and the guest test runs `facectl bus doctor`
 # on a vcan rig.
@@ -66,6 +70,19 @@ done
 for m in i2c-dev i2c-stub; do
   cp "$(modinfo -k "$kver" -n "$m")" "$root/lib/modules/$m.ko"
 done
+# GPIO: the gpio-sim simulator, built out of tree for this kernel (it has no
+# CONFIG_GPIO_SIM) and kept next to $work; without linux-source-6.1 and
+# linux-headers-amd64 the guest's GPIO tests skip themselves.
+gpio_sim_dir=$(dirname "$work")/gpio-sim
+gpio_modules=""
+if bash "$(dirname "$0")/build_gpio_sim.sh" "$gpio_sim_dir" "$kver"; then
+  cp "$(modinfo -k "$kver" -n configfs)" "$root/lib/modules/configfs.ko"
+  cp "$gpio_sim_dir/irq_sim.ko" "$gpio_sim_dir/gpio-sim.ko" "$root/lib/modules/"
+  gpio_modules="configfs irq_sim gpio-sim"
+elif [ $? -ne 77 ]; then
+  echo "FAIL: gpio-sim did not build"
+  exit 1
+fi
 guest_test=$(basename "$test_bin")
 if [ -n "$facectl_bin" ]; then
   copy_with_libs "$facectl_bin"
@@ -87,6 +104,12 @@ for m in $modules; do
 done
 insmod /lib/modules/i2c-dev.ko && echo "FACECTL-QEMU: loaded i2c-dev" || echo "FACECTL-QEMU: insmod i2c-dev FAILED"
 insmod /lib/modules/i2c-stub.ko chip_addr=0x40,0x41 && echo "FACECTL-QEMU: loaded i2c-stub chip_addr=0x40,0x41 (\$(cat /sys/class/i2c-adapter/*/name))" || echo "FACECTL-QEMU: insmod i2c-stub FAILED"
+for m in $gpio_modules; do
+  insmod /lib/modules/\$m.ko && echo "FACECTL-QEMU: loaded \$m" || echo "FACECTL-QEMU: insmod \$m FAILED"
+done
+[ -n "$gpio_modules" ] && mount -t configfs none /sys/kernel/config
+# facectl run's GPIO test drives a Modbus TCP board on 127.0.0.1.
+/sbin/iproute2-ip link set lo up
 /sbin/iproute2-ip link add dev vcan0 type vcan
 /sbin/iproute2-ip link set up vcan0
 /sbin/iproute2-ip link add dev vcan1 type vcan
@@ -141,7 +164,7 @@ timeout 900 qemu-system-x86_64 -accel tcg -m 512 -smp 2 -nographic -no-reboot \
 echo "QEMU ran $(( $(date +%s) - start )) s; console log: $work/console.log"
 result=$(grep -a "FACECTL-QEMU-RESULT" "$work/console.log" | tr -d '\r' || true)
 if [ "$result" = "FACECTL-QEMU-RESULT: tests=0 candump=PASS" ]; then
-  echo "PASS: SocketCAN tests on vcan0, the hidraw gamepad test on uhid, the ALSA sequencer MIDI test, the loopback audio test and the PCA9685 test on i2c-stub in a QEMU guest; candump saw the driver's frames"
+  echo "PASS: SocketCAN tests on vcan0, the hidraw gamepad test on uhid, the ALSA sequencer MIDI test, the loopback audio test, the PCA9685 test on i2c-stub and the GPIO safety I/O tests on gpio-sim in a QEMU guest; candump saw the driver's frames"
   exit 0
 fi
 echo "FAIL: ${result:-the guest did not report a result}"
