@@ -134,6 +134,7 @@ void Cia402Bus::handle(const CanFrame& f, std::int64_t now_ns) {
     d->statusword = t->statusword;
     d->position = d->counts.decode(t->actual_position);
     d->last_tpdo_ns = now_ns;
+    d->tpdo_sync = syncs_;
     return;
   }
   if (Drive* hb = node_of(cia402::kHeartbeatBase)) {
@@ -283,10 +284,12 @@ void Cia402Bus::read(const TickTime& time, std::span<double> positions) {
     if (d.heartbeat_set && time.now_ns - d.last_heartbeat_ns > timeout_ns) {
       set_first_reason(d.fault, d.lost);
     }
-    // Its TPDO1 stopped while we drive it (and SYNC goes out) but its
-    // heartbeat goes on: one came after the last TPDO. A drive silent
-    // altogether is the heartbeat consumer's to name.
+    // Its TPDO1 stopped while we drive it but its heartbeat goes on: one
+    // came after the last TPDO. A drive silent altogether is the heartbeat
+    // consumer's to name. Counting our SYNCs too keeps a stall of our own
+    // loop (no SYNC, so no TPDO) from being blamed on the drive.
     if (d.phase == Phase::kPdo && d.last_heartbeat_ns > d.last_tpdo_ns &&
+        syncs_ - d.tpdo_sync > static_cast<std::uint64_t>(kFeedbackCycles) &&
         time.now_ns - d.last_tpdo_ns > feedback_timeout_ns_) {
       set_first_reason(d.fault, d.no_feedback);
     }
@@ -361,6 +364,7 @@ void Cia402Bus::step_drive(Drive& d, double target, std::int64_t now_ns) {
     d.phase = Phase::kPdo;
     d.pdo_since_ns = now_ns;
     d.last_tpdo_ns = now_ns;  // the feedback timeout runs from here
+    d.tpdo_sync = syncs_;
     return;
   }
   const cia402::DriveState state = cia402::decode_statusword(d.statusword);
@@ -383,6 +387,7 @@ void Cia402Bus::end_of_cycle(std::int64_t now_ns) {
   // SYNC after the RPDOs: the drives latch their targets on it (CSP).
   cia402::encode_sync(frame_);
   send(frame_);
+  ++syncs_;
   if (now_ns - last_host_heartbeat_ns_ >= options_.host_heartbeat_ms * kMs) {
     frame_.id = cia402::kHeartbeatBase + static_cast<std::uint32_t>(options_.host_node);
     frame_.fd = false;

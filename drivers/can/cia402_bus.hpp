@@ -71,6 +71,7 @@ class Cia402Bus final : public ActuatorBus {
     std::int64_t sdo_sent_ns = 0;
     std::int64_t pdo_since_ns = 0;
     std::int64_t last_tpdo_ns = 0;
+    std::uint64_t tpdo_sync = 0;  // syncs_ at the last TPDO
     bool reached_enabled = false;
     bool wanted = false;              // enabled by the controller (per actuator)
     std::int64_t stop_since_ns = -1;  // quick stop sent since (-1: not yet)
@@ -106,6 +107,7 @@ class Cia402Bus final : public ActuatorBus {
   std::uint64_t cycle_ = 0;
   std::int64_t now_ns_ = 0;  // the last tick's time
   std::int64_t feedback_timeout_ns_ = 0;
+  std::uint64_t syncs_ = 0;  // SYNC frames sent
   std::int64_t last_host_heartbeat_ns_ = 0;
   std::atomic<std::uint64_t> bad_frames_{0};
   CanFrame frame_;

@@ -51,6 +51,14 @@ TEST_F(Cia402, FeedbackThatStopsWhileTheHeartbeatGoesOnFaultsAfterTenCyclesOr20M
   EXPECT_STREQ(bus_->status().reason, "can0 drive 3: position feedback (TPDO1) stopped");
 }
 
+TEST_F(Cia402, AStallOfOurOwnLoopIsNotBlamedOnTheDrives) {
+  enable();
+  // 60 ms without write(): no SYNC, so no TPDO, while the drives beat on.
+  rig_->until([] { return false; }, 60, 0.0, false);
+  rig_->until([] { return false; }, 5);
+  EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
+}
+
 TEST_F(Cia402, TheFeedbackTimeoutIsConfigurable) {
   options_.feedback_timeout_s = 0.15;
   build();

@@ -138,7 +138,8 @@ TEST(BusConfig, BadBusKeysNameTheirPositionKeyExpectedAndFound) {
             "protocol, rate_divider, fd, data_bitrate, values, heartbeat_timeout_ms, map_pdos, "
             "host_node, "
             "host_heartbeat_ms, drive_heartbeat_ms, drive_watchdog_ms, sdo_timeout_ms, "
-            "enable_timeout_ms, counts_per_rev, counts_per_mm, found unknown key 'retries'");
+            "enable_timeout_ms, counts_per_rev, counts_per_mm, feedback_timeout_ms, quick_stop_ms, "
+            "found unknown key 'retries'");
   const std::string rtu = "type: modbus_rtu, device: /dev/ttyS0, baud: 115200";
   EXPECT_EQ(budget_error(rig(rtu + ", response_timeout_ms: 500")),
             "RIG:4:92: rig.buses[0].response_timeout_ms: expected a number in [1, 250], found "
