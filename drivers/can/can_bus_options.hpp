@@ -26,6 +26,13 @@ struct CanBusOptions {
   int drive_watchdog_ms = 100;    // 0x1016:01 on each drive: our heartbeat's timeout
   double sdo_timeout_s = 0.05;    // per SDO request while enabling
   double enable_timeout_s = 0.5;  // to reach "operation enabled" after the SDOs
+  // No TPDO1 from an operational drive for this long, and for more than ten
+  // of our SYNCs, while its heartbeat goes on: FAULT. 0: ten bus cycles
+  // (tick period x cycle_divider), at least 20 ms.
+  double feedback_timeout_s = 0.0;
+  // On disable, quick stop (controlword 0x0002) is held this long, or until
+  // the drive reports switch on disabled, before disable voltage (0x0000).
+  double quick_stop_s = 0.1;
 };
 
 }  // namespace facectl

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <memory>
 #include <string>
@@ -20,12 +21,16 @@ namespace facectl {
 // one drive per actuator (node id = the actuator's address, 1..127). Runs in
 // the tick: every call is non-blocking and allocation-free.
 //
-// Enabling, per drive: SDO writes (mode CSP, the drive's own position and
-// velocity limits, its heartbeat, its watchdog on our heartbeat, fault on
-// connection loss), NMT start, then the controlword walk shutdown -> switch on
-// -> enable operation, resetting a fault on the way. Each cycle: one RPDO1 per
-// drive, then SYNC; TPDO1 brings statusword and actual position back.
-// Disabled, it transmits nothing at all; the drives' watchdogs take over.
+// Enabling, per drive (docs/PROTOCOLS.md, "Start-up"): NMT pre-operational,
+// SDO writes (its heartbeat first, the PDO mapping, its own position and
+// velocity limits, mode CSP read back through 0x6061, its watchdog on our
+// heartbeat, fault on connection loss), NMT start, then the controlword walk
+// shutdown -> switch on -> enable operation, resetting a fault on the way.
+// Each cycle: one RPDO1 per drive, then SYNC; TPDO1 brings statusword and
+// actual position back. A drive is a FAULT when its heartbeat stops or
+// reports another NMT state than operational, or its TPDO1 stops.
+// Disabling sends quick stop, then disable voltage, then nothing at all; the
+// drives' watchdogs take over.
 class Cia402Bus final : public ActuatorBus {
  public:
   Cia402Bus(std::string name, CanTransport& transport, const std::vector<ActuatorModel>& actuators,
@@ -49,7 +54,8 @@ class Cia402Bus final : public ActuatorBus {
   std::uint64_t bad_frames() const { return bad_frames_.load(std::memory_order_relaxed); }
 
  private:
-  enum class Phase { kIdle, kSdo, kStart, kPdo };
+  enum class Phase { kIdle, kPreOp, kSdo, kStart, kPdo };
+  enum class Sdo { kIdle, kDownload, kUpload, kSegments };
   struct Drive {
     int node = 0;
     cia402::DriveCounts counts;          // position counts (docs/PROTOCOLS.md)
@@ -59,22 +65,36 @@ class Cia402Bus final : public ActuatorBus {
     std::uint16_t controlword = 0;
     Phase phase = Phase::kIdle;
     std::size_t sdo_next = 0;
-    bool sdo_pending = false;
+    Sdo sdo = Sdo::kIdle;  // the transfer in flight
+    bool sdo_toggle = false;
+    std::uint32_t sdo_value = 0, sdo_bytes = 0;  // segmented upload so far
     std::int64_t sdo_sent_ns = 0;
     std::int64_t pdo_since_ns = 0;
+    std::int64_t last_tpdo_ns = 0;
+    std::uint64_t tpdo_sync = 0;  // syncs_ at the last TPDO
     bool reached_enabled = false;
-    bool wanted = false;  // enabled by the controller (per actuator)
-    bool heard = false;
+    bool wanted = false;              // enabled by the controller (per actuator)
+    std::int64_t stop_since_ns = -1;  // quick stop sent since (-1: not yet)
+    bool stop_done = false;           // disable voltage sent
+    bool heartbeat_set = false;       // 0x1017 confirmed: the consumer runs
     std::int64_t last_heartbeat_ns = 0;
     std::uint16_t emcy = 0;
     std::uint32_t sdo_abort = 0;
     std::atomic<const char*> fault{nullptr};
-    std::string lost, emergency, drive_fault, sdo_timeout, sdo_aborted, stuck, rebooted;
+    std::string who, lost, emergency, drive_fault, sdo_timeout, stuck, rebooted, preop, stopped,
+        no_feedback, wrong_reply, bad_upload;
+    std::array<char, 192> detail{};  // a reason with numbers in it, formatted once
   };
 
   void handle(const CanFrame& f, std::int64_t now_ns);
+  void handle_sdo(Drive& d, const cia402::SdoReply& r, std::int64_t now_ns);
+  void sdo_done(Drive& d, std::uint32_t uploaded, std::int64_t now_ns);
+  void fail_detail(Drive& d, const char* format, ...);
   void send(const CanFrame& f) { health_.on_send(transport_.send(f)); }
   void step_drive(Drive& d, double target, std::int64_t now_ns);
+  void stop_drive(Drive& d, std::int64_t now_ns);
+  void stop_cycle(std::int64_t now_ns);
+  void end_of_cycle(std::int64_t now_ns);
   void restart_drive(Drive& d, bool wanted);
 
   std::string name_;
@@ -83,7 +103,11 @@ class Cia402Bus final : public ActuatorBus {
   std::vector<std::unique_ptr<Drive>> drives_;
   CanBusHealth health_;
   bool enabled_ = false;
+  bool stopping_ = false;  // disabled, quick stop and disable voltage under way
   std::uint64_t cycle_ = 0;
+  std::int64_t now_ns_ = 0;  // the last tick's time
+  std::int64_t feedback_timeout_ns_ = 0;
+  std::uint64_t syncs_ = 0;  // SYNC frames sent
   std::int64_t last_host_heartbeat_ns_ = 0;
   std::atomic<std::uint64_t> bad_frames_{0};
   CanFrame frame_;

@@ -119,24 +119,50 @@ void encode_sdo_upload(int node, std::uint16_t index, std::uint8_t subindex, Can
   out.data[3] = subindex;
 }
 
+void encode_sdo_upload_segment(int node, bool toggle, CanFrame& out) {
+  out.id = kSdoRxBase + static_cast<std::uint32_t>(node);
+  out.fd = false;
+  out.len = 8;
+  out.data.fill(0);
+  out.data[0] = static_cast<std::uint8_t>(0x60 | (toggle ? 0x10 : 0x00));
+}
+
+// Command byte layouts: CiA 301 7.2.4.3.3 (initiate upload: scs=2, n, e, s),
+// 7.2.4.3.5 (upload segment: scs=0, t, n, c), 7.2.4.3.2 (download: scs=3).
 std::optional<SdoReply> decode_sdo_reply(const CanFrame& f) {
   if (f.id <= kSdoTxBase || f.id > kSdoTxBase + 127 || f.len != 8) return std::nullopt;
   SdoReply r;
   r.node = static_cast<int>(f.id - kSdoTxBase);
+  const std::uint8_t cmd = f.data[0];
+  if ((cmd & 0xE0) == 0x00) {  // scs=0: upload segment, seven data bytes at most
+    r.kind = SdoReplyKind::kUploadSegment;
+    r.toggle = (cmd & 0x10) != 0;
+    r.last = (cmd & 0x01) != 0;
+    r.segment_len = static_cast<std::uint8_t>(7 - ((cmd >> 1) & 0x7));
+    for (int i = 0; i < r.segment_len; ++i) r.segment[i] = f.data[1 + static_cast<std::size_t>(i)];
+    return r;
+  }
   r.index = get_u16(&f.data[1]);
   r.subindex = f.data[3];
-  if (f.data[0] == 0x60) {
+  if (cmd == 0x80) {
+    r.kind = SdoReplyKind::kAbort;
+    r.abort_code = get_u32(&f.data[4]);
+  } else if (cmd == 0x60) {
+    r.kind = SdoReplyKind::kDownloadDone;
     r.ok = true;
-  } else if ((f.data[0] & 0xE3) == 0x43) {  // scs=2, expedited, size indicated
-    const int unused = (f.data[0] >> 2) & 0x3;
+  } else if ((cmd & 0xF2) == 0x42) {  // scs=2, e=1: expedited
+    r.kind = SdoReplyKind::kUploadExpedited;
     r.ok = true;
     r.upload = true;
     r.value = get_u32(&f.data[4]);
+    const int unused = (cmd & 0x01) != 0 ? (cmd >> 2) & 0x3 : 0;  // n counts only with s=1
     if (unused > 0) r.value &= (1u << (8 * (4 - unused))) - 1;
-  } else if (f.data[0] == 0x80) {
-    r.abort_code = get_u32(&f.data[4]);
+  } else if ((cmd & 0xF2) == 0x40) {  // scs=2, e=0: segmented, size in bytes 4..7 if s=1
+    r.kind = SdoReplyKind::kUploadSegmented;
+    r.size_indicated = (cmd & 0x01) != 0;
+    r.size = r.size_indicated ? get_u32(&f.data[4]) : 0;
   } else {
-    return std::nullopt;
+    return std::nullopt;  // not a reply to anything facectl sends
   }
   return r;
 }

@@ -37,6 +37,7 @@ enum class NmtState : std::uint8_t {
 
 // Controlword commands (CiA 402 figure "state machine").
 inline constexpr std::uint16_t kCwDisableVoltage = 0x0000;
+inline constexpr std::uint16_t kCwQuickStop = 0x0002;  // bit 2 low: quick stop, voltage on
 inline constexpr std::uint16_t kCwShutdown = 0x0006;
 inline constexpr std::uint16_t kCwSwitchOn = 0x0007;
 inline constexpr std::uint16_t kCwEnableOperation = 0x000F;
@@ -86,25 +87,46 @@ std::optional<Heartbeat> decode_heartbeat(const CanFrame& f);
 // SDO expedited download (write of 1, 2 or 4 bytes) and its reply.
 void encode_sdo_download(int node, std::uint16_t index, std::uint8_t subindex, std::uint32_t value,
                          int size, CanFrame& out);
-// SDO expedited upload request (a read; `bus doctor` uses it: it changes nothing).
+// SDO upload request (a read; `bus doctor` uses it: it changes nothing).
 void encode_sdo_upload(int node, std::uint16_t index, std::uint8_t subindex, CanFrame& out);
+// Upload segment request (ccs=3) after a segmented initiate reply; the
+// toggle bit starts at 0 and alternates with each segment.
+void encode_sdo_upload_segment(int node, bool toggle, CanFrame& out);
+
+// Every reply form a CiA 301 SDO server may send (CiA 301 7.2.4.3).
+enum class SdoReplyKind {
+  kDownloadDone,     // 0x60: download confirmed
+  kUploadExpedited,  // 0x4n, e=1: data in the frame (size indicated or not)
+  kUploadSegmented,  // 0x40/0x41, e=0: data follows in segments
+  kUploadSegment,    // scs=0: one segment (no index in it)
+  kAbort,            // 0x80: abort code in bytes 4..7
+};
 struct SdoReply {
   int node = 0;
-  std::uint16_t index = 0;
+  SdoReplyKind kind = SdoReplyKind::kAbort;
+  std::uint16_t index = 0;  // not in a segment
   std::uint8_t subindex = 0;
-  bool ok = false;      // download confirmed (0x60), or expedited upload data (0x4n)
-  bool upload = false;  // the reply carries `value`
+  bool ok = false;      // download confirmed, or expedited upload data
+  bool upload = false;  // expedited upload: `value` holds the data
   std::uint32_t value = 0;
   std::uint32_t abort_code = 0;
+  std::uint32_t size = 0;  // segmented initiate: bytes to come, if size_indicated
+  bool size_indicated = false;
+  bool toggle = false;  // segment
+  bool last = false;    // segment: c bit, no more segments
+  std::uint8_t segment_len = 0;
+  std::uint8_t segment[7] = {};
 };
 std::optional<SdoReply> decode_sdo_reply(const CanFrame& f);
 
-// A drive's host-side parameters, written by SDO each time it is enabled.
+// A drive's host-side parameters, written by SDO each time it is enabled;
+// or, with `check`, an object read back (upload) that must equal `value`.
 struct SdoWrite {
   std::uint16_t index = 0;
   std::uint8_t subindex = 0;
   std::uint32_t value = 0;
   int size = 4;
+  bool check = false;
 };
 
 // Mapping entries (CiA 301: index << 16 | subindex << 8 | bits).

@@ -33,7 +33,8 @@ void parse_can(const ConfigNode& node, BusConfig& bus) {
   only_for("values", !cia402, "value width is for custom boards");
   for (const char* key :
        {"map_pdos", "host_node", "host_heartbeat_ms", "drive_heartbeat_ms", "drive_watchdog_ms",
-        "sdo_timeout_ms", "enable_timeout_ms", "counts_per_rev", "counts_per_mm"}) {
+        "sdo_timeout_ms", "enable_timeout_ms", "counts_per_rev", "counts_per_mm",
+        "feedback_timeout_ms", "quick_stop_ms"}) {
     only_for(key, cia402, "CiA 402 drives only");
   }
   if (auto n = node.get("rate_divider")) o.cycle_divider = static_cast<int>(n->integer_in(1, 100));
@@ -66,6 +67,9 @@ void parse_can(const ConfigNode& node, BusConfig& bus) {
   if (auto n = node.get("sdo_timeout_ms")) o.sdo_timeout_s = n->number_in(1.0, 1000.0) * 1e-3;
   if (auto n = node.get("enable_timeout_ms"))
     o.enable_timeout_s = n->number_in(10.0, 10'000.0) * 1e-3;
+  if (auto n = node.get("feedback_timeout_ms"))
+    o.feedback_timeout_s = n->number_in(1.0, 10'000.0) * 1e-3;
+  if (auto n = node.get("quick_stop_ms")) o.quick_stop_s = n->number_in(0.0, 10'000.0) * 1e-3;
   if (auto n = node.get("counts_per_rev")) o.rotary_counts_per_rad = n->positive() / kTwoPi;
   if (auto n = node.get("counts_per_mm")) o.linear_counts_per_m = n->positive() * 1e3;
   if (cia402) {
@@ -206,10 +210,27 @@ BusConfig parse_bus_config(const ConfigNode& node) {
   bus.name = node["name"].string();
   bus.type = node["type"].string();
   if (bus.type == "can") {
-    node.expect_keys({"name", "type", "interface", "bitrate", "protocol", "rate_divider", "fd",
-                      "data_bitrate", "values", "heartbeat_timeout_ms", "map_pdos", "host_node",
-                      "host_heartbeat_ms", "drive_heartbeat_ms", "drive_watchdog_ms",
-                      "sdo_timeout_ms", "enable_timeout_ms", "counts_per_rev", "counts_per_mm"});
+    std::vector<std::string> keys = {"name",
+                                     "type",
+                                     "interface",
+                                     "bitrate",
+                                     "protocol",
+                                     "rate_divider",
+                                     "fd",
+                                     "data_bitrate",
+                                     "values",
+                                     "heartbeat_timeout_ms",
+                                     "map_pdos",
+                                     "host_node",
+                                     "host_heartbeat_ms",
+                                     "drive_heartbeat_ms",
+                                     "drive_watchdog_ms",
+                                     "sdo_timeout_ms",
+                                     "enable_timeout_ms",
+                                     "counts_per_rev",
+                                     "counts_per_mm"};
+    keys.insert(keys.end(), {"feedback_timeout_ms", "quick_stop_ms"});  // CiA 402 timing
+    node.expect_keys(keys);
     parse_can(node, bus);
   } else if (bus.type == "modbus_rtu" || bus.type == "modbus_tcp") {
     std::vector<std::string> keys = {"name",

@@ -231,6 +231,10 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
     const auto bus = std::find_if(cfg.buses.begin(), cfg.buses.end(),
                                   [&](const BusConfig& b) { return b.name == act.model.bus; });
     check_actuator_encoding(act, *bus);
+    if (bus->is_cia402() && act.model.address == bus->can.host_node) {
+      a["address"].fail("a node id other than the host's (host_node " +
+                        std::to_string(bus->can.host_node) + " on bus " + bus->name + ")");
+    }
     cfg.actuators.push_back(std::move(act));
   }
   if (auto env = rig.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);

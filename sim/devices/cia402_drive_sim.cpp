@@ -88,7 +88,9 @@ void Cia402DriveSim::fault(std::uint16_t code, std::int64_t now_ns) {
 
 void Cia402DriveSim::apply_controlword(std::uint16_t cw) {
   const bool edge_reset = (cw & kCwFaultReset) != 0 && (controlword_ & kCwFaultReset) == 0;
+  if (cw == kCwQuickStop && controlword_ != kCwQuickStop) quick_stops_.fetch_add(1);
   controlword_ = cw;
+  last_cw_.store(cw);
   const bool voltage = (cw & 0x02) != 0;
   const bool quick = (cw & 0x04) != 0;  // active low: 0 = quick stop
   switch (ds_) {
@@ -106,8 +108,16 @@ void Cia402DriveSim::apply_controlword(std::uint16_t cw) {
       else if ((cw & 0x8F) == 0x07)
         ds_ = DriveState::kSwitchedOn;
       break;
-    case DriveState::kSwitchedOn:
     case DriveState::kOperationEnabled:
+      // Quick stop: it brakes and holds (quick stop option code 5/6: it stays
+      // in quick stop active until disable voltage).
+      if (voltage && !quick) {
+        ds_ = DriveState::kQuickStopActive;
+        plant_.command(0, plant_.position());
+        return;
+      }
+      [[fallthrough]];
+    case DriveState::kSwitchedOn:
       if (!voltage || !quick)
         ds_ = DriveState::kSwitchOnDisabled;
       else if ((cw & 0x8F) == 0x06)
@@ -117,10 +127,13 @@ void Cia402DriveSim::apply_controlword(std::uint16_t cw) {
       else if ((cw & 0x8F) == 0x0F)
         ds_ = DriveState::kOperationEnabled;
       break;
+    case DriveState::kQuickStopActive:
+      if (!voltage) ds_ = DriveState::kSwitchOnDisabled;
+      break;
     default:
       break;
   }
-  plant_.set_enabled(ds_ == DriveState::kOperationEnabled);
+  plant_.set_enabled(ds_ == DriveState::kOperationEnabled || ds_ == DriveState::kQuickStopActive);
 }
 
 void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
@@ -159,21 +172,16 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
     r.data[1] = f.data[1];
     r.data[2] = f.data[2];
     r.data[3] = sub;
-    if (f.data[0] == 0x40) {  // upload (a read)
-      std::uint32_t value = 0;
-      bool known = true;
-      if (index == 0x1000 && sub == 0)
-        value = 0x00020192;  // device type: CiA 402 servo
-      else if (index == 0x6041 && sub == 0)
-        value = statusword();
-      else
-        known = false;
-      r.data[0] = known ? 0x43 : 0x80;
-      put_u32(&r.data[4], known ? value : 0x06020000);
-      emit(r, now_ns);
+    if (f.data[0] == 0x40) {  // initiate upload (a read)
+      upload(index, sub, r, now_ns);
       return;
     }
-    bool ok = (f.data[0] & 0xE3) == 0x23;  // expedited download, size indicated
+    if ((f.data[0] & 0xEF) == 0x60) {  // upload segment request, toggle in bit 4
+      upload_segment(f, r, now_ns);
+      return;
+    }
+    bool ok = (f.data[0] & 0xE3) == 0x23 &&  // expedited download, size indicated
+              index != refused_index_.load();
     const std::uint32_t key = (static_cast<std::uint32_t>(index) << 8) | sub;
     switch (ok ? key : 0) {
       case 0x607D01:
@@ -196,6 +204,15 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
       case 0x600700:  // abort connection option: this drive always faults
         break;
       default:
+        // CiA 301: PDO parameters change only in pre-operational.
+        if ((index == 0x1400 || index == 0x1600 || index == 0x1800 || index == 0x1A00) &&
+            nmt_ == NmtState::kOperational) {
+          mapping_refused_.fetch_add(1);
+          r.data[0] = 0x80;
+          put_u32(&r.data[4], 0x08000022);  // not in the present device state
+          emit(r, now_ns);
+          return;
+        }
         if (index == 0x1400 || index == 0x1600) {
           ok = write_pdo_object(rpdo_, index == 0x1600, sub, v);
         } else if (index == 0x1800 || index == 0x1A00) {
@@ -237,7 +254,7 @@ void Cia402DriveSim::on_frame(const CanFrame& f, std::int64_t now_ns) {
       const std::int32_t t = std::clamp(pending_target_, limit_min_.load(), limit_max_.load());
       plant_.command(now_ns, counts_.decode(t));
     }
-    if ((tpdo_.cob & cia402::kPdoInvalid) != 0) return;
+    if ((tpdo_.cob & cia402::kPdoInvalid) != 0 || feedback_stopped_.load()) return;
     CanFrame t;
     t.id = tpdo_.cob & 0x7FF;
     t.len = static_cast<std::uint8_t>(tpdo_.bytes());
@@ -282,6 +299,69 @@ void Cia402DriveSim::step(std::int64_t now_ns) {
     if (ds_ != DriveState::kSwitchOnDisabled) fault(0x8130, now_ns);  // heartbeat error
   }
   if (const std::uint16_t code = injected_.exchange(0); code != 0) fault(code, now_ns);
+  if (const int s = injected_nmt_.exchange(-1); s >= 0) nmt_ = static_cast<NmtState>(s);
+}
+
+// The objects it can read: device type, statusword, mode display. Replies in
+// the form set_upload_form picked (CiA 301 7.2.4.3.3).
+void Cia402DriveSim::upload(std::uint16_t index, std::uint8_t sub, CanFrame& r,
+                            std::int64_t now_ns) {
+  std::uint32_t value = 0;
+  int size = 0;
+  if (index == 0x1000 && sub == 0) {
+    value = 0x00020192;  // device type: CiA 402 servo
+    size = 4;
+  } else if (index == 0x6041 && sub == 0) {
+    value = statusword();
+    size = 2;
+  } else if (index == 0x6061 && sub == 0) {
+    value =
+        static_cast<std::uint32_t>(forced_mode_.load() >= 0 ? forced_mode_.load() : mode_.load()) &
+        0xFF;
+    size = 1;
+  } else {
+    r.data[0] = 0x80;
+    put_u32(&r.data[4], 0x06020000);  // object does not exist
+    emit(r, now_ns);
+    return;
+  }
+  sdo_uploads_.fetch_add(1);
+  switch (upload_form_.load()) {
+    case UploadForm::kSized:
+      r.data[0] = static_cast<std::uint8_t>(0x43 | ((4 - size) << 2));
+      put_u32(&r.data[4], value);
+      break;
+    case UploadForm::kUnsized:
+      r.data[0] = 0x42;
+      put_u32(&r.data[4], value);
+      break;
+    case UploadForm::kSegmented:
+      r.data[0] = 0x41;
+      put_u32(&r.data[4], static_cast<std::uint32_t>(size));
+      put_u32(segment_data_.data(), value);
+      segment_len_ = size;
+      segment_toggle_ = false;
+      break;
+  }
+  emit(r, now_ns);
+}
+
+void Cia402DriveSim::upload_segment(const CanFrame& f, CanFrame& r, std::int64_t now_ns) {
+  const bool toggle = (f.data[0] & 0x10) != 0;
+  r.data.fill(0);
+  if (segment_len_ == 0 || toggle != segment_toggle_) {
+    r.data[0] = 0x80;
+    put_u32(&r.data[4], segment_len_ == 0 ? 0x05040001 : 0x05030000);
+    emit(r, now_ns);
+    return;
+  }
+  // All of it fits one segment: t as asked, n = unused of 7, c = last.
+  r.data[0] = static_cast<std::uint8_t>((toggle ? 0x10 : 0) | ((7 - segment_len_) << 1) | 0x01);
+  for (int i = 0; i < segment_len_; ++i) {
+    r.data[1 + static_cast<std::size_t>(i)] = segment_data_[static_cast<std::size_t>(i)];
+  }
+  segment_len_ = 0;
+  emit(r, now_ns);
 }
 
 DriveState Cia402DriveSim::state() const {

@@ -13,7 +13,8 @@
 namespace facectl::sim {
 
 // A simulated CiA 402 servo drive: NMT, SDO expedited download of the objects
-// facectl writes, RPDO1/TPDO1 on SYNC in cyclic synchronous position mode, the
+// facectl writes, SDO upload of a few it reads (in the reply form a test
+// picks), RPDO1/TPDO1 on SYNC in cyclic synchronous position mode, the
 // controlword state machine, heartbeat producer and consumer (its
 // communication watchdog), EMCY on faults, and its own position limits.
 class Cia402DriveSim final : public CanDevice {
@@ -34,6 +35,19 @@ class Cia402DriveSim final : public CanDevice {
 
   // Raises a drive fault with this EMCY error code (e.g. 0x2310 overcurrent).
   void inject_fault(std::uint16_t emcy_code) { injected_.store(emcy_code); }
+  // Changes its NMT state on its own, as 0x1029 does on a communication
+  // error (to pre-operational or stopped); its heartbeat reports it.
+  void inject_nmt(cia402::NmtState s) { injected_nmt_.store(static_cast<int>(s)); }
+  // Stops (or resumes) its TPDO1 while everything else goes on.
+  void stop_feedback(bool stop) { feedback_stopped_.store(stop); }
+  // Reports this mode in 0x6061 whatever 0x6060 says (a drive without CSP).
+  void force_mode_display(int mode) { forced_mode_.store(mode); }
+  // How it answers an upload: expedited with the size (0x4F/0x4B/0x43),
+  // expedited without it (0x42), or segmented (0x41, then segments).
+  enum class UploadForm { kSized, kUnsized, kSegmented };
+  void set_upload_form(UploadForm form) { upload_form_.store(form); }
+  // Aborts every download to this index with 0x06020000 (object does not exist).
+  void refuse_object(std::uint16_t index) { refused_index_.store(index); }
 
   // Test observation (thread-safe).
   cia402::DriveState state() const;
@@ -45,6 +59,11 @@ class Cia402DriveSim final : public CanDevice {
   std::int32_t limit_max() const { return limit_max_.load(); }
   int mode() const { return mode_.load(); }
   std::uint64_t bad_pdos() const { return bad_pdos_.load(); }
+  std::uint64_t sdo_uploads() const { return sdo_uploads_.load(); }
+  std::uint64_t mapping_refused() const { return mapping_refused_.load(); }
+  std::uint16_t last_controlword() const { return last_cw_.load(); }
+  // Times the controlword changed to quick stop (0x0002).
+  std::uint64_t quick_stops() const { return quick_stops_.load(); }
 
  private:
   void fault(std::uint16_t code, std::int64_t now_ns);
@@ -59,6 +78,8 @@ class Cia402DriveSim final : public CanDevice {
     int bytes() const;
   };
   bool write_pdo_object(Pdo& pdo, bool mapping, std::uint8_t sub, std::uint32_t v);
+  void upload(std::uint16_t index, std::uint8_t sub, CanFrame& r, std::int64_t now_ns);
+  void upload_segment(const CanFrame& f, CanFrame& r, std::int64_t now_ns);
 
   const int node_;
   const cia402::DriveCounts counts_;
@@ -78,7 +99,15 @@ class Cia402DriveSim final : public CanDevice {
   std::atomic<std::int32_t> limit_min_{-2147483647}, limit_max_{2147483647};
   std::atomic<int> mode_{0};
   std::atomic<std::uint16_t> injected_{0};
-  std::atomic<std::uint64_t> rpdos_{0}, sdo_writes_{0}, bad_pdos_{0};
+  std::atomic<int> injected_nmt_{-1}, forced_mode_{-1}, refused_index_{-1};
+  std::atomic<bool> feedback_stopped_{false};
+  std::atomic<UploadForm> upload_form_{UploadForm::kSized};
+  std::atomic<std::uint16_t> last_cw_{0};
+  std::atomic<std::uint64_t> rpdos_{0}, sdo_writes_{0}, bad_pdos_{0}, sdo_uploads_{0},
+      mapping_refused_{0}, quick_stops_{0};
+  std::array<std::uint8_t, 4> segment_data_{};  // a segmented upload in progress
+  int segment_len_ = 0;
+  bool segment_toggle_ = false;
   Pdo rpdo_, tpdo_;
 };
 

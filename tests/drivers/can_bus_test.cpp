@@ -16,89 +16,18 @@
 #include "sim/devices/custom_can_board_sim.hpp"
 #include "sim/devices/memory_can_link.hpp"
 #include "tests/drivers/can_test_axes.hpp"
+#include "tests/drivers/can_test_rig.hpp"
 
 namespace facectl {
 namespace {
 
+using testing::Cia402;
 using testing::fast_plant;
 using testing::kDeg;
+using testing::kMs;
+using testing::Rig;
+using testing::Sniffer;
 const auto rotary = testing::rotary_axes;
-constexpr std::int64_t kMs = 1'000'000;
-
-// Counts the host's frames as they reach the devices' side of the wire.
-class Sniffer final : public sim::CanDevice {
- public:
-  void on_frame(const CanFrame&, std::int64_t) override { ++frames; }
-  void step(std::int64_t) override {}
-  std::uint64_t frames = 0;
-};
-
-template <typename Bus>
-class Rig {
- public:
-  Rig(Bus& bus, sim::CanDeviceNetwork& net, std::size_t n)
-      : bus_(bus), net_(net), cmd_(n), meas_(n) {}
-  // One tick: the host reads and (if enabled) writes, then the devices run.
-  void tick(double target, bool write = true) {
-    now_ += kMs;
-    bus_.read({now_, 0.001}, meas_);
-    for (auto& c : cmd_) c = target;
-    if (write) bus_.write({now_, 0.001}, cmd_);
-    net_.poll(now_);
-  }
-  // Ticks until `pred` or `limit_ms`; returns the ms taken or -1.
-  template <typename Pred>
-  int until(Pred pred, int limit_ms, double target = 0.0, bool write = true) {
-    for (int k = 1; k <= limit_ms; ++k) {
-      tick(target, write);
-      if (pred()) return k;
-    }
-    return -1;
-  }
-  std::vector<double>& measured() { return meas_; }
-  std::int64_t now() const { return now_; }
-
- private:
-  Bus& bus_;
-  sim::CanDeviceNetwork& net_;
-  std::vector<double> cmd_, meas_;
-  std::int64_t now_ = 1'000 * kMs;
-};
-
-class Cia402 : public ::testing::Test {
- protected:
-  Cia402() {
-    for (int n = 1; n <= 3; ++n) {
-      drives_.push_back(std::make_unique<sim::Cia402DriveSim>(n, fast_plant(),
-                                                              options_.rotary_counts_per_rad, 0.0));
-    }
-    net_ = std::make_unique<sim::CanDeviceNetwork>(
-        link_.devices(), std::vector<sim::CanDevice*>{drives_[0].get(), drives_[1].get(),
-                                                      drives_[2].get(), &sniffer_});
-    bus_ = std::make_unique<Cia402Bus>("can0", link_.host(), rotary(3), std::vector<double>(3, 0.0),
-                                       options_);
-    rig_ = std::make_unique<Rig<Cia402Bus>>(*bus_, *net_, 3);
-  }
-  bool all_enabled() const {
-    for (const auto& d : drives_) {
-      if (d->state() != cia402::DriveState::kOperationEnabled) return false;
-    }
-    return true;
-  }
-  void enable() {
-    bus_->set_enabled(true);
-    ASSERT_GT(rig_->until([&] { return all_enabled(); }, 200), 0)
-        << "drive 1 is " << cia402::to_string(drives_[0]->state());
-  }
-
-  CanBusOptions options_{};
-  MemoryCanLink link_{1024};
-  std::vector<std::unique_ptr<sim::Cia402DriveSim>> drives_;
-  Sniffer sniffer_;
-  std::unique_ptr<sim::CanDeviceNetwork> net_;
-  std::unique_ptr<Cia402Bus> bus_;
-  std::unique_ptr<Rig<Cia402Bus>> rig_;
-};
 
 TEST_F(Cia402, DrivesAreConfiguredBySdoReachOperationEnabledAndFollowTheTargets) {
   enable();
@@ -154,25 +83,38 @@ TEST_F(Cia402, BusOffAndErrorPassiveFaultWithTheirReasonOnTheNextRead) {
   EXPECT_STREQ(bus_->status().reason, "can0: error-passive");
 }
 
-TEST_F(Cia402, NothingIsTransmittedOnceDisabledAndTheDrivesWatchdogStopsThem) {
+TEST_F(Cia402, DisablingSendsQuickStopThenDisableVoltageThenNothing) {
   enable();
   rig_->until([] { return false; }, 50, 5 * kDeg);
-  bus_->set_enabled(false);  // the ESTOP tick
+  bus_->set_enabled(false);  // the ESTOP tick: quick stop goes out on it
+  rig_->tick(20 * kDeg, false);
+  for (const auto& d : drives_) {
+    EXPECT_EQ(d->last_controlword(), cia402::kCwQuickStop);
+    EXPECT_EQ(d->quick_stops(), 1u);
+    EXPECT_EQ(d->state(), cia402::DriveState::kQuickStopActive);
+  }
+  // Held for quick_stop_s (this drive stays in quick stop active), then
+  // disable voltage: torque off, in that order.
+  const int ms =
+      rig_->until([&] { return drives_[0]->last_controlword() == cia402::kCwDisableVoltage; }, 1000,
+                  20 * kDeg, false);
+  EXPECT_NEAR(ms, options_.quick_stop_s * 1000, 2);
+  for (const auto& d : drives_) EXPECT_EQ(d->state(), cia402::DriveState::kSwitchOnDisabled);
   const std::uint64_t seen = sniffer_.frames;
   const std::uint64_t sent = bus_->status().frames_sent;
-  // Even if write() were still called, nothing goes out.
-  rig_->until([] { return false; }, 300, 20 * kDeg, true);
-  EXPECT_EQ(sniffer_.frames, seen);
+  rig_->until([] { return false; }, 300, 20 * kDeg, false);
+  EXPECT_EQ(sniffer_.frames, seen) << "silent once the stop sequence is through";
   EXPECT_EQ(bus_->status().frames_sent, sent);
-  // Each drive's watchdog on our heartbeat (drive_watchdog_ms) faults it.
-  for (const auto& d : drives_) EXPECT_EQ(d->state(), cia402::DriveState::kFault);
   EXPECT_NEAR(drives_[0]->position(), 5 * kDeg, 0.05 * kDeg);  // it stopped where it was
+  EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
 }
 
 TEST_F(Cia402, ReEnablingResetsDriveFaultsAndWalksBackToOperationEnabled) {
   enable();
   bus_->set_enabled(false);
-  rig_->until([] { return false; }, 200);
+  rig_->until([] { return false; }, 200, 0.0, false);
+  drives_[0]->inject_fault(0x2310);  // while off: nobody resets it
+  rig_->until([] { return false; }, 5, 0.0, false);
   ASSERT_EQ(drives_[0]->state(), cia402::DriveState::kFault);
   enable();
   EXPECT_FALSE(bus_->status().fault) << bus_->status().reason;
@@ -185,7 +127,8 @@ TEST_F(Cia402, ADriveSwitchedOffAloneGetsDisableVoltageWhileTheOthersRun) {
   bus_->set_actuators_enabled(on);
   rig_->until([] { return false; }, 300, -10 * kDeg);
   EXPECT_EQ(drives_[1]->state(), cia402::DriveState::kSwitchOnDisabled);
-  EXPECT_NEAR(drives_[1]->position(), 10 * kDeg, 0.01 * kDeg) << "torque off: not commanded";
+  EXPECT_EQ(drives_[1]->quick_stops(), 1u) << "quick stop first, then disable voltage";
+  EXPECT_NEAR(drives_[1]->position(), 10 * kDeg, 0.05 * kDeg) << "torque off: not commanded";
   for (const std::size_t i : {0u, 2u}) {
     EXPECT_EQ(drives_[i]->state(), cia402::DriveState::kOperationEnabled);
     EXPECT_NEAR(drives_[i]->position(), -10 * kDeg, 0.01 * kDeg);

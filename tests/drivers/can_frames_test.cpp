@@ -7,6 +7,7 @@
 #include "drivers/protocol/can_bus_budget.hpp"
 #include "drivers/protocol/cia402_frames.hpp"
 #include "drivers/protocol/custom_can_frames.hpp"
+#include "drivers/protocol/sdo_abort_codes.hpp"
 
 namespace facectl {
 namespace {
@@ -147,6 +148,64 @@ TEST(Cia402Frames, SdoExpeditedUploadsReadWithoutWriting) {
       cia402::decode_sdo_reply(frame(0x583, {0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0xAA, 0xBB}));
   ASSERT_TRUE(w);
   EXPECT_EQ(w->value, 0x0237u);
+}
+
+TEST(Cia402Frames, EveryLegalUploadReplyFormDecodesAndNoneIsADownloadConfirmation) {
+  using cia402::SdoReplyKind;
+  // Expedited with the size: 0x4F (1 byte), 0x4B (2), 0x47 (3), 0x43 (4).
+  const std::vector<std::pair<int, std::uint32_t>> sized = {
+      {0x4F, 0x08}, {0x4B, 0x0708}, {0x47, 0x060708}, {0x43, 0x05060708}};
+  for (const auto& [cmd, value] : sized) {
+    const auto r = cia402::decode_sdo_reply(
+        frame(0x582, {static_cast<std::uint8_t>(cmd), 0x61, 0x60, 0x00, 8, 7, 6, 5}));
+    ASSERT_TRUE(r) << cmd;
+    EXPECT_EQ(r->kind, SdoReplyKind::kUploadExpedited) << cmd;
+    EXPECT_EQ(r->value, value) << cmd;
+    EXPECT_EQ(r->index, 0x6061);
+  }
+  // Expedited without the size (0x42): all four bytes, n is not valid.
+  const auto unsized = cia402::decode_sdo_reply(frame(0x582, {0x42, 0x61, 0x60, 0x00, 8, 0, 0, 0}));
+  ASSERT_TRUE(unsized);
+  EXPECT_EQ(unsized->kind, SdoReplyKind::kUploadExpedited);
+  EXPECT_EQ(unsized->value, 8u);
+  // Segmented: initiate with the size (0x41), then segments with toggle and c.
+  const auto init = cia402::decode_sdo_reply(frame(0x582, {0x41, 0x08, 0x10, 0x00, 17, 0, 0, 0}));
+  ASSERT_TRUE(init);
+  EXPECT_EQ(init->kind, SdoReplyKind::kUploadSegmented);
+  EXPECT_FALSE(init->ok) << "no data yet";
+  EXPECT_TRUE(init->size_indicated);
+  EXPECT_EQ(init->size, 17u);
+  const auto seg0 =
+      cia402::decode_sdo_reply(frame(0x582, {0x00, 'f', 'a', 'c', 'e', 'c', 't', 'l'}));
+  ASSERT_TRUE(seg0);
+  EXPECT_EQ(seg0->kind, SdoReplyKind::kUploadSegment);
+  EXPECT_FALSE(seg0->toggle);
+  EXPECT_FALSE(seg0->last);
+  EXPECT_EQ(seg0->segment_len, 7);
+  EXPECT_EQ(seg0->segment[6], 'l');
+  // t=1, n=4 (3 bytes of data), c=1.
+  const auto seg1 = cia402::decode_sdo_reply(frame(0x582, {0x19, 'd', 'r', 'v', 0, 0, 0, 0}));
+  ASSERT_TRUE(seg1);
+  EXPECT_TRUE(seg1->toggle);
+  EXPECT_TRUE(seg1->last);
+  EXPECT_EQ(seg1->segment_len, 3);
+  CanFrame f;
+  cia402::encode_sdo_upload_segment(2, false, f);
+  EXPECT_EQ(f.id, 0x602u);
+  EXPECT_EQ(bytes(f), (std::vector<int>{0x60, 0, 0, 0, 0, 0, 0, 0}));
+  cia402::encode_sdo_upload_segment(2, true, f);
+  EXPECT_EQ(bytes(f), (std::vector<int>{0x70, 0, 0, 0, 0, 0, 0, 0}));
+  // A download confirmation carries no data, an upload is not "done".
+  const auto done = cia402::decode_sdo_reply(frame(0x582, {0x60, 0x17, 0x10, 0x00, 0, 0, 0, 0}));
+  ASSERT_TRUE(done);
+  EXPECT_EQ(done->kind, SdoReplyKind::kDownloadDone);
+  EXPECT_FALSE(done->upload);
+  // A download segment reply (0x20) answers nothing facectl sends.
+  EXPECT_FALSE(cia402::decode_sdo_reply(frame(0x582, {0x20, 0, 0, 0, 0, 0, 0, 0})));
+  EXPECT_STREQ(cia402::sdo_abort_text(0x06020000), "object does not exist");
+  EXPECT_STREQ(cia402::sdo_abort_text(0x08000022),
+               "data cannot be transferred or stored because of the present device state");
+  EXPECT_STREQ(cia402::sdo_abort_text(0x12345678), "unknown abort code");
 }
 
 TEST(Cia402StateMachine, StatuswordsDecodeToTheirStates) {

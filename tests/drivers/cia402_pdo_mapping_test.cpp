@@ -98,18 +98,21 @@ TEST(Cia402PdoMapping, DrivesShippedWithAnotherMappingAreRemappedAndFollow) {
       << r.drives[1]->position();
   EXPECT_EQ(r.drives[0]->bad_pdos(), 0u);
   EXPECT_FALSE(r.bus->status().fault) << r.bus->status().reason;
-  // The remap came first, before the drive's own limits and mode.
-  ASSERT_GE(r.sniffer.requests.size(), 21u);
-  EXPECT_EQ(r.sniffer.requests[0].data[1], 0x00);
-  EXPECT_EQ(r.sniffer.requests[0].data[2], 0x14);
-  EXPECT_EQ(r.sniffer.requests[14].data[2], 0x60);  // then 0x607D:01
+  // The heartbeat first (0x1017), then the remap, before the drive's own
+  // limits and mode.
+  ASSERT_GE(r.sniffer.requests.size(), 22u);
+  EXPECT_EQ(r.sniffer.requests[0].data[1], 0x17);
+  EXPECT_EQ(r.sniffer.requests[0].data[2], 0x10);
+  EXPECT_EQ(r.sniffer.requests[1].data[1], 0x00);
+  EXPECT_EQ(r.sniffer.requests[1].data[2], 0x14);
+  EXPECT_EQ(r.sniffer.requests[15].data[2], 0x60);  // then 0x607D:01
 }
 
 TEST(Cia402PdoMapping, WithoutTheRemapSuchDrivesNeverReachOperationEnabled) {
   Remap r(false);
   r.bus->set_enabled(true);
   EXPECT_EQ(r.run(1000, 0.0, [&] { return r.enabled(); }), -1);
-  EXPECT_EQ(r.sniffer.requests.size(), 7u) << "the 7 parameter SDOs only";
+  EXPECT_EQ(r.sniffer.requests.size(), 8u) << "the 7 parameter SDOs and the 0x6061 read only";
 }
 
 }  // namespace

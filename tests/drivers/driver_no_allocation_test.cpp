@@ -72,6 +72,34 @@ TEST(DriverNoAllocation, CanBusesAllocateNothingInTheTick) {
   EXPECT_EQ(total, 0);
 }
 
+// The formatted reasons (an SDO abort, a wrong mode) and the segmented upload
+// run in the tick too: a fixed buffer, no allocation.
+TEST(DriverNoAllocation, Cia402SdoFailuresAndSegmentedUploadsAllocateNothing) {
+  MemoryCanLink link(1024);
+  sim::Cia402DriveSim d1(1, fast_plant(), 20000.0, 0.0), d2(2, fast_plant(), 20000.0, 0.0);
+  d1.set_upload_form(sim::Cia402DriveSim::UploadForm::kSegmented);
+  d1.force_mode_display(3);
+  d2.refuse_object(0x607F);
+  sim::CanDeviceNetwork net(link.devices(), {&d1, &d2});
+  Cia402Bus bus("can0", link.host(), testing::rotary_axes(2), std::vector<double>(2, 0.0));
+  std::vector<double> cmd(2, 0.0), meas(2);
+  std::int64_t now = 1'000'000'000;
+  long total = 0;
+  for (int k = 0; k < 200; ++k) {
+    now += 1'000'000;
+    total += allocations_in([&] {
+      if (k == 1) bus.set_enabled(true);
+      bus.read({now, 0.001}, meas);
+      bus.write({now, 0.001}, cmd);
+      (void)bus.status();
+    });
+    net.poll(now);
+  }
+  EXPECT_EQ(bus.last_sdo_abort(1), 0x06020000u) << "the abort path ran";
+  EXPECT_EQ(d1.sdo_uploads(), 1u) << "the segmented upload ran";
+  EXPECT_EQ(total, 0);
+}
+
 TEST(DriverNoAllocation, CustomCanBusAllocatesNothingInTheTick) {
   MemoryCanLink link(1024);
   std::vector<sim::BoardChannel> ch(3);

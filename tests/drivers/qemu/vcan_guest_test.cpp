@@ -62,6 +62,10 @@ TEST(Vcan, Cia402DrivesReachOperationEnabledAndFollowTheCommandedPositions) {
   SocketCanTransport host(kIf, false);
   SocketCanTransport wire(kIf, false);
   CanBusOptions options;
+  // The drives here are polled at 200 Hz by a thread of a software-emulated
+  // CPU, which stalls for 20 ms at times: the 20 ms TPDO timeout is for
+  // real drives.
+  options.feedback_timeout_s = 0.1;
   std::vector<std::unique_ptr<sim::Cia402DriveSim>> drives;
   std::vector<sim::CanDevice*> devices;
   for (int n = 1; n <= 3; ++n) {

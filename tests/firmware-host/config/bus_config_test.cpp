@@ -82,6 +82,20 @@ TEST(BusConfig, CanKeysReachTheBusOptions) {
   EXPECT_DOUBLE_EQ(c.can.linear_counts_per_m, 2e6);
 }
 
+TEST(BusConfig, CiA402TimingKeysReachTheOptionsAndAHostNodeIdOnADriveIsRefused) {
+  TempFile f(rig(kCan + ", protocol: cia402, feedback_timeout_ms: 30, quick_stop_ms: 250"));
+  const BusConfig c = load_rig_config(f.path(), head().layout).buses.at(0);
+  EXPECT_DOUBLE_EQ(c.can.feedback_timeout_s, 0.03);
+  EXPECT_DOUBLE_EQ(c.can.quick_stop_s, 0.25);
+  const std::string custom = budget_error(rig(kCan + ", quick_stop_ms: 100"));
+  EXPECT_NE(custom.find("no quick_stop_ms on a custom bus"), std::string::npos) << custom;
+  // Actuator a2 (address 2) on the host's own node id: line 7, its address.
+  const std::string e = budget_error(rig(kCan + ", protocol: cia402, host_node: 2", 2));
+  EXPECT_EQ(e.rfind("RIG:7:", 0), 0u) << e;
+  EXPECT_NE(e.find("a node id other than the host's (host_node 2 on bus b0)"), std::string::npos)
+      << e;
+}
+
 TEST(BusConfig, ModbusKeysReachTheTiming) {
   TempFile f(
       rig("type: modbus_rtu, device: /dev/ttyUSB0, baud: 115200, response_timeout_ms: 15, "
@@ -124,7 +138,8 @@ TEST(BusConfig, BadBusKeysNameTheirPositionKeyExpectedAndFound) {
             "protocol, rate_divider, fd, data_bitrate, values, heartbeat_timeout_ms, map_pdos, "
             "host_node, "
             "host_heartbeat_ms, drive_heartbeat_ms, drive_watchdog_ms, sdo_timeout_ms, "
-            "enable_timeout_ms, counts_per_rev, counts_per_mm, found unknown key 'retries'");
+            "enable_timeout_ms, counts_per_rev, counts_per_mm, feedback_timeout_ms, quick_stop_ms, "
+            "found unknown key 'retries'");
   const std::string rtu = "type: modbus_rtu, device: /dev/ttyS0, baud: 115200";
   EXPECT_EQ(budget_error(rig(rtu + ", response_timeout_ms: 500")),
             "RIG:4:92: rig.buses[0].response_timeout_ms: expected a number in [1, 250], found "
