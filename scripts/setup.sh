@@ -38,9 +38,10 @@ packages=(
   chromium
   # The sanitizer builds and the libFuzzer targets (scripts/sanitize.sh,
   # scripts/fuzz.sh): clang 14 with its sanitizer and libFuzzer runtimes, and
-  # python3 for the seeds fuzz.sh writes; lld links those trees faster
-  # (CMakeLists.txt).
-  clang clang-14 libclang-rt-14-dev python3 lld
+  # python3 for the seeds fuzz.sh writes.
+  clang clang-14 libclang-rt-14-dev python3
+  # lld links the builds without LTO (the CI's) faster (CMakeLists.txt).
+  lld
 )
 
 missing=()
