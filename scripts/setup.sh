@@ -46,6 +46,8 @@ packages=(
   # scripts/fuzz.sh): clang 14 with its sanitizer and libFuzzer runtimes, and
   # python3 for the seeds fuzz.sh writes.
   clang clang-14 libclang-rt-14-dev python3
+  # lld links the builds without LTO (the CI's) faster (CMakeLists.txt).
+  lld
 )
 
 missing=()

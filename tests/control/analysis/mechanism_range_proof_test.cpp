@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tests/support/mandible_mechanisms.hpp"
+#include "tests/support/sample_count.hpp"
 
 namespace facectl {
 namespace {
@@ -36,6 +37,9 @@ bool admissible(const MandibleVector& q, std::span<const MandibleLinearConstrain
     if (c.a.dot(q) > c.b) return false;
   return true;
 }
+
+// A tenth when sanitized: the corners, where the extremes lie, are always drawn.
+const int kSamples = static_cast<int>(testing::sample_count(1'000'000));
 
 // Samples `count` uniform poses of the envelope plus its 8 corners; checks that
 // every admissible one's strokes lie in the proven enclosure and returns the
@@ -101,7 +105,7 @@ TEST(MechanismRangeProof, SoundAndTightForTheDefaultMechanism) {
   ASSERT_FALSE(proof.empty);
   EXPECT_EQ(proof.reach, MechanismReach::kProven);
   expect_tight(m, proof, {});
-  const auto seen = check_samples(m, proof, {}, 1'000'000, 7);
+  const auto seen = check_samples(m, proof, {}, kSamples, 7);
   // The samples come close to the bound, from inside.
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_LT(proof.strut[i].proven.max - seen[i].max, 1e-3) << i;
@@ -114,7 +118,7 @@ TEST(MechanismRangeProof, SoundAndTightForTheTwoStrutMechanism) {
   const MechanismRangeProof proof = prove_stroke_ranges(m, kEnvelope);
   EXPECT_EQ(proof.reach, MechanismReach::kProven);
   expect_tight(m, proof, {});
-  check_samples(m, proof, {}, 1'000'000, 8);
+  check_samples(m, proof, {}, kSamples, 8);
   // Protrusion is held at 0, whatever the envelope allows.
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(proof.strut[i].argmax.protrusion_m, 0.0);
@@ -127,7 +131,7 @@ TEST(MechanismRangeProof, ConstraintsPruneSoundly) {
   const MechanismRangeProof free = prove_stroke_ranges(m, kEnvelope);
   const MechanismRangeProof banded = prove_stroke_ranges(m, kEnvelope, kYawBand);
   expect_tight(m, banded, kYawBand);
-  check_samples(m, banded, kYawBand, 1'000'000, 9);
+  check_samples(m, banded, kYawBand, kSamples, 9);
   // Yaw is narrower at small pitch, so the pterygoid struts (yaw ≈ their
   // difference) see a narrower range.
   for (std::size_t i = 1; i < 3; ++i) {
@@ -192,7 +196,7 @@ TEST(MechanismRangeProof, SoundForRandomGeometries) {
     const MechanismRangeProof proof = prove_stroke_ranges(m, env);
     std::uniform_real_distribution<double> p(env.pitch.min, env.pitch.max),
         y(env.yaw.min, env.yaw.max), d(env.protrusion.min, env.protrusion.max);
-    for (int n = 0; n < 25'000; ++n) {
+    for (long n = 0; n < testing::sample_count(25'000); ++n) {
       MandibleStrokes s{};
       strokes(m, {p(rng), y(rng), d(rng)}, s);
       for (std::size_t i = 0; i < 3; ++i) {
