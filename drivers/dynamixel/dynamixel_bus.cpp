@@ -45,12 +45,18 @@ struct DynamixelBus::Servo {
   bool answered = false;  // in this cycle's sync read
   bool alert = false;     // a status packet had the alert bit: read Hardware Error Status
   bool hardware_fault = false;
+  bool off_pending = false;  // torque off not yet confirmed: sent again each cycle
+  // Switched off by a fault, a silence or a lost port: not switched on again
+  // until the controller has disabled it (a new enable, not a resumed one).
+  bool latched = false;
+  std::uint32_t latched_disables = 0;
   double current_unit_a = 0.0;  // per count of Present Current; 0: Present Load
   // Static reasons (BusStatus::reason must outlive the call).
-  std::string silent, not_x, refused, hardware[kErrorReasons];
+  std::string silent, not_x, refused, watchdog, hardware[kErrorReasons];
   // Shared with the tick.
   std::atomic<const char*> reason{nullptr};
   std::atomic<bool> wanted{false};
+  std::atomic<std::uint32_t> disables{0};  // falling edges of `wanted`, from the tick
   std::atomic<bool> on{false};
   std::atomic<bool> ready{false};
 };
@@ -108,11 +114,14 @@ DynamixelBus::DynamixelBus(std::string name, std::string device, long baud,
                 std::to_string(std::lround(options_.fault_after_s * 1e3)) + " ms";
     s->not_x = who + ": not an X-series servo (its Model Number is not one facectl knows)";
     s->refused = who + ": refused its set-up (a write came back with an error)";
+    s->watchdog = who +
+                  ": its Bus Watchdog tripped (no instruction for watchdog_ms): it stopped and "
+                  "refuses goals";
     for (std::size_t k = 0; k < kErrorReasons; ++k) {
       const std::string bits =
           k < std::size(kErrorOrder) ? dxl_x::hardware_error_text(kErrorOrder[k]) : "other bits";
-      s->hardware[k] = who + ": hardware error: " + bits +
-                       " (the servo switched its torque off; power it off and on)";
+      s->hardware[k] =
+          who + ": hardware error: " + bits + " (torque off; power-cycle or REBOOT the servo)";
     }
     last_feedback_.positions[i] = initial_positions[i];
     servos_.push_back(std::move(s));
@@ -169,7 +178,12 @@ void DynamixelBus::set_enabled(bool enabled) {
   if (enabled && !enabled_.load(std::memory_order_relaxed)) {
     epoch_.fetch_add(1, std::memory_order_release);
   }
-  for (auto& s : servos_) s->wanted.store(enabled, std::memory_order_release);
+  for (auto& s : servos_) {
+    if (!enabled && s->wanted.load(std::memory_order_relaxed)) {
+      s->disables.fetch_add(1, std::memory_order_release);
+    }
+    s->wanted.store(enabled, std::memory_order_release);
+  }
   enabled_.store(enabled, std::memory_order_release);
 }
 
@@ -184,7 +198,11 @@ void DynamixelBus::set_actuators_enabled(std::span<std::uint8_t> enabled) {
   // Torque is per servo: each flag is honoured as it is.
   if (rising) epoch_.fetch_add(1, std::memory_order_release);
   for (auto& s : servos_) {
-    s->wanted.store(s->index < enabled.size() && enabled[s->index] != 0, std::memory_order_release);
+    const bool on = s->index < enabled.size() && enabled[s->index] != 0;
+    if (!on && s->wanted.load(std::memory_order_relaxed)) {
+      s->disables.fetch_add(1, std::memory_order_release);
+    }
+    s->wanted.store(on, std::memory_order_release);
   }
   enabled_.store(any, std::memory_order_release);
 }
@@ -278,6 +296,7 @@ void DynamixelBus::lose_port(const char* reason) {
   link_.reset();
   port_reason_.store(reason, std::memory_order_release);
   for (auto& s : servos_) {
+    if (s->stage == Stage::kOn) latch_off(*s);
     s->stage = Stage::kSetUp;
     s->on.store(false, std::memory_order_release);
     s->ready.store(false, std::memory_order_release);
@@ -314,10 +333,15 @@ void DynamixelBus::run_cycle(std::int64_t now_ns) {
       }
       continue;
     }
-    const bool want = s.wanted.load(std::memory_order_acquire) && !s.hardware_fault;
-    if (want && s.stage == Stage::kReady) {
+    const bool wanted = s.wanted.load(std::memory_order_acquire);
+    if (s.latched &&
+        (!wanted || s.disables.load(std::memory_order_acquire) != s.latched_disables)) {
+      s.latched = false;  // the controller has disabled it since
+    }
+    const bool want = wanted && !s.hardware_fault && !s.latched;
+    if (want && s.stage == Stage::kReady && !s.off_pending) {
       switch_torque(s, true);
-    } else if (!want && s.stage == Stage::kOn) {
+    } else if ((!want && s.stage == Stage::kOn) || s.off_pending) {
       switch_torque(s, false);
     }
   }
@@ -327,6 +351,30 @@ void DynamixelBus::run_cycle(std::int64_t now_ns) {
   sync_read_feedback(now_ns);
   for (auto& sp : servos_) {
     if (link_ && sp->alert) check_hardware_error(*sp);
+  }
+  if (link_) check_bus_watchdog();
+}
+
+void DynamixelBus::latch_off(Servo& s) {
+  if (!s.latched) s.latched_disables = s.disables.load(std::memory_order_acquire);
+  s.latched = true;
+}
+
+// One servo with torque on a cycle, in turn: a tripped Bus Watchdog (-1)
+// refuses every goal without a word, so it is looked for.
+void DynamixelBus::check_bus_watchdog() {
+  if (options_.bus_watchdog_ms == 0 || servos_.empty()) return;
+  for (std::size_t k = 0; k < servos_.size(); ++k) {
+    watchdog_turn_ = (watchdog_turn_ + 1) % servos_.size();
+    Servo& s = *servos_[watchdog_turn_];
+    if (s.stage != Stage::kOn) continue;
+    std::uint8_t value = 0;
+    if (read_register(s, dxl_x::kBusWatchdog, {&value, 1}) && value == 0xFF) {
+      fail(s, s.watchdog.c_str());
+      switch_torque(s, false);  // and 0 clears the trip
+      latch_off(s);
+    }
+    return;
   }
 }
 
@@ -389,32 +437,34 @@ bool DynamixelBus::set_up(Servo& s) {
 }
 
 bool DynamixelBus::switch_torque(Servo& s, bool on) {
-  std::uint8_t b[4];
+  const std::uint8_t zero = 0;
   if (on) {
     // Bumpless: the goal is where the servo is before the torque comes on,
     // and stays there until the tick writes after this enable.
+    std::uint8_t b[4];
     s.hold = s.present;
     s.on_epoch = epoch_.load(std::memory_order_acquire);
     dxl_x::put_i32(b, s.hold);
     const std::uint8_t one = 1;
     const auto watchdog = static_cast<std::uint8_t>(
         (options_.bus_watchdog_ms + dxl_x::kBusWatchdogUnitMs - 1) / dxl_x::kBusWatchdogUnitMs);
-    if (!write_register(s, dxl_x::kGoalPosition, {b, 4}) ||
-        !write_register(s, dxl_x::kTorqueEnable, {&one, 1}) ||
-        (watchdog > 0 && !write_register(s, dxl_x::kBusWatchdog, {&watchdog, 1}))) {
-      return false;
-    }
+    if (!write_register(s, dxl_x::kGoalPosition, {b, 4})) return false;
+    // From the torque write on, the servo may be on: any failure after it
+    // switches it off again (and retries that until confirmed).
     s.stage = Stage::kOn;
     s.on.store(true, std::memory_order_release);
-    return true;
+    if (write_register(s, dxl_x::kTorqueEnable, {&one, 1}) &&
+        (watchdog == 0 || write_register(s, dxl_x::kBusWatchdog, {&watchdog, 1}))) {
+      return true;
+    }
+    switch_torque(s, false);
+    return false;
   }
-  const std::uint8_t zero = 0;
-  // A servo that does not confirm is still counted off: the next set-up
-  // (after its silence) writes torque off again.
-  s.stage = Stage::kReady;
+  s.stage = s.stage == Stage::kSetUp ? Stage::kSetUp : Stage::kReady;
   s.on.store(false, std::memory_order_release);
-  return write_register(s, dxl_x::kTorqueEnable, {&zero, 1}) &&
-         write_register(s, dxl_x::kBusWatchdog, {&zero, 1});
+  s.off_pending = !(write_register(s, dxl_x::kTorqueEnable, {&zero, 1}) &&
+                    write_register(s, dxl_x::kBusWatchdog, {&zero, 1}));
+  return !s.off_pending;
 }
 
 void DynamixelBus::sync_write_goals() {
@@ -503,6 +553,7 @@ void DynamixelBus::sync_read_feedback(std::int64_t now_ns) {
       // Silent too long: it may have lost power and come back with its RAM
       // (torque, watchdog, status level) at defaults, so it is set up anew.
       fail(s, s.silent.c_str());
+      if (s.stage == Stage::kOn) latch_off(s);
       s.stage = Stage::kSetUp;
       s.on.store(false, std::memory_order_release);
       s.ready.store(false, std::memory_order_release);
@@ -519,9 +570,11 @@ void DynamixelBus::check_hardware_error(Servo& s) {
   std::size_t k = 0;
   while (k < std::size(kErrorOrder) && (bits & kErrorOrder[k]) == 0) ++k;
   s.hardware_fault = true;
-  s.stage = s.stage == Stage::kSetUp ? Stage::kSetUp : Stage::kReady;
-  s.on.store(false, std::memory_order_release);
   fail(s, s.hardware[k].c_str());
+  // The servo switches itself off only for the bits in its Shutdown item
+  // (63): torque off for any of them.
+  switch_torque(s, false);
+  latch_off(s);
 }
 
 bool DynamixelBus::transact(Servo& s, std::span<const std::uint8_t> packet,

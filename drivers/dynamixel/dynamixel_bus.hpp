@@ -96,6 +96,8 @@ class DynamixelBus final : public ActuatorBus {
   bool read_register(Servo& s, std::uint16_t address, std::span<std::uint8_t> data);
   bool write_register(Servo& s, std::uint16_t address, std::span<const std::uint8_t> data);
   void publish_counters();
+  void latch_off(Servo& s);
+  void check_bus_watchdog();
   void fail(Servo& s, const char* reason);
   void lose_port(const char* reason);
 
@@ -121,6 +123,7 @@ class DynamixelBus final : public ActuatorBus {
   Command current_;
   Feedback measured_;
   std::vector<std::uint8_t> tx_;
+  std::size_t watchdog_turn_ = 0;
   std::string port_lost_;  // static reason
   std::atomic<const char*> port_reason_{nullptr};
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 
 namespace facectl {
 namespace {
@@ -42,6 +43,15 @@ DynamixelLink::Reply DynamixelLink::request(std::uint8_t id, std::span<const std
                 std::copy(p.begin(), p.end(), data.begin());
                 reply = Reply::kOk;
               });
+  if (got == 0) {
+    // A reply may still be on its way: let it arrive and drop it, so that it
+    // is not taken for the answer to the next request.
+    const double guard_s = wire_s(kStatusOverhead + data.size()) + return_delay_s + 0.001;
+    const timespec t{0, static_cast<long>(guard_s * 1e9)};
+    nanosleep(&t, nullptr);
+    rx_len_ = 0;
+    port_.discard_input();
+  }
   return got < 0 ? Reply::kLost : reply;
 }
 

@@ -206,7 +206,10 @@ ParseResult parse_into(std::span<const std::uint8_t> in, Packet& packet,
     }
     packet.consumed = end;
     packet.id = in[h + 4];
-    if (crc16(in.subspan(h, end - 2 - h)) != get16(in, end - 2)) return ParseResult::kBadCrc;
+    if (crc16(in.subspan(h, end - 2 - h)) != get16(in, end - 2)) {
+      packet.consumed = h + 1;  // a damaged length may hide good packets after it: resync
+      return ParseResult::kBadCrc;
+    }
     packet.instruction = in[h + kHeaderSize];
     // Unstuff: drop the 0xFD that follows each FF FF FD.
     std::size_t n = 0;

@@ -3,6 +3,7 @@
 // termios2 (BOTHER) from the kernel's headers: <termios.h> would redefine it.
 #include <asm/termbits.h>
 #include <fcntl.h>
+#include <linux/serial.h>
 #include <poll.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
@@ -52,6 +53,14 @@ SerialPort::SerialPort(const std::string& device, long baud) : device_(device), 
     const auto e = system_error(device, ("cannot set " + std::to_string(baud) + " baud").c_str());
     ::close(fd_);
     throw e;
+  }
+  // USB adapters (FTDI, as in the U2D2) hold received bytes up to their
+  // latency timer, 16 ms by default: ask for low latency (1 ms). Ports that
+  // are not such a device (a pty) say no, which is fine.
+  serial_struct ss{};
+  if (::ioctl(fd_, TIOCGSERIAL, &ss) == 0) {
+    ss.flags |= ASYNC_LOW_LATENCY;
+    ::ioctl(fd_, TIOCSSERIAL, &ss);
   }
   discard_input();
 }

@@ -1,5 +1,6 @@
 #include "firmware-host/model/bus_budget_check.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 
@@ -99,14 +100,25 @@ BusBudgetResult budget_dynamixel(const BusConfig& bus,
   const double wire_s = bytes * serial_byte_s(bus.bitrate) +
                         static_cast<double>(acts.size()) * o.return_delay_us * 1e-6;
   r.load = wire_s / o.cycle_period_s;
-  r.verdict = r.load > 1.0 ? BusBudgetResult::Verdict::kWarning : BusBudgetResult::Verdict::kOk;
-  char buf[240];
+  // A cycle that outlasts half the servos' Bus Watchdog, or the silence that
+  // makes a FAULT, would stop the servos or fault the bus by itself.
+  const double limit_ms = o.bus_watchdog_ms > 0
+                              ? std::min(0.5 * o.bus_watchdog_ms, o.fault_after_s * 1e3)
+                              : o.fault_after_s * 1e3;
+  const bool refused = wire_s * 1e3 >= limit_ms;
+  r.verdict = refused        ? BusBudgetResult::Verdict::kRefused
+              : r.load > 1.0 ? BusBudgetResult::Verdict::kWarning
+                             : BusBudgetResult::Verdict::kOk;
+  char buf[320];
   std::snprintf(buf, sizeof buf,
                 "%s: %zu servos, %.0f bytes per I/O cycle = %.2f ms at %ld baud, %.0f%% of the "
                 "%g ms cycle%s",
                 bus.name.c_str(), acts.size(), bytes, wire_s * 1e3, bus.bitrate, 100.0 * r.load,
                 o.cycle_period_s * 1e3,
-                r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)" : "");
+                refused ? " (refused: not under half watchdog_ms and under fault_after_ms; a "
+                          "faster baud or fewer servos)"
+                : r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)"
+                               : "");
   r.text = buf;
   return r;
 }

@@ -14,6 +14,7 @@ using dxl2::ResultError;
 
 constexpr double kTimeConstantS = 0.03;  // the motor's response, first order
 constexpr std::uint16_t kTableSize = 256;
+constexpr std::uint16_t kShutdown = 63;  // which Hardware Error bits switch the torque off
 
 // The e-Manual's Access column: R items a write must not touch.
 bool read_only(std::uint16_t a) {
@@ -35,6 +36,7 @@ DynamixelServoSim::DynamixelServoSim(std::uint8_t id, std::uint16_t model, std::
   table_[x::kReturnDelayTime] = 250;  // 500 us, the factory setting
   table_[x::kOperatingMode] = x::kPositionControlMode;
   table_[x::kTemperatureLimit] = 72;
+  table_[kShutdown] = 0x34;  // overload, electrical shock, overheating: the factory's
   x::put_i32(&table_[x::kMaxPositionLimit], 4095);
   x::put_i32(&table_[x::kMinPositionLimit], 0);
   reset_ram();
@@ -58,7 +60,12 @@ std::int32_t DynamixelServoSim::present() const {
 
 void DynamixelServoSim::raise_hardware_error(std::uint8_t bits) {
   table_[x::kHardwareErrorStatus] = bits;
-  table_[x::kTorqueEnable] = 0;
+  if ((bits & table_[kShutdown]) != 0) table_[x::kTorqueEnable] = 0;
+}
+
+void DynamixelServoSim::move_by_hand(std::int32_t pulses) {
+  position_ = pulses;
+  x::put_i32(&table_[x::kPresentPosition], pulses);
 }
 
 void DynamixelServoSim::set_load_permille(std::int16_t load) {

@@ -30,10 +30,15 @@ class DynamixelServoSim {
   std::int32_t goal() const;
   std::int32_t present() const;
   bool torque() const { return table_[64] != 0; }
-  // Sets Hardware Error Status: the servo switches its torque off and marks
-  // every status packet with the alert bit until rebooted.
+  // Sets Hardware Error Status: the servo marks every status packet with the
+  // alert bit until rebooted, and switches its torque off if a bit is in its
+  // Shutdown item (63; the factory's 0x34: overload, shock, overheating).
   void raise_hardware_error(std::uint8_t bits);
   void set_temperature(std::uint8_t celsius) { table_[146] = celsius; }
+  // Turns the horn by hand (torque off): the servo now stands at `pulses`.
+  void move_by_hand(std::int32_t pulses);
+  // As if no instruction had come for the Bus Watchdog's period.
+  void trip_bus_watchdog() { table_[98] = 0xFF; }
   void set_load_permille(std::int16_t load);
   std::uint64_t eeprom_writes() const { return eeprom_writes_; }
   std::uint64_t instructions() const { return instructions_; }

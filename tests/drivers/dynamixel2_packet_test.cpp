@@ -126,7 +126,10 @@ TEST(Dynamixel2Packet, NoiseTruncationAndDamage) {
   Bytes bad = good;
   bad[9] ^= 0x01;  // a bit flipped in the position
   EXPECT_EQ(parse_status(bad, st, params), ParseResult::kBadCrc);
-  EXPECT_EQ(st.consumed, bad.size());
+  // Only its first byte is dropped: a damaged length field must not swallow
+  // good packets after it. The rest holds no packet.
+  EXPECT_EQ(st.consumed, 1u);
+  EXPECT_EQ(parse_status(std::span(bad).subspan(1), st, params), ParseResult::kIncomplete);
   // Our own instruction echoed back (half-duplex adapters do): not a status.
   std::array<std::uint8_t, 256> out{};
   const std::size_t n = encode_read(1, 132, 4, out);

@@ -58,7 +58,14 @@ DynamixelOptions fast() {
   o.cycle_period_s = 0.004;
   o.response_timeout_s = 0.015;
   o.fault_after_s = 0.15;
+  o.bus_watchdog_ms = 1000;  // a loaded test machine may stall a cycle for 100 ms
   return o;
+}
+
+// Waits for `n` more I/O cycles of the bus.
+void cycles(const DynamixelBus& bus, std::uint64_t n) {
+  const std::uint64_t until = bus.stats().cycles + n;
+  while (bus.stats().cycles < until) std::this_thread::sleep_for(1ms);
 }
 
 bool eventually(const std::function<bool()>& ok, std::chrono::milliseconds limit = 3000ms) {
@@ -139,9 +146,10 @@ TEST(DynamixelBus, EnablesBumplesslyThenFollowsTheCommands) {
   ASSERT_TRUE(eventually([&] { return bus.torque_on(0) && bus.torque_on(1); })) << reason(bus);
   // Torque on with the goal where the servo stood, not an older target.
   EXPECT_EQ(servo_value(*w, 1, &DynamixelServoSim::goal), 2048 + 300);
+  // The Bus Watchdog, 1000 ms in 20 ms units, is armed after the torque
+  // (torque_on() is true from the torque write on).
+  EXPECT_TRUE(eventually([&] { return servo_byte(*w, 1, dxl_x::kBusWatchdog) == 50; }));
   EXPECT_TRUE(servo_value(*w, 1, &DynamixelServoSim::torque));
-  // The Bus Watchdog, 100 ms in 20 ms units, is armed with the torque.
-  EXPECT_EQ(servo_byte(*w, 1, dxl_x::kBusWatchdog), 5);
   const std::vector<double> target = {10 * kDeg, -30 * kDeg};
   bus.write({}, target);
   ASSERT_TRUE(eventually([&] {
@@ -172,7 +180,7 @@ TEST(DynamixelBus, SwitchesTorquePerServo) {
   EXPECT_EQ(on[0], 0);
   EXPECT_EQ(on[1], 1);  // torque is per servo: nothing else switched off
   ASSERT_TRUE(eventually([&] { return bus.torque_on(1); }));
-  std::this_thread::sleep_for(30ms);
+  cycles(bus, 5);
   EXPECT_FALSE(bus.torque_on(0));
   EXPECT_FALSE(servo_value(*w, 1, &DynamixelServoSim::torque));
   EXPECT_TRUE(servo_value(*w, 2, &DynamixelServoSim::torque));
@@ -233,9 +241,53 @@ TEST(DynamixelBus, AServoThatStopsAnsweringIsAFaultNamingIt) {
   EXPECT_EQ(reason(bus), "dxl servo 2 (servo2): not answering within 150 ms");
   EXPECT_FALSE(bus.torque_on(1));
   EXPECT_TRUE(bus.torque_on(0));
-  // Back: set up again (it may have lost power) and no longer silent.
+  // Back: set up again (it may have lost power) and no longer silent, but
+  // its torque stays off until the controller disables and enables it: it
+  // does not resume on its own.
   w->faults().mute_id = -1;
-  EXPECT_TRUE(eventually([&] { return !bus.status().fault && bus.torque_on(1); })) << reason(bus);
+  ASSERT_TRUE(eventually([&] { return !bus.status().fault && bus.ready(); })) << reason(bus);
+  cycles(bus, 10);
+  EXPECT_FALSE(bus.torque_on(1));
+  EXPECT_FALSE(servo_value(*w, 2, &DynamixelServoSim::torque));
+  bus.set_enabled(false);
+  bus.set_enabled(true);
+  EXPECT_TRUE(eventually([&] { return bus.torque_on(1); })) << reason(bus);
+}
+
+TEST(DynamixelBus, ReEnablingHoldsWhereTheServoIsNotTheOldTarget) {
+  auto w = wire({2048});
+  DynamixelBus bus("dxl", w->device(), 1'000'000, servos(1), {0.0}, fast());
+  ASSERT_TRUE(eventually([&] { return bus.ready(); }));
+  bus.set_enabled(true);
+  ASSERT_TRUE(eventually([&] { return bus.torque_on(0); }));
+  bus.write({}, std::vector<double>{20 * kDeg});
+  ASSERT_TRUE(eventually([&] { return servo_value(*w, 1, &DynamixelServoSim::goal) == 2276; }));
+  bus.set_enabled(false);
+  ASSERT_TRUE(eventually([&] { return !servo_value(*w, 1, &DynamixelServoSim::torque); }));
+  w->with_servo(1, [](DynamixelServoSim& s) { s.move_by_hand(2048 - 300); });
+  cycles(bus, 3);
+  bus.set_enabled(true);
+  ASSERT_TRUE(eventually([&] { return bus.torque_on(0); }));
+  cycles(bus, 10);
+  // No write since the enable: it holds where it was turned to.
+  EXPECT_EQ(servo_value(*w, 1, &DynamixelServoSim::goal), 2048 - 300);
+}
+
+TEST(DynamixelBus, ATrippedBusWatchdogIsAFaultAndTheServoIsSwitchedOff) {
+  auto w = wire({2048});
+  DynamixelBus bus("dxl", w->device(), 1'000'000, servos(1), {0.0}, fast());
+  ASSERT_TRUE(eventually([&] { return bus.ready(); }));
+  bus.set_enabled(true);
+  ASSERT_TRUE(eventually([&] { return bus.torque_on(0); }));
+  ASSERT_TRUE(eventually([&] { return servo_byte(*w, 1, dxl_x::kBusWatchdog) == 50; }));
+  w->with_servo(1, [](DynamixelServoSim& s) { s.trip_bus_watchdog(); });
+  ASSERT_TRUE(eventually([&] { return bus.status().fault; }));
+  EXPECT_EQ(reason(bus),
+            "dxl servo 1 (servo1): its Bus Watchdog tripped (no instruction for watchdog_ms): it "
+            "stopped and refuses goals");
+  EXPECT_TRUE(eventually([&] { return !servo_value(*w, 1, &DynamixelServoSim::torque); }));
+  EXPECT_EQ(servo_byte(*w, 1, dxl_x::kBusWatchdog), 0);  // cleared
+  EXPECT_FALSE(bus.torque_on(0));
 }
 
 TEST(DynamixelBus, ANeverAnsweringServoIsAFaultFromStartUp) {
@@ -271,8 +323,8 @@ TEST(DynamixelBus, AHardwareErrorIsAFaultAndKeepsTheTorqueOff) {
   });
   ASSERT_TRUE(eventually([&] { return bus.status().fault; }));
   EXPECT_EQ(reason(bus),
-            "dxl servo 1 (servo1): hardware error: overheating (the servo switched its torque "
-            "off; power it off and on)");
+            "dxl servo 1 (servo1): hardware error: overheating (torque off; power-cycle or "
+            "REBOOT the servo)");
   std::vector<ActuatorHealth> h(2);
   ASSERT_TRUE(eventually([&] {
     bus.read_health(h);
@@ -284,9 +336,24 @@ TEST(DynamixelBus, AHardwareErrorIsAFaultAndKeepsTheTorqueOff) {
   // Enabling again does not try the servo that switched itself off.
   bus.set_enabled(false);
   bus.set_enabled(true);
-  std::this_thread::sleep_for(50ms);
+  cycles(bus, 10);
   EXPECT_FALSE(bus.torque_on(0));
   EXPECT_TRUE(bus.status().fault);
+}
+
+TEST(DynamixelBus, AHardwareErrorTheServoIgnoresStillSwitchesItsTorqueOff) {
+  auto w = wire({2048});
+  DynamixelBus bus("dxl", w->device(), 1'000'000, servos(1), {0.0}, fast());
+  ASSERT_TRUE(eventually([&] { return bus.ready(); }));
+  bus.set_enabled(true);
+  ASSERT_TRUE(eventually([&] { return bus.torque_on(0); }));
+  // Input voltage is not in the factory's Shutdown item: the servo stays on.
+  w->with_servo(1, [](DynamixelServoSim& s) { s.raise_hardware_error(dxl_x::kErrInputVoltage); });
+  ASSERT_TRUE(eventually([&] { return bus.status().fault; }));
+  EXPECT_EQ(reason(bus),
+            "dxl servo 1 (servo1): hardware error: input voltage (torque off; power-cycle or "
+            "REBOOT the servo)");
+  EXPECT_TRUE(eventually([&] { return !servo_value(*w, 1, &DynamixelServoSim::torque); }));
 }
 
 TEST(DynamixelBus, RefusesAServoOfAnotherSeries) {

@@ -290,8 +290,10 @@ TEST(RealHardware, TheShippedDynamixelRigDrivesSimulatedServos) {
   ASSERT_TRUE(run(5000ms, [&] { return controller.state() == SafetyState::kRunning; }))
       << to_string(controller.state()) << " " << hw->seams.at(0)->status().reason;
   bool torque = false;
-  wire.with_servo(1, [&](sim::DynamixelServoSim& s) { torque = s.torque(); });
-  EXPECT_TRUE(torque);
+  EXPECT_TRUE(run(500ms, [&] {
+    wire.with_servo(1, [&](sim::DynamixelServoSim& s) { torque = s.torque(); });
+    return torque;
+  })) << "torque on while running";
   // Open the jaw 10 deg: the horn turns through the linkage, away from rest.
   loop.jaw_rad = 10.0 * 3.14159265358979 / 180.0;
   std::int32_t goal = rest_goal;
