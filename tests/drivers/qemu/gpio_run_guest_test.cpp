@@ -105,7 +105,11 @@ double wait_ms(std::chrono::milliseconds limit, Pred pred) {
 class FacectlRunOnGpio : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (access(testing::kGpioSimModule, F_OK) != 0) GTEST_SKIP() << "gpio-sim not built";
+    if (access(testing::kGpioSimModule, F_OK) != 0) {
+      GTEST_SKIP() << "gpio-sim not built: " << testing::kGpioSimModule
+                   << " missing (packages linux-source-6.1, linux-headers-amd64; "
+                      "tests/drivers/qemu/build_gpio_sim.sh)";
+    }
     // The ctest entry always passes the binary to run_in_qemu.sh: missing is a failure.
     ASSERT_EQ(access("/bin/facectl", X_OK), 0) << "no /bin/facectl in this guest";
     board_ = std::make_unique<sim::ModbusActuatorBoard>(1, std::vector<sim::BoardChannel>(3));
