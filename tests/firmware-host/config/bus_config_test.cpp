@@ -273,7 +273,7 @@ TEST(HardwareConfig, AGamepadWithoutAxesOrButtonsTakesTheDescriptorsNamedSlots) 
   EXPECT_EQ(g.pending[1].term.input, 1u);   // button_2
   EXPECT_EQ(runtime_error(runtime("gamepad: { path: /dev/hidraw0, map: [{ axis: throttle, "
                                   "signal: jaw_pitch_deg }] }\n")),
-            "RT:4:49: gamepad.map[0].axis: expected the name of one of the gamepad's axes (x, y, "
+            "RT:4:46: gamepad.map[0].axis: expected the name of one of the gamepad's axes (x, y, "
             "z, rx, ry, rz, slider, dial, wheel, hat_x, hat_y, accelerator, brake), found "
             "'throttle'");
 }
