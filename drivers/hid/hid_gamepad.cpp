@@ -62,7 +62,13 @@ hid_device* open_device(const HidSelector& s) {
 GamepadLayout read_gamepad_layout(const HidSelector& selector) {
   init_hidapi();
   hid_device* dev = open_device(selector);
-  if (dev == nullptr) throw std::runtime_error("cannot open the HID device (hidapi)");
+  if (dev == nullptr) {
+    char id[16];
+    std::snprintf(id, sizeof id, "%04x:%04x", selector.vendor, selector.product);
+    throw std::runtime_error("cannot open HID device " +
+                             (selector.path.empty() ? id : selector.path) +
+                             " (absent, or no permission on its hidraw node)");
+  }
   const std::string path = device_path(dev);
   hid_close(dev);
   const std::vector<std::uint8_t> rd = read_hidraw_descriptor(path);

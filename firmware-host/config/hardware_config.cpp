@@ -92,7 +92,10 @@ GamepadConfig parse_gamepad(const ConfigNode& node) {
       axis.byte = static_cast<int>(a["byte"].integer_in(0, 63));
       if (auto n = a.get("bit")) axis.bit = static_cast<int>(n->integer_in(0, 7));
       if (auto n = a.get("bits")) axis.bits = static_cast<int>(n->integer_in(1, 32));
-      if (axis.byte * 8 + axis.bit + axis.bits > 64 * 8) a.fail("a field within 64 bytes");
+      if (axis.byte * 8 + axis.bit + axis.bits > 64 * 8) {
+        a["byte"].fail("a field that ends within 64 bytes (byte * 8 + bit + bits <= 512)",
+                       a["byte"].found());
+      }
       if (auto n = a.get("signed")) axis.is_signed = n->boolean();
       // The full raw range: symmetric when signed (-127..127 for 8 bits).
       const double top = std::ldexp(1.0, axis.bits - (axis.is_signed ? 1 : 0)) - 1.0;

@@ -289,7 +289,8 @@ TEST(HardwareConfig, HandWrittenAxesMayBeBitFields) {
   EXPECT_DOUBLE_EQ(l.axes[0].max, 4095.0);
   EXPECT_EQ(runtime_error(runtime("gamepad: { path: /dev/hidraw0, axes: [{ name: lx, byte: 63, "
                                   "bits: 16 }], map: [{ axis: lx, signal: jaw_pitch_deg }] }\n")),
-            "RT:4:39: gamepad.axes[0]: expected a field within 64 bytes");
+            "RT:4:57: gamepad.axes[0].byte: expected a field that ends within 64 bytes (byte * "
+            "8 + bit + bits <= 512), found '63'");
 }
 
 TEST(HardwareConfig, AGamepadSignalTheHeadDoesNotHaveIsNamed) {
