@@ -5,6 +5,7 @@
 #include "firmware-host/cli/bench_command.hpp"
 #include "firmware-host/cli/bus_doctor_command.hpp"
 #include "firmware-host/cli/face_cli.hpp"
+#include "firmware-host/cli/gamepad_layout_command.hpp"
 #include "firmware-host/cli/plot_command.hpp"
 #include "firmware-host/cli/run_command.hpp"
 #include "firmware-host/cli/serve_command.hpp"
@@ -26,6 +27,7 @@ struct CliOptions {
   facectl::VerifyOptions verify;
   facectl::SimulateOptions simulate;
   facectl::BusDoctorOptions doctor;
+  facectl::GamepadLayoutOptions gamepad_layout;
   int exit_code = 0;
 };
 
@@ -191,6 +193,19 @@ void add_bus_commands(CLI::App& app, CliOptions& o) {
   doctor_cmd->callback([&o] { o.exit_code = facectl::bus_doctor_command(o.doctor); });
 }
 
+// `facectl gamepad layout`.
+void add_gamepad_command(CLI::App& app, CliOptions& o) {
+  CLI::App* gamepad_cmd = app.add_subcommand("gamepad", "Gamepad tools");
+  gamepad_cmd->require_subcommand(1);
+  CLI::App* layout_cmd = gamepad_cmd->add_subcommand(
+      "layout", "Print the axes and buttons a gamepad's HID report descriptor declares");
+  layout_cmd->add_option("--device", o.gamepad_layout.device,
+                         "The gamepad: /dev/hidrawN, or VENDOR:PRODUCT in hex");
+  layout_cmd->add_option("--descriptor", o.gamepad_layout.descriptor,
+                         "Or a report descriptor file (binary, or hex bytes)");
+  layout_cmd->callback([&o] { o.exit_code = facectl::gamepad_layout_command(o.gamepad_layout); });
+}
+
 int run_cli(int argc, char** argv) {
   CLI::App app{"facectl: real-time controller for animatronic robot faces"};
   app.require_subcommand(1);
@@ -202,6 +217,7 @@ int run_cli(int argc, char** argv) {
   add_verify_command(app, o);
   add_simulate_command(app, o);
   add_bus_commands(app, o);
+  add_gamepad_command(app, o);
   register_face_commands(app);
 
   try {

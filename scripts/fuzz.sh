@@ -24,7 +24,8 @@ FUZZ_NICE="${FUZZ_NICE:-0}"
 
 all_targets=(runtime_config head_config rig_config expressions show fap_file fap_udp recorded_input
              live_link_face_packet osc_datagram
-             telemetry_csv modbus_reply custom_can cia402_can hid_report dynamixel2_status)
+             telemetry_csv modbus_reply custom_can cia402_can hid_report hid_descriptor
+             dynamixel2_status)
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then targets=("${all_targets[@]}"); fi
 
@@ -60,6 +61,13 @@ seed live_link_face_packet "$src"/tests/firmware-host/inputs/real/live_link_face
 # OSC as python-osc (an independent implementation) encodes it.
 python3 "$src"/tests/firmware-host/inputs/peers/osc_peer.py write "$out/osc_datagram/seeds"
 seed hid_report  # none: the repository holds no captured reports (libFuzzer starts empty)
+# Real pads' descriptors, each as [length, 2 bytes LE][descriptor][a report].
+mkdir -p "$out/hid_descriptor/seeds"
+for f in "$src"/tests/drivers/hid_descriptors/*.hex; do
+  python3 -c 'import sys; d = bytes.fromhex(open(sys.argv[1]).read())
+sys.stdout.buffer.write(len(d).to_bytes(2, "little") + d + bytes([1]) + bytes(range(63)))' "$f" \
+    >"$out/hid_descriptor/seeds/$(basename "$f" .hex)"
+done
 seed custom_can  # none: no recorded CAN traffic in the repository
 seed cia402_can
 seed dynamixel2_status  # none: the e-Manual's status packets are in the unit test

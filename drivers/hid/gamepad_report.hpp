@@ -8,22 +8,28 @@
 
 namespace facectl {
 
-// Where a gamepad's axes and buttons sit in its HID input report. Gamepads
-// differ, so this comes from config (or from the report descriptor, read by
-// hand once: docs/PROTOCOLS.md, "HID gamepad").
+// Where a gamepad's axes and buttons sit in its HID input report: from the
+// device's report descriptor (gamepad_layout_from_descriptor), or written in
+// config as an override (docs/PROTOCOLS.md, "HID gamepad").
 struct GamepadLayout {
+  // A hat switch gives two axes, each -1, 0 or +1 (up is hat_y = -1).
+  enum class Kind { kLinear, kHatX, kHatY };
   struct Axis {
     std::string name;
     int byte = 0;  // offset in the report, after the report id if any
-    int bits = 8;  // 8 or 16 (little-endian)
+    int bits = 8;  // 1..32, little-endian
     bool is_signed = false;
     double min = 0.0;    // raw value that maps to -1
     double max = 255.0;  // raw value that maps to +1
+    int bit = 0;         // first bit within `byte`, 0..7 (HID packs fields LSB first)
+    Kind kind = Kind::kLinear;
+    bool present = true;  // false: a slot the device lacks; reads 0
   };
   struct Button {
     std::string name;
     int byte = 0;
     int bit = 0;
+    bool present = true;
   };
   int report_id = -1;  // -1: the device uses no report ids
   std::vector<Axis> axes;
@@ -47,7 +53,8 @@ struct GamepadState {
 bool decode_gamepad_report(const GamepadLayout& layout, std::span<const std::uint8_t> report,
                            GamepadState& state);
 
-// Checks a layout: at most 16 axes and 32 buttons, sane offsets and widths.
+// Checks a layout: at most 16 axes and 32 buttons, fields within 64 bytes,
+// 1..32 bits wide.
 // Throws std::invalid_argument naming the axis or button.
 void validate(const GamepadLayout& layout);
 

@@ -1,5 +1,9 @@
 #include "firmware-host/config/hardware_config.hpp"
 
+#include <cmath>
+
+#include "drivers/hid/gamepad_descriptor_layout.hpp"
+
 namespace facectl {
 namespace {
 
@@ -72,22 +76,31 @@ GamepadConfig parse_gamepad(const ConfigNode& node) {
   if (auto n = node.get("rate_hz")) cfg.rate_hz = n->number_in(10.0, 1000.0);
 
   std::vector<std::string> axis_names, button_names;
+  // Without axes and buttons the device's report descriptor decides, at each
+  // open, into slots whose names are known now.
+  if (!node.has("axes") && !node.has("buttons")) {
+    axis_names.assign(kDescriptorAxisNames.begin(), kDescriptorAxisNames.end());
+    for (int b = 1; b <= kDescriptorButtons; ++b) button_names.push_back(descriptor_button_name(b));
+  }
   if (auto axes = node.get("axes")) {
     const auto items = axes->items();
     if (items.size() > kMaxGamepadAxes) axes->fail("at most 16 axes");
     for (const ConfigNode& a : items) {
-      a.expect_keys({"name", "byte", "bits", "signed", "min", "max"});
+      a.expect_keys({"name", "byte", "bit", "bits", "signed", "min", "max"});
       GamepadLayout::Axis axis;
       axis.name = a["name"].string();
       axis.byte = static_cast<int>(a["byte"].integer_in(0, 63));
-      if (auto n = a.get("bits")) {
-        axis.bits = static_cast<int>(n->integer());
-        if (axis.bits != 8 && axis.bits != 16) n->fail("8 or 16");
+      if (auto n = a.get("bit")) axis.bit = static_cast<int>(n->integer_in(0, 7));
+      if (auto n = a.get("bits")) axis.bits = static_cast<int>(n->integer_in(1, 32));
+      if (axis.byte * 8 + axis.bit + axis.bits > 64 * 8) {
+        a["byte"].fail("a field that ends within 64 bytes (byte * 8 + bit + bits <= 512)",
+                       a["byte"].found());
       }
       if (auto n = a.get("signed")) axis.is_signed = n->boolean();
-      axis.min = axis.is_signed ? -(axis.bits == 8 ? 127.0 : 32767.0) : 0.0;
-      axis.max =
-          axis.is_signed ? (axis.bits == 8 ? 127.0 : 32767.0) : (axis.bits == 8 ? 255.0 : 65535.0);
+      // The full raw range: symmetric when signed (-127..127 for 8 bits).
+      const double top = std::ldexp(1.0, axis.bits - (axis.is_signed ? 1 : 0)) - 1.0;
+      axis.min = axis.is_signed ? -top : 0.0;
+      axis.max = top;
       if (auto n = a.get("min")) axis.min = n->number();
       if (auto n = a.get("max")) axis.max = n->number();
       if (!(axis.min < axis.max)) a.fail("min < max");

@@ -47,7 +47,7 @@ TEST(GamepadReport, SixteenBitAxesReportIdsAndShortReports) {
 
 TEST(GamepadReport, BadLayoutsAreRefusedByName) {
   GamepadLayout l;
-  l.axes = {{"jaw", 0, 12, false, 0, 255}};
+  l.axes = {{"jaw", 0, 33, false, 0, 255}};
   try {
     validate(l);
     FAIL();

@@ -22,6 +22,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     a.is_signed = in.ConsumeBool();
     a.min = in.ConsumeFloatingPoint<double>();
     a.max = in.ConsumeFloatingPoint<double>();
+    a.bit = in.ConsumeIntegralInRange(-1, 8);
+    a.kind = static_cast<GamepadLayout::Kind>(in.ConsumeIntegralInRange(0, 2));
+    a.present = in.ConsumeBool();
   }
   layout.buttons.resize(in.ConsumeIntegralInRange<std::size_t>(0, 33));
   for (auto& b : layout.buttons) {

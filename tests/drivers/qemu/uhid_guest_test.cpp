@@ -2,7 +2,9 @@
 // uhid module), read by HidGamepad through hidapi's hidraw backend, as a real
 // USB or Bluetooth pad would be. Covers enumeration, opening by vendor and
 // product, decoding, draining a backlog, and hot-plug; and puppeteering from
-// it with record mode, whose show file loads back.
+// it with record mode, whose show file loads back. And a uhid device with a
+// real DualShock 4's report descriptor, whose layout is read back through
+// the kernel (HIDIOCGRDESC, sysfs) and decodes its reports.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <linux/input.h>
@@ -13,9 +15,13 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <iterator>
+#include <span>
 #include <thread>
 
 #include "control/clock.hpp"
+#include "drivers/hid/gamepad_descriptor_layout.hpp"
 #include "drivers/hid/hid_gamepad.hpp"
 #include "firmware-host/inputs/gamepad_puppeteer.hpp"
 #include "firmware-host/inputs/show.hpp"
@@ -35,9 +41,17 @@ constexpr std::uint8_t kDescriptor[] = {
     0x75, 0x01, 0x95, 0x08, 0x81, 0x02,                          // 8 x 1 bit, Input
     0xC0};
 
+// Sony DualShock 4 over USB (tests/drivers/hid_descriptors/SOURCES.md),
+// made into a C array by tests/CMakeLists.txt.
+constexpr std::uint8_t kDualShock4Descriptor[] = {
+#include "sony_ds4_usb.inc"
+};
+
 class VirtualGamepad {
  public:
-  VirtualGamepad() {
+  explicit VirtualGamepad(std::span<const std::uint8_t> descriptor = kDescriptor,
+                          std::uint16_t product = kProduct)
+      : descriptor_(descriptor), product_(product) {
     fd_ = open("/dev/uhid", O_RDWR | O_CLOEXEC);
     if (fd_ < 0) throw std::runtime_error("/dev/uhid: " + std::string(std::strerror(errno)));
     create();
@@ -51,13 +65,13 @@ class VirtualGamepad {
     ev.type = UHID_CREATE2;
     std::snprintf(reinterpret_cast<char*>(ev.u.create2.name), sizeof ev.u.create2.name,
                   "facectl virtual gamepad");
-    std::memcpy(ev.u.create2.rd_data, kDescriptor, sizeof kDescriptor);
-    ev.u.create2.rd_size = sizeof kDescriptor;
+    std::memcpy(ev.u.create2.rd_data, descriptor_.data(), descriptor_.size());
+    ev.u.create2.rd_size = static_cast<std::uint16_t>(descriptor_.size());
     // Bluetooth: hidapi's hidraw backend lists a USB-bus device only if it
     // has a real USB parent, which a uhid device has not.
     ev.u.create2.bus = BUS_BLUETOOTH;
     ev.u.create2.vendor = kVendor;
-    ev.u.create2.product = kProduct;
+    ev.u.create2.product = product_;
     write_event(ev);
   }
   void destroy() {
@@ -74,6 +88,13 @@ class VirtualGamepad {
     ev.u.input2.data[2] = buttons;
     write_event(ev);
   }
+  void raw_report(std::span<const std::uint8_t> bytes) {
+    uhid_event ev{};
+    ev.type = UHID_INPUT2;
+    ev.u.input2.size = static_cast<std::uint16_t>(bytes.size());
+    std::memcpy(ev.u.input2.data, bytes.data(), bytes.size());
+    write_event(ev);
+  }
 
  private:
   void write_event(const uhid_event& ev) {
@@ -82,6 +103,8 @@ class VirtualGamepad {
     }
   }
   int fd_ = -1;
+  std::span<const std::uint8_t> descriptor_;
+  std::uint16_t product_;
 };
 
 GamepadLayout layout() {
@@ -200,6 +223,50 @@ TEST(Uhid, PuppeteeringFromTheVirtualGamepadRecordsAShowThatLoadsBack) {
       "loads back and ends at jaw %.2f deg\n",
       static_cast<unsigned long long>(puppeteer.published()), show.keyframes().size(),
       show.duration(), end_jaw_deg);
+}
+
+TEST(Uhid, ARealDualShock4DescriptorGivesItsLayoutThroughTheKernelAndDecodes) {
+  constexpr std::uint16_t kDs4Product = 0xFACF;  // pid.codes again: hid-generic binds, not hid-sony
+  VirtualGamepad pad(kDualShock4Descriptor, kDs4Product);
+  std::vector<HidDeviceInfo> found;
+  ASSERT_TRUE(
+      wait_for([&] { return !(found = enumerate_hid(kVendor, kDs4Product)).empty(); }, 3000));
+  const std::string path = found[0].path;  // /dev/hidrawN
+  // The kernel holds the very bytes uhid was given (sysfs), and the layout
+  // read through hidapi and HIDIOCGRDESC is the one the bytes declare.
+  const std::string sysfs =
+      "/sys/class/hidraw/" + path.substr(path.rfind('/') + 1) + "/device/report_descriptor";
+  std::ifstream in(sysfs, std::ios::binary);
+  const std::vector<std::uint8_t> kernel_bytes((std::istreambuf_iterator<char>(in)),
+                                               std::istreambuf_iterator<char>());
+  EXPECT_TRUE(std::equal(kernel_bytes.begin(), kernel_bytes.end(),
+                         std::begin(kDualShock4Descriptor), std::end(kDualShock4Descriptor)) &&
+              kernel_bytes.size() == sizeof kDualShock4Descriptor)
+      << sysfs << ": " << kernel_bytes.size() << " bytes";
+  const GamepadLayout read = read_gamepad_layout({path, 0, 0});
+  const std::string expected = describe(gamepad_layout_from_descriptor(kDualShock4Descriptor));
+  EXPECT_EQ(describe(read), expected);
+  EXPECT_NE(expected.find("hat_x"), std::string::npos);
+
+  // Read with no layout given: the descriptor decides. Left stick full left,
+  // right stick down, hat south-west (5), cross and options (2, 10), L2 half.
+  HidGamepad gp({path, 0, 0}, GamepadLayout{});
+  GamepadState s;
+  ASSERT_TRUE(wait_for([&] { return gp.latest(s) && s.connected; }, 3000)) << "not opened";
+  std::uint8_t report[64] = {0x01, 0x00, 0x80, 0x80, 0xFF, 0x25, 0x20, 0x00, 0x80, 0x00};
+  pad.raw_report(report);
+  ASSERT_TRUE(wait_for([&] { return gp.latest(s) && s.reports > 0; }, 1000)) << "no report";
+  EXPECT_EQ(gp.bad_descriptors(), 0u);
+  EXPECT_DOUBLE_EQ(s.axes[0], -1.0);           // x
+  EXPECT_DOUBLE_EQ(s.axes[5], 1.0);            // rz
+  EXPECT_DOUBLE_EQ(s.axes[9], -1.0);           // hat_x
+  EXPECT_DOUBLE_EQ(s.axes[10], 1.0);           // hat_y
+  EXPECT_NEAR(s.axes[3], 1.0 / 255.0, 1e-12);  // rx, L2 at 128
+  EXPECT_EQ(s.buttons, (1u << 1) | (1u << 9));
+  std::printf(
+      "[uhid] DualShock 4 descriptor (%zu bytes) read back through %s; its report "
+      "decodes to x %+.2f rz %+.2f hat %+.0f,%+.0f buttons 0x%04X\n",
+      kernel_bytes.size(), path.c_str(), s.axes[0], s.axes[5], s.axes[9], s.axes[10], s.buttons);
 }
 
 }  // namespace

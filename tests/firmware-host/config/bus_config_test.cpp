@@ -261,6 +261,38 @@ TEST(HardwareConfig, BadBlocksNameTheirPositionKeyExpectedAndFound) {
             "found 'z'");
 }
 
+TEST(HardwareConfig, AGamepadWithoutAxesOrButtonsTakesTheDescriptorsNamedSlots) {
+  TempFile f(runtime(
+      "gamepad: { vendor: 0x054c, product: 0x05c4, map: [{ axis: hat_y, signal: jaw_pitch_deg }, "
+      "{ button: button_2, signal: jaw_yaw_deg }] }\n"));
+  const RuntimeConfig rt = load_runtime_config(f.path());
+  const GamepadConfig& g = *rt.gamepad;
+  EXPECT_TRUE(g.layout.axes.empty() && g.layout.buttons.empty()) << "read at each open";
+  ASSERT_EQ(g.pending.size(), 2u);
+  EXPECT_EQ(g.pending[0].term.input, 10u);  // kDescriptorAxisNames: hat_y
+  EXPECT_EQ(g.pending[1].term.input, 1u);   // button_2
+  EXPECT_EQ(runtime_error(runtime("gamepad: { path: /dev/hidraw0, map: [{ axis: throttle, "
+                                  "signal: jaw_pitch_deg }] }\n")),
+            "RT:4:46: gamepad.map[0].axis: expected the name of one of the gamepad's axes (x, y, "
+            "z, rx, ry, rz, slider, dial, wheel, hat_x, hat_y, accelerator, brake), found "
+            "'throttle'");
+}
+
+TEST(HardwareConfig, HandWrittenAxesMayBeBitFields) {
+  TempFile f(
+      runtime("gamepad: { path: /dev/hidraw0, axes: [{ name: lx, byte: 1, bit: 4, bits: 12 "
+              "}], map: [{ axis: lx, signal: jaw_pitch_deg }] }\n"));
+  const GamepadLayout l = load_runtime_config(f.path()).gamepad->layout;
+  ASSERT_EQ(l.axes.size(), 1u);
+  EXPECT_EQ(l.axes[0].bit, 4);
+  EXPECT_EQ(l.axes[0].bits, 12);
+  EXPECT_DOUBLE_EQ(l.axes[0].max, 4095.0);
+  EXPECT_EQ(runtime_error(runtime("gamepad: { path: /dev/hidraw0, axes: [{ name: lx, byte: 63, "
+                                  "bits: 16 }], map: [{ axis: lx, signal: jaw_pitch_deg }] }\n")),
+            "RT:4:57: gamepad.axes[0].byte: expected a field that ends within 64 bytes (byte * "
+            "8 + bit + bits <= 512), found '63'");
+}
+
 TEST(HardwareConfig, AGamepadSignalTheHeadDoesNotHaveIsNamed) {
   TempFile f(
       runtime("gamepad: { path: /dev/hidraw0, buttons: [{ name: a, byte: 0, bit: 0 }], "
