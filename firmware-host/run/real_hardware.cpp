@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "drivers/dynamixel/dynamixel_bus.hpp"
+#include "drivers/maestro/maestro_bus.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
 
 namespace facectl {
@@ -42,6 +43,21 @@ void check_dynamixel_ready(const DynamixelBus& bus, const DynamixelOptions& opti
   const BusStatus s = bus.status();
   throw std::runtime_error(s.fault ? std::string(s.reason)
                                    : std::string(bus.name()) + ": its servos are not all set up");
+}
+
+// Waits until the Maestro has answered a whole cycle with no error bits, or
+// a fault says why not.
+void check_maestro_ready(const MaestroBus& bus, const MaestroOptions& options) {
+  const auto limit = std::chrono::steady_clock::now() +
+                     std::chrono::duration<double>(2.0 * options.fault_after_s + 0.5);
+  while (std::chrono::steady_clock::now() < limit) {
+    if (bus.ready() && !bus.status().fault) return;
+    if (bus.status().fault) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const BusStatus s = bus.status();
+  throw std::runtime_error(s.fault ? std::string(s.reason)
+                                   : std::string(bus.name()) + ": the Maestro does not answer");
 }
 
 }  // namespace
@@ -82,6 +98,10 @@ std::unique_ptr<RealHardware> make_real_hardware(const ControllerModel& model,
       check_dynamixel_ready(*db, it->dynamixel);
       hw->notes.push_back(it->name + ": " + std::to_string(actuators.size()) +
                           " DYNAMIXEL servos set up at " + it->endpoint);
+    } else if (auto* ma = dynamic_cast<MaestroBus*>(rb.bus.get())) {
+      check_maestro_ready(*ma, it->maestro);
+      hw->notes.push_back(it->name + ": a Maestro with " + std::to_string(actuators.size()) +
+                          " channels answers at " + it->endpoint);
     } else {
       hw->notes.push_back(rb.budget + " on " + it->endpoint);
     }

@@ -542,3 +542,63 @@ TEST(RigEncoding, DynamixelServosTakePulsesOfOneTurn) {
 
 }  // namespace
 }  // namespace facectl
+
+namespace facectl {
+namespace {
+
+const std::string kMaestro = "type: maestro, device: /dev/ttyACM0, baud: 115200";
+
+TEST(BusConfig, MaestroKeysReachTheOptions) {
+  TempFile f(pca_rig(kMaestro + ", protocol: pololu, device_number: 13, multiple_targets: true, "
+                                "cycle_ms: 10, response_timeout_ms: 8, fault_after_ms: 80, "
+                                "reconnect_ms: 250",
+                     1));
+  const BusConfig b = load_rig_config(f.path(), head().layout).buses.at(0);
+  EXPECT_TRUE(b.is_maestro());
+  EXPECT_EQ(b.endpoint, "/dev/ttyACM0");
+  EXPECT_EQ(b.bitrate, 115200);
+  EXPECT_EQ(b.maestro.protocol, maestro::Protocol::kPololu);
+  EXPECT_EQ(b.maestro.device_number, 13);
+  EXPECT_TRUE(b.maestro.multiple_targets);
+  EXPECT_DOUBLE_EQ(b.maestro.cycle_period_s, 0.010);
+  EXPECT_DOUBLE_EQ(b.maestro.response_timeout_s, 0.008);
+  EXPECT_DOUBLE_EQ(b.maestro.fault_after_s, 0.080);
+  EXPECT_DOUBLE_EQ(b.maestro.reconnect_interval_s, 0.250);
+  TempFile g(pca_rig(kMaestro, 1));  // defaults
+  const BusConfig d = load_rig_config(g.path(), head().layout).buses.at(0);
+  EXPECT_EQ(d.maestro.protocol, maestro::Protocol::kCompact);
+  EXPECT_EQ(d.maestro.device_number, 12);
+  EXPECT_FALSE(d.maestro.multiple_targets);
+  EXPECT_DOUBLE_EQ(d.maestro.cycle_period_s, 0.020);
+}
+
+TEST(BusConfig, BadMaestroKeysNameTheirPositionKeyExpectedAndFound) {
+  EXPECT_EQ(budget_error(pca_rig("type: maestro, device: /dev/ttyACM0, baud: 250000", 1)), "");
+  EXPECT_EQ(budget_error(pca_rig(kMaestro + ", protocol: mini_ssc", 1)), "");
+  EXPECT_EQ(budget_error(pca_rig(kMaestro + ", device_number: 13", 1)), "");
+  EXPECT_EQ(budget_error(pca_rig(kMaestro + ", protocol: pololu, device_number: 128", 1)), "");
+  EXPECT_EQ(budget_error(pca_rig(kMaestro + ", multiple_targets: 1", 1)), "");
+  EXPECT_EQ(budget_error(pca_rig(kMaestro + ", response_timeout_ms: 50, fault_after_ms: 40", 1)),
+            "");
+  EXPECT_EQ(budget_error(pca_rig(kMaestro + ", watchdog_ms: 100", 1)), "");
+  EXPECT_EQ(budget_error(pca_rig("type: maestro, device: \"\", baud: 115200", 1)), "");
+}
+
+TEST(RigEncoding, MaestroChannelsTakeAMicrosecondPulseOf14Bits) {
+  const std::string none = encoded_rig(kMaestro, "");
+  EXPECT_EQ(budget_error(none), "");
+  EXPECT_EQ(budget_error(encoded_rig(kMaestro, kServoUs)), "ok");
+  const std::string wide = encoded_rig(kMaestro, "{ raw: uint16, scale: 300, offset: 1500 }");
+  EXPECT_EQ(budget_error(wide), "");
+  std::vector<BusBudgetResult> results;
+  EXPECT_EQ(budget_error(pca_rig(kMaestro, 10), 1000.0, &results), "ok");
+  EXPECT_EQ(results.at(0).text, "");
+  EXPECT_EQ(budget_error(pca_rig(kMaestro + ", multiple_targets: true", 10), 1000.0, &results),
+            "ok");
+  EXPECT_EQ(results.at(0).text, "");
+  // Channel 24 is beyond the largest Maestro.
+  EXPECT_EQ(budget_error(pca_rig(kMaestro, 24)), "");
+}
+
+}  // namespace
+}  // namespace facectl
