@@ -1,6 +1,6 @@
 // `facectl bus doctor` for a Maestro bus: Get Position and Get Errors only;
-// no target reaches a channel. Get Errors clears the register it reads (the
-// only way to read it, guide 5.f), so the doctor reports what it cleared.
+// no target reaches a channel. Get Errors, the only way to read the error
+// register, also clears it: the doctor reports what it cleared.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

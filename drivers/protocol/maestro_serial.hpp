@@ -9,7 +9,9 @@ namespace facectl::maestro {
 
 // Pololu Maestro serial commands (Pololu Maestro Servo Controller User's
 // Guide, https://www.pololu.com/docs/0J40, section 5.e "Serial Servo
-// Commands" and 5.f "Serial Script Commands"; docs/PROTOCOLS.md, "Maestro").
+// Commands", 5.c "Serial Protocols", 4.e "Errors"; docs/PROTOCOLS.md,
+// "Pololu Maestro"). tests/drivers/maestro_serial_test.cpp checks 0x84, 0x87
+// and 0x9F against the guide's byte examples, the others against its formats.
 // No I/O here: the driver, the doctor and the simulator share these bytes.
 
 // Command bytes of the compact protocol; the Pololu protocol sends the same
