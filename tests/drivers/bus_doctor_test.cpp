@@ -157,9 +157,11 @@ TEST(BusDoctor, DynamixelNamesEachServosStateAndOnesNotInTheRig) {
 TEST(BusDoctor, MaestroReportsItsErrorRegisterAndEachChannelsPulse) {
   sim::MaestroSim maestro(12);
   std::vector<std::uint8_t> reply;
-  for (const std::uint8_t b : {0x84, 0x02, 0x70, 0x2E}) maestro.feed(b, 0, reply);  // 1500 us
+  for (const int b : {0x84, 0x02, 0x70, 0x2E})
+    maestro.feed(static_cast<std::uint8_t>(b), 0, reply);  // 1500 us
   maestro.raise_error(0x0020);  // serial timeout: it sent everything home (Off)
-  for (const std::uint8_t b : {0x84, 0x01, 0x70, 0x3E}) maestro.feed(b, 0, reply);  // 2000 us
+  for (const int b : {0x84, 0x01, 0x70, 0x3E})
+    maestro.feed(static_cast<std::uint8_t>(b), 0, reply);  // 2000 us
   sim::MaestroPtyWire wire(std::move(maestro));
   std::vector<ActuatorModel> acts = testing::rotary_axes(3);  // channels 1, 2, 3; +-30 deg
   for (auto& a : acts) a.encoding = {ActuatorEncoding::Raw::kUint16, 10.0, 1500.0};
@@ -182,7 +184,8 @@ TEST(BusDoctor, MaestroReportsItsErrorRegisterAndEachChannelsPulse) {
   EXPECT_EQ(targets, 2u) << "the two this test sent";
   EXPECT_EQ(errors, 0u);
   // Nothing there: one problem, no throw.
-  const DoctorReport gone = diagnose_maestro("maestro", "/dev/facectl-no-such-port", 115200, acts);
+  const DoctorReport gone =
+      diagnose_maestro("maestro", "/dev/facectl-no-such-port", 115200, acts, {});
   EXPECT_TRUE(has(gone, L::kProblem, "cannot open: "));
 }
 
