@@ -79,6 +79,25 @@ void ticks(MaestroBus& bus, std::vector<double>& cmd, int n) {
   }
 }
 
+// One channel enabled and following 10 deg (1600 us).
+bool running_at_1600(MaestroBus& bus, MaestroPtyWire& wire, std::vector<double>& cmd) {
+  if (!eventually([&] { return bus.ready(); })) return false;
+  bus.set_enabled(true);
+  ticks(bus, cmd, 5);
+  return eventually([&] { return target(wire, 0) == 4 * 1600; });
+}
+
+// After a fault the channel stays off while the controller goes on writing,
+// and follows again once disabled and enabled.
+bool off_until_disabled(MaestroBus& bus, MaestroPtyWire& wire, std::vector<double>& cmd) {
+  ticks(bus, cmd, 20);
+  if (target(wire, 0) != 0) return false;
+  bus.set_enabled(false);
+  bus.set_enabled(true);
+  ticks(bus, cmd, 5);
+  return eventually([&] { return target(wire, 0) == 4 * 1600; });
+}
+
 class MaestroBusProtocols : public ::testing::TestWithParam<maestro::Protocol> {};
 
 TEST_P(MaestroBusProtocols, SendsNoPulsesUntilEnabledThenFollowsTheCommands) {
@@ -191,11 +210,8 @@ TEST(MaestroBus, ErrorBitsAreAFaultThatSwitchesEveryOutputOffUntilDisabled) {
 TEST(MaestroBus, ASilentMaestroIsAFaultAndItsReturnClearsIt) {
   MaestroPtyWire wire(MaestroSim(12));
   MaestroBus bus("maestro", wire.device(), 115200, servos(1), {0.0}, fast());
-  ASSERT_TRUE(eventually([&] { return bus.ready(); })) << reason(bus);
-  bus.set_enabled(true);
   std::vector<double> cmd = {10 * kDeg};
-  ticks(bus, cmd, 5);
-  ASSERT_TRUE(eventually([&] { return target(wire, 0) == 4 * 1600; }));
+  ASSERT_TRUE(running_at_1600(bus, wire, cmd)) << reason(bus);
   wire.faults().mute = true;
   ASSERT_TRUE(eventually([&] { return bus.status().fault; }));
   EXPECT_NE(reason(bus).find("is not answering within 150 ms"), std::string::npos) << reason(bus);
@@ -204,12 +220,7 @@ TEST(MaestroBus, ASilentMaestroIsAFaultAndItsReturnClearsIt) {
   wire.faults().mute = false;
   EXPECT_TRUE(eventually([&] { return !bus.status().fault; })) << reason(bus);
   // Latched off until the controller disables it.
-  ticks(bus, cmd, 20);
-  EXPECT_EQ(target(wire, 0), 0);
-  bus.set_enabled(false);
-  bus.set_enabled(true);
-  ticks(bus, cmd, 5);
-  EXPECT_TRUE(eventually([&] { return target(wire, 0) == 4 * 1600; }));
+  EXPECT_TRUE(off_until_disabled(bus, wire, cmd));
 }
 
 TEST(MaestroBus, ShortRepliesAreCountedAndNotTakenAsPositions) {
@@ -229,11 +240,8 @@ TEST(MaestroBus, ShortRepliesAreCountedAndNotTakenAsPositions) {
 TEST(MaestroBus, ALostPortIsAFaultAndIsReopened) {
   MaestroPtyWire wire(MaestroSim(12));
   MaestroBus bus("maestro", wire.device(), 115200, servos(1), {0.0}, fast());
-  ASSERT_TRUE(eventually([&] { return bus.ready(); })) << reason(bus);
-  bus.set_enabled(true);
   std::vector<double> cmd = {10 * kDeg};
-  ticks(bus, cmd, 5);
-  ASSERT_TRUE(eventually([&] { return target(wire, 0) == 4 * 1600; }));
+  ASSERT_TRUE(running_at_1600(bus, wire, cmd)) << reason(bus);
   wire.unplug();
   ASSERT_TRUE(eventually([&] { return bus.status().fault; }));
   EXPECT_EQ(reason(bus), "maestro: serial port " + wire.device() + " lost or cannot be opened");
@@ -242,12 +250,7 @@ TEST(MaestroBus, ALostPortIsAFaultAndIsReopened) {
   ASSERT_TRUE(eventually([&] { return !bus.status().fault && bus.ready(); })) << reason(bus);
   EXPECT_GE(bus.stats().reopens, 1u);
   // Off until the controller disables it, then on again.
-  ticks(bus, cmd, 20);
-  EXPECT_EQ(target(wire, 0), 0);
-  bus.set_enabled(false);
-  bus.set_enabled(true);
-  ticks(bus, cmd, 5);
-  EXPECT_TRUE(eventually([&] { return target(wire, 0) == 4 * 1600; }));
+  EXPECT_TRUE(off_until_disabled(bus, wire, cmd));
 }
 
 TEST(MaestroBus, SetsEveryChannelWithOneMultipleTargetsCommand) {
