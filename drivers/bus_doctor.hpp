@@ -8,6 +8,7 @@
 #include "drivers/can/can_bus_options.hpp"
 #include "drivers/can/can_transport.hpp"
 #include "drivers/dynamixel/dynamixel_options.hpp"
+#include "drivers/maestro/maestro_options.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
 
 namespace facectl {
@@ -66,5 +67,13 @@ DoctorReport diagnose_can(const std::string& bus, CanTransport& transport,
 DoctorReport diagnose_dynamixel(const std::string& bus, const std::string& device, long baud,
                                 const std::vector<ActuatorModel>& actuators,
                                 const DynamixelOptions& options, int samples = 20);
+
+// Maestro: Get Errors `samples` times (round trip, and the error register,
+// which reading clears), then each channel's Get Position (the pulse it is
+// sending, against the rig's hard range), and what only Maestro Control
+// Center can set (its serial timeout, each channel's range and home).
+DoctorReport diagnose_maestro(const std::string& bus, const std::string& device, long baud,
+                              const std::vector<ActuatorModel>& actuators,
+                              const MaestroOptions& options, int samples = 20);
 
 }  // namespace facectl

@@ -8,6 +8,7 @@
 #include "drivers/dynamixel/dynamixel_bus.hpp"
 #include "drivers/i2c/i2c_dev_transport.hpp"
 #include "drivers/i2c/pca9685_bus.hpp"
+#include "drivers/maestro/maestro_bus.hpp"
 
 namespace facectl {
 
@@ -23,6 +24,11 @@ RealBus make_bus(const BusSpec& spec, const std::vector<ActuatorModel>& actuator
   if (spec.type == "dynamixel") {
     out.bus = std::make_unique<DynamixelBus>(spec.name, spec.endpoint, spec.bitrate, actuators,
                                              initial, spec.dynamixel);
+    return out;
+  }
+  if (spec.type == "maestro") {
+    out.bus = std::make_unique<MaestroBus>(spec.name, spec.endpoint, spec.bitrate, actuators,
+                                           initial, spec.maestro);
     return out;
   }
   if (spec.type == "pca9685") {

@@ -59,6 +59,15 @@ DoctorReport diagnose(const BusConfig& bus, const std::vector<ActuatorModel>& ac
          "wire time: " + budget.text});
     return r;
   }
+  if (bus.is_maestro()) {
+    DoctorReport r = diagnose_maestro(bus.name, bus.endpoint, bus.bitrate, actuators, bus.maestro,
+                                      options.samples);
+    r.findings.insert(
+        r.findings.begin(),
+        {budget.verdict == BusBudgetResult::Verdict::kOk ? Level::kOk : Level::kWarning,
+         "wire time: " + budget.text});
+    return r;
+  }
   std::unique_ptr<SocketCanTransport> transport;
   try {
     transport = std::make_unique<SocketCanTransport>(bus.endpoint, bus.can.fd);

@@ -202,6 +202,48 @@ void parse_pca9685(const ConfigNode& node, BusConfig& bus) {
   if (auto n = node.get("cycle_ms")) o.cycle_period_s = n->number_in(1.0, 1000.0) * 1e-3;
 }
 
+// ---- Pololu Maestro servo controllers over a serial port (docs/CONFIG.md,
+// "Maestro buses").
+void parse_maestro(const ConfigNode& node, BusConfig& bus) {
+  node.expect_keys({"name", "type", "device", "baud", "protocol", "device_number",
+                    "multiple_targets", "cycle_ms", "response_timeout_ms", "fault_after_ms",
+                    "reconnect_ms"});
+  bus.endpoint = node["device"].string();
+  if (bus.endpoint.empty()) node["device"].fail("a serial device such as /dev/ttyACM0", "\"\"");
+  // The guide (5.a): the UART runs at 300..200000 bit/s; the USB virtual port ignores it.
+  bus.bitrate = node["baud"].integer_in(300, 200'000);
+  MaestroOptions& o = bus.maestro;
+  if (auto n = node.get("protocol")) {
+    const std::string p = n->string();
+    if (p == "compact") {
+      o.protocol = maestro::Protocol::kCompact;
+    } else if (p == "pololu") {
+      o.protocol = maestro::Protocol::kPololu;
+    } else {
+      n->fail("compact or pololu");
+    }
+  }
+  if (auto n = node.get("device_number")) {
+    if (o.protocol != maestro::Protocol::kPololu) {
+      n->fail("device_number only with protocol: pololu", "protocol: compact");
+    }
+    o.device_number = static_cast<int>(n->integer_in(0, 127));
+  }
+  if (auto n = node.get("multiple_targets")) o.multiple_targets = n->boolean();
+  if (auto n = node.get("cycle_ms")) o.cycle_period_s = n->number_in(3.0, 1000.0) * 1e-3;
+  if (auto n = node.get("response_timeout_ms"))
+    o.response_timeout_s = n->number_in(1.0, 500.0) * 1e-3;
+  if (auto n = node.get("fault_after_ms")) o.fault_after_s = n->number_in(5.0, 10'000.0) * 1e-3;
+  if (auto n = node.get("reconnect_ms"))
+    o.reconnect_interval_s = n->number_in(1.0, 10'000.0) * 1e-3;
+  if (o.fault_after_s <= o.response_timeout_s) {
+    const ConfigNode at = node.get("fault_after_ms") ? node["fault_after_ms"] : node;
+    at.fail("fault_after_ms above response_timeout_ms (" +
+                std::to_string(std::lround(o.response_timeout_s * 1e3)) + " ms)",
+            std::to_string(std::lround(o.fault_after_s * 1e3)) + " ms");
+  }
+}
+
 }  // namespace
 
 BusConfig parse_bus_config(const ConfigNode& node) {
@@ -258,8 +300,10 @@ BusConfig parse_bus_config(const ConfigNode& node) {
     parse_dynamixel(node, bus);
   } else if (bus.type == "pca9685") {
     parse_pca9685(node, bus);
+  } else if (bus.type == "maestro") {
+    parse_maestro(node, bus);
   } else {
-    node["type"].fail("one of: can, modbus_rtu, modbus_tcp, dynamixel, pca9685");
+    node["type"].fail("one of: can, modbus_rtu, modbus_tcp, dynamixel, pca9685, maestro");
   }
   return bus;
 }

@@ -19,6 +19,7 @@ struct BusConfig : BusSpec {
   bool is_dynamixel() const { return type == "dynamixel"; }
   bool is_cia402() const { return is_can() && can_protocol == "cia402"; }
   bool is_pca9685() const { return type == "pca9685"; }
+  bool is_maestro() const { return type == "maestro"; }
 };
 
 // Parses and checks one `buses[]` entry. Throws ConfigError naming

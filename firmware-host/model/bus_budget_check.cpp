@@ -6,6 +6,7 @@
 
 #include "drivers/protocol/dynamixel2_packet.hpp"
 #include "drivers/protocol/dynamixel_x_table.hpp"
+#include "drivers/protocol/maestro_serial.hpp"
 #include "drivers/protocol/modbus_register_map.hpp"
 #include "drivers/protocol/modbus_rtu_wire.hpp"
 #include "drivers/protocol/pca9685_registers.hpp"
@@ -123,6 +124,48 @@ BusBudgetResult budget_dynamixel(const BusConfig& bus,
   return r;
 }
 
+// Maestro: the bytes of one I/O cycle (every target, a Get Position per
+// channel, Get Errors and their replies) against the cycle.
+BusBudgetResult budget_maestro(const BusConfig& bus,
+                               const std::vector<const ActuatorConfig*>& acts) {
+  for (const ActuatorConfig* a : acts) {
+    if (a->model.address < 0 || a->model.address >= maestro::kMaxChannels) {
+      throw ConfigError(a->where + ": rig.actuators '" + a->model.name +
+                        "'.address: expected a channel 0.." +
+                        std::to_string(maestro::kMaxChannels - 1) + " on Maestro bus " + bus.name +
+                        ", found " + std::to_string(a->model.address));
+    }
+  }
+  BusBudgetResult r;
+  const MaestroOptions& o = bus.maestro;
+  int lo = maestro::kMaxChannels, hi = -1;
+  for (const ActuatorConfig* a : acts) {
+    lo = std::min(lo, a->model.address);
+    hi = std::max(hi, a->model.address);
+  }
+  const std::size_t span = hi < lo ? 0 : static_cast<std::size_t>(hi - lo + 1);
+  const double bytes =
+      static_cast<double>(maestro::cycle_bytes(o.protocol, acts.size(), o.multiple_targets, span));
+  const double wire_s = bytes * serial_byte_s(bus.bitrate);
+  r.load = wire_s / o.cycle_period_s;
+  // A cycle that outlasts the silence that makes a FAULT faults the bus by itself.
+  const bool refused = wire_s >= o.fault_after_s;
+  r.verdict = refused        ? BusBudgetResult::Verdict::kRefused
+              : r.load > 1.0 ? BusBudgetResult::Verdict::kWarning
+                             : BusBudgetResult::Verdict::kOk;
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "%s: %zu Maestro channels, %.0f bytes per I/O cycle = %.2f ms at %ld baud, %.0f%% "
+                "of the %g ms cycle%s",
+                bus.name.c_str(), acts.size(), bytes, wire_s * 1e3, bus.bitrate, 100.0 * r.load,
+                o.cycle_period_s * 1e3,
+                refused ? " (refused: not under fault_after_ms; a faster baud or fewer channels)"
+                : r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)"
+                               : "");
+  r.text = buf;
+  return r;
+}
+
 // PCA9685: the I2C clocks of one I/O cycle (pca9685_cycle_bits) against the
 // cycle, one PWM period unless cycle_ms says otherwise.
 BusBudgetResult budget_pca9685(const BusConfig& bus,
@@ -168,6 +211,7 @@ std::vector<BusBudgetResult> check_bus_budgets(const RigConfig& rig, double tick
     BusBudgetResult r = bus.is_can()         ? budget_can(bus, acts, tick_hz)
                         : bus.is_dynamixel() ? budget_dynamixel(bus, acts)
                         : bus.is_pca9685()   ? budget_pca9685(bus, acts)
+                        : bus.is_maestro()   ? budget_maestro(bus, acts)
                                              : budget_modbus(bus, acts);
     r.bus = bus.name;
     r.where = bus.where;

@@ -8,6 +8,7 @@
 #include "control/units.hpp"
 #include "drivers/protocol/cia402_counts.hpp"
 #include "drivers/protocol/custom_can_frames.hpp"
+#include "drivers/protocol/maestro_serial.hpp"
 #include "drivers/protocol/pca9685_registers.hpp"
 #include "drivers/protocol/wire_encoding.hpp"
 
@@ -79,6 +80,24 @@ void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
       if (us <= 0.0 || us >= period_us) {
         refuse(actuator,
                "pulses inside the " + number(period_us) + " µs PWM period of bus " + bus.name,
+               "position " + number(si / si_per_yaml(actuator.model.kind)) + " " +
+                   yaml_unit(actuator.model.kind) + " giving " + number(us) + " µs");
+      }
+    }
+  }
+  if (bus.is_maestro()) {
+    // The raw value is the pulse in µs, sent as a 14-bit target in quarter-µs
+    // (Maestro guide 5.e); 0 means "no pulses", so a limit must be above it.
+    if (!actuator.has_encoding || e.raw != ActuatorEncoding::Raw::kUint16) {
+      refuse(actuator, "raw uint16 on Maestro bus " + bus.name + " (the pulse width in µs)",
+             actuator.has_encoding ? std::string("raw ") + raw : "no encoding");
+    }
+    for (const double si :
+         {actuator.model.limits.position_min, actuator.model.limits.position_max}) {
+      const double us = std::nearbyint(si / si_per_yaml(actuator.model.kind) * e.scale + e.offset);
+      if (us < 1.0 || 4.0 * us > maestro::kMaxTarget) {
+        refuse(actuator,
+               "pulses within 1..4095 µs (a 14-bit target in quarter-µs) on bus " + bus.name,
                "position " + number(si / si_per_yaml(actuator.model.kind)) + " " +
                    yaml_unit(actuator.model.kind) + " giving " + number(us) + " µs");
       }

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "drivers/dynamixel/dynamixel_bus.hpp"
+#include "drivers/maestro/maestro_bus.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
 
 namespace facectl {
@@ -28,12 +29,13 @@ void check_modbus_answers(const ModbusBus& bus, const ModbusTiming& timing) {
                                          " of its boards do not answer");
 }
 
-// Waits until every servo of a DYNAMIXEL bus has been set up (it answered,
-// is an X-series servo without a hardware error), or a fault names the one
-// that is not.
-void check_dynamixel_ready(const DynamixelBus& bus, const DynamixelOptions& options) {
-  const auto limit = std::chrono::steady_clock::now() +
-                     std::chrono::duration<double>(2.0 * options.fault_after_s + 0.5);
+// Waits until a serial servo bus is ready (DYNAMIXEL: every servo set up,
+// an X-series one without a hardware error; Maestro: a whole cycle answered
+// with no error bits), or a fault names what is not; `not_ready` otherwise.
+template <typename Bus>
+void check_ready(const Bus& bus, double fault_after_s, const char* not_ready) {
+  const auto limit =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(2.0 * fault_after_s + 0.5);
   while (std::chrono::steady_clock::now() < limit) {
     if (bus.ready() && !bus.status().fault) return;
     if (bus.status().fault) break;
@@ -41,7 +43,7 @@ void check_dynamixel_ready(const DynamixelBus& bus, const DynamixelOptions& opti
   }
   const BusStatus s = bus.status();
   throw std::runtime_error(s.fault ? std::string(s.reason)
-                                   : std::string(bus.name()) + ": its servos are not all set up");
+                                   : std::string(bus.name()) + ": " + not_ready);
 }
 
 }  // namespace
@@ -79,9 +81,13 @@ std::unique_ptr<RealHardware> make_real_hardware(const ControllerModel& model,
       hw->notes.push_back(it->name + ": " + std::to_string(mb->board_count()) +
                           " Modbus boards answer at " + it->endpoint);
     } else if (auto* db = dynamic_cast<DynamixelBus*>(rb.bus.get())) {
-      check_dynamixel_ready(*db, it->dynamixel);
+      check_ready(*db, it->dynamixel.fault_after_s, "its servos are not all set up");
       hw->notes.push_back(it->name + ": " + std::to_string(actuators.size()) +
                           " DYNAMIXEL servos set up at " + it->endpoint);
+    } else if (auto* ma = dynamic_cast<MaestroBus*>(rb.bus.get())) {
+      check_ready(*ma, it->maestro.fault_after_s, "the Maestro does not answer");
+      hw->notes.push_back(it->name + ": a Maestro with " + std::to_string(actuators.size()) +
+                          " channels answers at " + it->endpoint);
     } else {
       hw->notes.push_back(rb.budget + " on " + it->endpoint);
     }

@@ -15,6 +15,7 @@
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
 #include "sim/devices/dynamixel_pty_wire.hpp"
+#include "sim/devices/maestro_pty_wire.hpp"
 #include "sim/devices/memory_can_link.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "tests/drivers/can_test_axes.hpp"
@@ -151,6 +152,41 @@ TEST(BusDoctor, DynamixelNamesEachServosStateAndOnesNotInTheRig) {
   EXPECT_TRUE(r.has_problems());
   // Read-only: no WRITE, no SYNC WRITE reached the servos.
   EXPECT_EQ(wire.requests_of(0x03) + wire.requests_of(0x83), writes_before);
+}
+
+TEST(BusDoctor, MaestroReportsItsErrorRegisterAndEachChannelsPulse) {
+  sim::MaestroSim maestro(12);
+  std::vector<std::uint8_t> reply;
+  for (const int b : {0x84, 0x02, 0x70, 0x2E})
+    maestro.feed(static_cast<std::uint8_t>(b), 0, reply);  // 1500 us
+  maestro.raise_error(0x0020);  // serial timeout: it sent everything home (Off)
+  for (const int b : {0x84, 0x01, 0x70, 0x3E})
+    maestro.feed(static_cast<std::uint8_t>(b), 0, reply);  // 2000 us
+  sim::MaestroPtyWire wire(std::move(maestro));
+  std::vector<ActuatorModel> acts = testing::rotary_axes(3);  // channels 1, 2, 3; +-30 deg
+  for (auto& a : acts) a.encoding = {ActuatorEncoding::Raw::kUint16, 10.0, 1500.0};
+  const DoctorReport r = diagnose_maestro("maestro", wire.device(), 115200, acts, {}, 5);
+  std::printf("%s", r.to_text().c_str());
+  EXPECT_TRUE(has(r, L::kOk, "5/5 Get Errors answered, round trip median"));
+  EXPECT_TRUE(has(r, L::kProblem, "error register 0x0020: serial timeout (cleared by reading it"));
+  EXPECT_TRUE(
+      has(r, L::kWarning, "channel 1 (axis1): sending 2000.00 us (outside the rig's hard range"));
+  EXPECT_TRUE(has(r, L::kOk, "channel 2 (axis2): no pulses (off)"));
+  EXPECT_TRUE(has(r, L::kOk, "channel 3 (axis3): no pulses (off)"));
+  EXPECT_TRUE(has(r, L::kOk, "Serial Settings: Timeout"));
+  EXPECT_TRUE(r.has_problems());
+  // Read-only: no target reached the Maestro.
+  std::uint64_t targets = 0, errors = 0;
+  wire.with_maestro([&](sim::MaestroSim& m) {
+    targets = m.commands(0x84) + m.commands(0x9F);
+    errors = m.errors();
+  });
+  EXPECT_EQ(targets, 2u) << "the two this test sent";
+  EXPECT_EQ(errors, 0u);
+  // Nothing there: one problem, no throw.
+  const DoctorReport gone =
+      diagnose_maestro("maestro", "/dev/facectl-no-such-port", 115200, acts, {});
+  EXPECT_TRUE(has(gone, L::kProblem, "cannot open: "));
 }
 
 }  // namespace

@@ -175,7 +175,7 @@ TEST(CanBudget, TheDefaultRigsTwelveCanAxesFitOnlyPackedAndBelow1kHz) {
 }
 
 TEST(BusFactory, ARigAbove70PercentIsRefusedWithItsBudgetBeforeTheBusIsOpened) {
-  BusSpec spec{"can0", "can", "no-such-can", 1'000'000, "cia402", {}, {}, {}, {}, {}};
+  BusSpec spec{"can0", "can", "no-such-can", 1'000'000, "cia402", {}, {}, {}, {}, {}, {}};
   try {
     make_bus(spec, rotary(12), std::vector<double>(12, 0.0), 1000.0);
     FAIL() << "accepted";

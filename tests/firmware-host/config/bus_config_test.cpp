@@ -574,3 +574,98 @@ TEST(RigEncoding, DynamixelServosTakePulsesOfOneTurn) {
 
 }  // namespace
 }  // namespace facectl
+
+namespace facectl {
+namespace {
+
+const std::string kMaestro = "type: maestro, device: /dev/ttyACM0, baud: 115200";
+
+TEST(BusConfig, MaestroKeysReachTheOptions) {
+  TempFile f(pca_rig(kMaestro + ", protocol: pololu, device_number: 13, multiple_targets: true, "
+                                "cycle_ms: 10, response_timeout_ms: 8, fault_after_ms: 80, "
+                                "reconnect_ms: 250",
+                     1));
+  const BusConfig b = load_rig_config(f.path(), head().layout).buses.at(0);
+  EXPECT_TRUE(b.is_maestro());
+  EXPECT_EQ(b.endpoint, "/dev/ttyACM0");
+  EXPECT_EQ(b.bitrate, 115200);
+  EXPECT_EQ(b.maestro.protocol, maestro::Protocol::kPololu);
+  EXPECT_EQ(b.maestro.device_number, 13);
+  EXPECT_TRUE(b.maestro.multiple_targets);
+  EXPECT_DOUBLE_EQ(b.maestro.cycle_period_s, 0.010);
+  EXPECT_DOUBLE_EQ(b.maestro.response_timeout_s, 0.008);
+  EXPECT_DOUBLE_EQ(b.maestro.fault_after_s, 0.080);
+  EXPECT_DOUBLE_EQ(b.maestro.reconnect_interval_s, 0.250);
+  TempFile g(pca_rig(kMaestro, 1));  // defaults
+  const BusConfig d = load_rig_config(g.path(), head().layout).buses.at(0);
+  EXPECT_EQ(d.maestro.protocol, maestro::Protocol::kCompact);
+  EXPECT_EQ(d.maestro.device_number, 12);
+  EXPECT_FALSE(d.maestro.multiple_targets);
+  EXPECT_DOUBLE_EQ(d.maestro.cycle_period_s, 0.020);
+}
+
+TEST(BusConfig, BadMaestroKeysNameTheirPositionKeyExpectedAndFound) {
+  const auto err = [](const std::string& bus) { return budget_error(pca_rig(bus, 1)); };
+  EXPECT_EQ(err("type: maestro, device: /dev/ttyACM0, baud: 250000"),
+            "RIG:4:62: rig.buses[0].baud: expected an integer in [300, 200000], found '250000'");
+  EXPECT_EQ(err(kMaestro + ", protocol: mini_ssc"),
+            "RIG:4:80: rig.buses[0].protocol: expected compact or pololu, found 'mini_ssc'");
+  EXPECT_EQ(err(kMaestro + ", device_number: 13"),
+            "RIG:4:85: rig.buses[0].device_number: expected device_number only with protocol: "
+            "pololu, found protocol: compact");
+  EXPECT_EQ(err(kMaestro + ", protocol: pololu, device_number: 128"),
+            "RIG:4:103: rig.buses[0].device_number: expected an integer in [0, 127], found '128'");
+  EXPECT_EQ(err(kMaestro + ", multiple_targets: 1"),
+            "RIG:4:88: rig.buses[0].multiple_targets: expected true or false, found '1'");
+  EXPECT_EQ(err(kMaestro + ", response_timeout_ms: 50, fault_after_ms: 40"),
+            "RIG:4:111: rig.buses[0].fault_after_ms: expected fault_after_ms above "
+            "response_timeout_ms (50 ms), found 40 ms");
+  EXPECT_EQ(err(kMaestro + ", watchdog_ms: 100"),
+            "RIG:4:70: rig.buses[0].watchdog_ms: expected one of: name, type, device, baud, "
+            "protocol, device_number, multiple_targets, cycle_ms, response_timeout_ms, "
+            "fault_after_ms, reconnect_ms, found unknown key 'watchdog_ms'");
+  EXPECT_EQ(err("type: maestro, device: \"\", baud: 115200"),
+            "RIG:4:42: rig.buses[0].device: expected a serial device such as /dev/ttyACM0, "
+            "found \"\"");
+}
+
+TEST(RigEncoding, MaestroChannelsTakeAMicrosecondPulseOf14Bits) {
+  const std::string none = encoded_rig(kMaestro, "");
+  EXPECT_TRUE(contains(budget_error(none),
+                       "expected raw uint16 on Maestro bus b0 (the pulse width in µs), found no "
+                       "encoding"))
+      << budget_error(none);
+  EXPECT_EQ(budget_error(encoded_rig(kMaestro, kServoUs)), "ok");
+  // 300 us per degree: -6 deg is -300 us.
+  const std::string wide = encoded_rig(kMaestro, "{ raw: int16, scale: 300, offset: 1500 }");
+  EXPECT_EQ(budget_error(wide), at(wide) +
+                                    ": actuator a1 encoding: expected raw uint16 on Maestro bus "
+                                    "b0 (the pulse width in µs), found raw int16");
+  const std::string far = encoded_rig(kMaestro, "{ raw: uint16, scale: 200, offset: 1500 }");
+  EXPECT_EQ(budget_error(far), at(far) +
+                                   ": actuator a1 encoding: expected pulses within 1..4095 µs (a "
+                                   "14-bit target in quarter-µs) on bus b0, found position 20 deg "
+                                   "giving 5500 µs");
+  // Ten channels at 115200 baud: 10 Set Target (40 bytes), 10 Get Position
+  // (20 + 20 back), Get Errors (1 + 2 back): 83 bytes; one Set Multiple
+  // Targets instead: 23 bytes, 66 in all.
+  std::vector<BusBudgetResult> results;
+  EXPECT_EQ(budget_error(pca_rig(kMaestro, 10), 1000.0, &results), "ok");
+  EXPECT_EQ(results.at(0).text,
+            "b0: 10 Maestro channels, 83 bytes per I/O cycle = 7.20 ms at 115200 baud, 36% of "
+            "the 20 ms cycle");
+  EXPECT_EQ(budget_error(pca_rig(kMaestro + ", multiple_targets: true", 10), 1000.0, &results),
+            "ok");
+  EXPECT_EQ(results.at(0).text,
+            "b0: 10 Maestro channels, 66 bytes per I/O cycle = 5.73 ms at 115200 baud, 29% of "
+            "the 20 ms cycle");
+  // Channel 24 is beyond the largest Maestro.
+  const std::string many = budget_error(pca_rig(kMaestro, 24));
+  EXPECT_TRUE(contains(many,
+                       "rig.actuators 'a24'.address: expected a channel 0..23 on Maestro bus b0, "
+                       "found 24"))
+      << many;
+}
+
+}  // namespace
+}  // namespace facectl

@@ -16,6 +16,7 @@
 #include "control/controller.hpp"
 #include "drivers/protocol/wire_encoding.hpp"
 #include "sim/devices/dynamixel_pty_wire.hpp"
+#include "sim/devices/maestro_pty_wire.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "sim/devices/sim_gpio_chip.hpp"
 #include "tests/drivers/can_test_axes.hpp"
@@ -312,6 +313,56 @@ TEST(RealHardware, TheShippedDynamixelRigDrivesSimulatedServos) {
     wire.with_servo(1, [&](sim::DynamixelServoSim& s) { torque = s.torque(); });
     return !torque;
   })) << "torque off in ESTOP";
+}
+
+// The shipped Maestro hobby rig, its port pointed at a simulated Mini Maestro
+// 12 set up as the rig's header says (each channel's range widened): no
+// pulses until enabled, then the rest pulse, the jaw commanded through its
+// four-bar linkage, and the e-stop stops the pulses.
+TEST(RealHardware, TheShippedMaestroRigDrivesASimulatedMaestro) {
+  std::ifstream in(std::string(FACECTL_SOURCE_DIR) + "/config/rigs/hobby_maestro.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string r = text.str();
+  sim::MaestroSim maestro(12);
+  for (int c = 0; c < 12; ++c) maestro.set_range(c, 544 * 4, 2400 * 4);
+  sim::MaestroPtyWire wire(std::move(maestro));
+  const std::string from = "device: /dev/ttyACM0";
+  r.replace(r.find(from), from.size(), "device: " + wire.device());
+  testing::TempFile rig(r);
+  testing::TempFile runtime(testing::ModbusTcpRig::runtime_text(rig.path(), "sim"));
+  const LoadedConfig cfg = load_config(runtime.path());
+  SimGpioChip* chip = nullptr;
+  auto hw = make_real_hardware(cfg.built.model, cfg, sim_gpio(chip));
+  EXPECT_EQ(hw->notes.at(0), "servo_board: a Maestro with 10 channels answers at " + wire.device());
+  const auto target = [&](int channel) {
+    int v = 0;
+    wire.with_maestro([&](sim::MaestroSim& m) { v = m.target(channel); });
+    return v;
+  };
+  EXPECT_EQ(target(1), 0) << "no pulses before the enable";
+
+  TickLoop loop(cfg.built.model, *hw);
+  loop.jaw_rad = 0.0;
+  Controller& controller = loop.controller;
+  auto run = [&](std::chrono::milliseconds limit, auto done) { return loop.run(limit, done); };
+  controller.request_enable();
+  ASSERT_TRUE(run(5000ms, [&] { return controller.state() == SafetyState::kRunning; }))
+      << to_string(controller.state()) << " " << hw->seams.at(0)->status().reason;
+  // The jaw's rest, 89.5 deg: 600 + 895 = 1495 us.
+  ASSERT_TRUE(run(500ms, [&] { return target(1) != 0; })) << "pulses on while running";
+  EXPECT_NEAR(target(1), 4 * 1495, 4 * 3) << target(1);
+  const int rest = target(1);
+  loop.jaw_rad = 10.0 * 3.14159265358979 / 180.0;
+  ASSERT_TRUE(run(3000ms, [&] { return std::abs(target(1) - rest) > 4 * 50; }))
+      << target(1) << " vs rest " << rest;
+  EXPECT_EQ(controller.state(), SafetyState::kRunning) << hw->seams.at(0)->status().reason;
+
+  chip->set_physical(3, true);  // e-stop pressed
+  ASSERT_TRUE(run(100ms, [&] { return controller.state() == SafetyState::kEstop; }));
+  EXPECT_FALSE(chip->physical(4)) << "power dropped in ESTOP";
+  ASSERT_TRUE(run(500ms, [&] { return target(1) == 0 && target(10) == 0; }))
+      << "pulses off in ESTOP";
 }
 
 }  // namespace

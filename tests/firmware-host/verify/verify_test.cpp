@@ -92,7 +92,7 @@ TEST(Verify, PassesBothShippedRigs) {
   o.shows = {kSource + "/config/shows/demo.yaml"};
   EXPECT_EQ(verify_command(o), 0);
   o.shows.clear();
-  for (const char* hobby_rig : {"hobby", "hobby_pca9685"}) {
+  for (const char* hobby_rig : {"hobby", "hobby_pca9685", "hobby_maestro"}) {
     o.rig = kSource + "/config/rigs/" + hobby_rig + ".yaml";
     EXPECT_EQ(verify_command(o), 0) << hobby_rig;
   }
@@ -278,7 +278,7 @@ TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
     const auto* f = find_failure(proof.findings, "capability");
     EXPECT_EQ(f, nullptr) << entry.path() << ": " << f->subject << ": " << f->message;
   }
-  EXPECT_GE(shipped, 4);  // default, hobby, hobby_dynamixel, hobby_pca9685
+  EXPECT_GE(shipped, 5);  // default, hobby, hobby_dynamixel, hobby_pca9685, hobby_maestro
 }
 
 // hobby_pca9685.yaml copies hobby.yaml's head (the schema has no include):
@@ -291,6 +291,9 @@ TEST(Verify, HobbyPca9685IsTheHobbyHeadOnAPca9685) {
   const std::string pca = testing::read_text(kSource + "/config/rigs/hobby_pca9685.yaml");
   EXPECT_EQ(from_envelope(pca), from_envelope(modbus));
   EXPECT_NE(pca.find("type: pca9685"), std::string::npos);
+  const std::string maestro = testing::read_text(kSource + "/config/rigs/hobby_maestro.yaml");
+  EXPECT_EQ(from_envelope(maestro), from_envelope(modbus));
+  EXPECT_NE(maestro.find("type: maestro"), std::string::npos);
 }
 
 // A neck servo slower than the rig's limit cannot follow: the static check
