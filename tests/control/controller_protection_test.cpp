@@ -93,17 +93,17 @@ class ControllerProtection : public ::testing::Test {
 TEST_F(ControllerProtection, TemperatureDeratesTowardRestThenFaultsNamingTheActuator) {
   start();
   const std::size_t pan = actuator("eyes_pan"), lid = actuator("lid_l");
-  look(30.0);
+  look(25.0);
   run(1.0);
-  ASSERT_NEAR(command_deg(pan), 30.0, 0.1);
+  ASSERT_NEAR(command_deg(pan), 25.0, 0.1);
   ActuatorHealth hot;
   hot.temperature_c = 65.0;  // half way from 60 to 70: factor 0.75 (floor 0.5)
   bus().script_health(pan, hot);
   run(0.05);
-  EXPECT_NEAR(command_deg(pan), 30.0, 0.1) << "not before the hold time";
+  EXPECT_NEAR(command_deg(pan), 25.0, 0.1) << "not before the hold time";
   run(1.0);
   EXPECT_EQ(head_->controller().state(), SafetyState::kRunning);
-  EXPECT_NEAR(command_deg(pan), 0.75 * 30.0, 0.1) << "pulled toward rest (0 deg)";
+  EXPECT_NEAR(command_deg(pan), 0.75 * 25.0, 0.1) << "pulled toward rest (0 deg)";
   EXPECT_NEAR(head_->controller().protection(pan).factor, 0.75, 1e-9);
   // In telemetry too.
   ASSERT_NE(last_.protected_mask & (std::uint64_t{1} << pan), 0u);
@@ -179,10 +179,10 @@ std::string fast_thermal_rig() {
 TEST_F(ControllerProtection, AStalledServoHeatsUpDeratesAndFinallyFaults) {
   start(fast_thermal_rig());
   const std::size_t pan = actuator("eyes_pan");
-  // Blocked at 5 deg, commanded to 30: the error stays far beyond full
-  // effort (8 deg) even at the derate floor (15 deg), so it keeps heating.
+  // Blocked at 5 deg, commanded to 25: the error stays near full effort
+  // (8 deg) even at the derate floor (12.5 deg), so it keeps heating.
   bus().block_above(pan, 5.0 * kDeg);
-  look(30.0);
+  look(25.0);
   double derated_at = -1.0, t = 0.0;
   while (t < 10.0 && head_->controller().state() == SafetyState::kRunning) {
     run(0.01, true);

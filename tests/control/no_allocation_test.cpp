@@ -174,6 +174,8 @@ TEST(NoAllocation, DriveProtectionTicksAllocateNothing) {
   h = ActuatorHealth{};
   bus.script_health(1, h);
   head.controller().request_reset();
+  run(0.01);
+  EXPECT_EQ(head.controller().state(), SafetyState::kIdle);
   head.controller().request_enable();
   run(1.5);
   ASSERT_EQ(head.controller().state(), SafetyState::kRunning);
