@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "control/limits/coupled_position_bounds.hpp"
 #include "control/units.hpp"
@@ -69,6 +70,24 @@ void write_count(char* out, std::size_t size, int n, const char* suffix) {
   copy_text(out + i, size - i, suffix);
 }
 
+// A reading with one decimal ("73.4"), written without printf.
+void write_decimal(char* out, std::size_t size, double v) {
+  if (size == 0) return;
+  if (!std::isfinite(v) || std::fabs(v) > 2e9) {
+    copy_text(out, size, "?");
+    return;
+  }
+  std::size_t i = 0;
+  if (v < 0 && i + 1 < size) out[i++] = '-';
+  const long tenths = std::lround(std::fabs(v) * 10.0);
+  write_count(out + i, size - i, static_cast<int>(tenths / 10), ".");
+  i += std::char_traits<char>::length(out + i);
+  if (i + 1 < size) {
+    out[i++] = static_cast<char>('0' + tenths % 10);
+    out[i] = '\0';
+  }
+}
+
 }  // namespace
 
 void Controller::read_inputs(const TickTiming& timing) {
@@ -89,6 +108,7 @@ void Controller::read_inputs(const TickTiming& timing) {
   for (std::size_t b = 0; b < bus_count_; ++b) {
     const BusModel& bus = model_.buses[b];
     buses_[b]->read(time, std::span<double>(measured_.data() + bus.first, bus.count));
+    buses_[b]->read_health(std::span<ActuatorHealth>(health_.data() + bus.first, bus.count));
   }
 }
 
@@ -122,6 +142,12 @@ void Controller::choose_targets() {
       target = model_.actuators[i].rest;
     } else if (state == SafetyState::kFault) {
       target = fault_driven_[i] != 0 ? fault_target_[i] : measured_[i];
+    }
+    // Drive-level protection before the limiter: every limit still holds and
+    // the change is rate-limited (docs/SAFETY.md, "Drive-level protection").
+    if (protected_at(i)) {
+      target = protected_target(model_.protection[i], model_.actuators[i].limits,
+                                model_.actuators[i].rest, protection_[i], target);
     }
     target_[i] = target;
   }
@@ -406,6 +432,13 @@ void Controller::log_transition(const TickTiming& timing, SafetyState from,
     copy_text(ev->detail, sizeof ev->detail, bus_fault_reason_);
   } else if (reason == TransitionReason::kOverrunStorm) {
     write_count(ev->detail, sizeof ev->detail, timing.consecutive_overruns, " missed deadlines");
+  } else if (reason == TransitionReason::kDriveProtection &&
+             protection_faulted_ < model_.actuators.size()) {
+    const ProtectionState& p = protection_[protection_faulted_];
+    const auto& text = model_.protection[protection_faulted_].fault_text;
+    copy_text(ev->detail, sizeof ev->detail, text[static_cast<std::size_t>(p.cause)].c_str());
+    const std::size_t used = std::char_traits<char>::length(ev->detail);
+    write_decimal(ev->detail + used, sizeof ev->detail - used, p.value_at_fault);
   } else if (reason == TransitionReason::kStopTimeout) {
     stop_timed_out_.store(true, std::memory_order_relaxed);
   }
@@ -440,6 +473,21 @@ void Controller::publish_telemetry(const TickTiming& timing, TransitionReason tr
   std::copy_n(command_.begin(), n, rec->command.begin());
   std::copy_n(measured_.begin(), n, rec->feedback.begin());
   std::copy_n(flags, n, rec->limits.begin());
+  rec->protected_mask = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!protected_at(i)) continue;
+    rec->protected_mask |= std::uint64_t{1} << i;
+    const ActuatorHealth& h = health_[i];
+    const ProtectionState& p = protection_[i];
+    rec->temperature_c[i] = static_cast<float>(h.temperature_c);
+    rec->load[i] = static_cast<float>(h.load);
+    rec->current_a[i] = static_cast<float>(h.current_a);
+    rec->voltage_v[i] = static_cast<float>(h.voltage_v);
+    rec->hardware_error[i] = h.hardware_error;
+    rec->derate[i] = static_cast<float>(p.factor);
+    rec->extreme_s[i] = static_cast<float>(p.in_band_s);
+    rec->protection[i] = static_cast<std::uint8_t>(p.mode);
+  }
   channels_.telemetry->commit_push();
 }
 
@@ -449,6 +497,7 @@ void Controller::tick(const TickTiming& timing) {
 
   // 1. Read the face command (and the measured positions).
   read_inputs(timing);
+  const bool protection_fault = step_drive_protection(dt);
   // 2. Sanitise: bad values are rejected, the last good value held.
   std::uint32_t rejected = 0;
   if (fresh_) rejected = sanitizer_.apply(command_in_);
@@ -515,6 +564,11 @@ void Controller::tick(const TickTiming& timing) {
   in.enable_request = enable_request_.exchange(false, std::memory_order_relaxed);
   in.shutdown_request = shutdown_request_.load(std::memory_order_relaxed);
   in.reset_request = reset_request_.exchange(false, std::memory_order_relaxed);
+  in.drive_protection_fault = protection_fault;
+  if (in.reset_request && safety_.state() == SafetyState::kFault) {
+    clear_protection_faults();
+    in.drive_protection_fault = protection_faulted_ < model_.actuators.size();
+  }
   in.jog_request = jog_request_.exchange(false, std::memory_order_relaxed);
   in.jog_end_request = jog_end_request_.exchange(false, std::memory_order_relaxed);
   in.at_rest = safety_.state() == SafetyState::kStopping && at_rest(dt);

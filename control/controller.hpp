@@ -121,11 +121,25 @@ class Controller {
   double actuator_coupled_violation() const { return actuator_coupled_violation_; }
   std::uint64_t mapping_clamps() const { return mapping_clamps_; }
   const std::array<LimitFlags, kMaxActuators>& limit_flags() const { return flags_; }
+  // Drive-level protection (docs/SAFETY.md): this tick's health and state.
+  const ActuatorHealth& health(std::size_t actuator) const { return health_[actuator]; }
+  const ProtectionState& protection(std::size_t actuator) const { return protection_[actuator]; }
   bool input_stale() const { return input_stale_; }
 
  private:
   void read_inputs(const TickTiming& timing);
   void choose_targets();
+  // Drive-level protection (controller_protection.cpp): steps every
+  // actuator's state; true while some actuator's protection FAULT is latched.
+  bool step_drive_protection(double dt);
+  void clear_protection_faults();  // on reset: those whose condition has gone
+  bool protected_at(std::size_t i) const {
+    return i < model_.protection.size() && model_.protection[i].configured;
+  }
+  bool hardware_error(std::size_t i) const {
+    return protected_at(i) &&
+           (health_[i].hardware_error & model_.protection[i].hardware_error_mask) != 0;
+  }
   bool limit_actuators(double dt, LimitFlags* flags);  // true if the backstop acted
   // Actuator coupled limits as this tick's position bounds (bound_lo_,
   // bound_hi_); returns the bit set of the actuators they bound.
@@ -232,6 +246,10 @@ class Controller {
   std::array<double, kMaxActuators> fault_target_{};
   face::MandiblePose fault_pose_;
   std::array<bool, kMaxBuses> bus_driven_{};
+  // Drive-level protection: the buses' health readings and each actuator's state.
+  std::array<ActuatorHealth, kMaxActuators> health_{};
+  std::array<ProtectionState, kMaxActuators> protection_{};
+  std::size_t protection_faulted_ = kMaxActuators;  // the one named in the event
 };
 
 }  // namespace facectl

@@ -11,6 +11,7 @@
 #include "control/envelope/mandible_envelope.hpp"
 #include "control/limits/coupled_constraints.hpp"
 #include "control/mapping/rig_mapping.hpp"
+#include "control/protection/drive_protection.hpp"
 #include "control/safety/safety_state_machine.hpp"
 
 namespace facectl {
@@ -42,6 +43,9 @@ struct ControllerModel {
   std::array<ActuatorLimits, 3> mandible_limits{};
   face::MandiblePose mandible_rest;
   std::vector<ActuatorModel> actuators;  // ordered by bus
+  // Drive-level protection per actuator, same order (docs/SAFETY.md); empty
+  // or not configured: none.
+  std::vector<DriveProtection> protection;
   std::vector<BusModel> buses;
   double rate_hz = 1000.0;
   // STOPPING ends when, for every actuator, the command is within this

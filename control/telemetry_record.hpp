@@ -33,6 +33,18 @@ struct TelemetryRecord {
   std::array<double, kMaxActuators> command{};     // limited actuator command (SI)
   std::array<double, kMaxActuators> feedback{};    // measured position (SI)
   std::array<LimitFlags, kMaxActuators> limits{};  // LimitFlag bits
+  // Drive-level protection (docs/SAFETY.md), per actuator; the writers list
+  // the actuators whose bit is set here (those with a `protection` block).
+  // float: a reading's precision, and half the bytes in the ring.
+  std::uint64_t protected_mask = 0;
+  std::array<float, kMaxActuators> temperature_c{};  // NaN: not reported
+  std::array<float, kMaxActuators> load{};           // fraction of max torque
+  std::array<float, kMaxActuators> current_a{};
+  std::array<float, kMaxActuators> voltage_v{};
+  std::array<std::uint32_t, kMaxActuators> hardware_error{};
+  std::array<float, kMaxActuators> derate{};             // factor on the command, 1 = none
+  std::array<float, kMaxActuators> extreme_s{};          // continuous time in the extreme band
+  std::array<std::uint8_t, kMaxActuators> protection{};  // ProtectionMode
 };
 
 }  // namespace facectl

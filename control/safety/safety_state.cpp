@@ -54,6 +54,8 @@ std::string_view to_string(TransitionReason reason) {
       return "jog requested";
     case TransitionReason::kJogEnded:
       return "jog ended";
+    case TransitionReason::kDriveProtection:
+      return "drive protection";
   }
   return "?";
 }

@@ -40,6 +40,7 @@ enum class TransitionReason : std::uint8_t {
   kFaultReset,
   kJogRequested,
   kJogEnded,
+  kDriveProtection,  // an actuator's drive-level protection (docs/SAFETY.md)
 };
 
 std::string_view to_string(SafetyState state);

@@ -31,7 +31,7 @@ TransitionReason SafetyStateMachine::step(const SafetyInputs& in, double dt) {
                             : TransitionReason::kNone;
   }
   if (state_ == SafetyState::kFault) {
-    const bool cleared = !in.bus_fault && !in.io_fault;
+    const bool cleared = !in.bus_fault && !in.io_fault && !in.drive_protection_fault;
     return in.reset_request && cleared ? go(SafetyState::kIdle, TransitionReason::kFaultReset)
                                        : TransitionReason::kNone;
   }
@@ -44,6 +44,10 @@ TransitionReason SafetyStateMachine::step(const SafetyInputs& in, double dt) {
     return go(SafetyState::kFault, TransitionReason::kOverrunStorm);
   }
 
+  // Drive-level protection: from any driving state, and it refuses to enable.
+  if (in.drive_protection_fault && (state_ != SafetyState::kIdle || in.enable_request)) {
+    return go(SafetyState::kFault, TransitionReason::kDriveProtection);
+  }
   if (in.feedback_out_of_range && state_ != SafetyState::kIdle) {
     return go(SafetyState::kFault, TransitionReason::kFeedbackOutOfRange);
   }

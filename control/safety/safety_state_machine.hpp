@@ -17,8 +17,9 @@ struct SafetyInputs {
   bool estop = false;
   bool bus_fault = false;
   bool io_fault = false;
-  bool feedback_out_of_range = false;  // a measured position is outside its hardware range
-  bool limit_breach = false;           // the command backstop acted on this tick
+  bool feedback_out_of_range = false;   // a measured position is outside its hardware range
+  bool limit_breach = false;            // the command backstop acted on this tick
+  bool drive_protection_fault = false;  // an actuator's drive protection latched FAULT
   int consecutive_overruns = 0;
   bool enable_request = false;
   bool shutdown_request = false;

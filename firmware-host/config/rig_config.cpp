@@ -6,6 +6,7 @@
 
 #include "control/units.hpp"
 #include "firmware-host/config/plant_config.hpp"
+#include "firmware-host/config/protection_config.hpp"
 #include "firmware-host/model/rig_encoding_check.hpp"
 
 namespace facectl {
@@ -48,7 +49,7 @@ ActuatorConfig parse_actuator(const ConfigNode& node, const FaceLayout& layout,
   node.expect_keys({"name", "kind", "bus", "address", "position" + s, "soft_position" + s,
                     "max_velocity" + s + "_s", "max_acceleration" + s + "_s2",
                     "max_jerk" + s + "_s3", "rest" + s, "plant", "map", "fault_reaction",
-                    "encoding", "max_current_a", "expect_direction"});
+                    "encoding", "max_current_a", "expect_direction", "protection"});
 
   m.bus = node["bus"].string();
   if (bus_names.count(m.bus) == 0) node["bus"].fail("the name of a bus of this rig");
@@ -193,6 +194,26 @@ CoupledLimitConfig parse_coupled_limit(const ConfigNode& node, const FaceLayout&
   return out;
 }
 
+// A strut follows the jaw's pose by inverse kinematics, not its own target,
+// so its command cannot be derated or kept out of a band on its own.
+void refuse_strut_derating(const RigConfig& cfg) {
+  for (const StrutConfig& s : cfg.mechanism->struts) {
+    for (const ActuatorConfig& a : cfg.actuators) {
+      const DriveProtection& p = a.protection;
+      if (a.model.name != s.actuator || !p.configured) continue;
+      const bool derates = p.temperature_c.derate < p.temperature_c.fault ||
+                           p.load.derate < p.load.fault || p.current_a.derate < p.current_a.fault ||
+                           p.extreme_band > 0.0;
+      if (derates) {
+        throw ConfigError(a.protection_where + ": rig.actuators '" + a.model.name +
+                          "'.protection: expected fault thresholds only on a strut of the "
+                          "mandible mechanism (it follows the jaw's pose: no derate, no "
+                          "extreme band), found a derate threshold or an extreme band");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
@@ -231,6 +252,10 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
     const auto bus = std::find_if(cfg.buses.begin(), cfg.buses.end(),
                                   [&](const BusConfig& b) { return b.name == act.model.bus; });
     check_actuator_encoding(act, *bus);
+    if (auto p = a.get("protection")) {
+      act.protection = parse_protection(*p, act.model, *bus);
+      act.protection_where = p->where();
+    }
     if (bus->is_cia402() && act.model.address == bus->can.host_node) {
       a["address"].fail("a node id other than the host's (host_node " +
                         std::to_string(bus->can.host_node) + " on bus " + bus->name + ")");
@@ -239,6 +264,7 @@ RigConfig load_rig_config(const std::string& path, const FaceLayout& layout) {
   }
   if (auto env = rig.get("mandible_envelope")) cfg.envelope = parse_envelope(*env);
   if (auto mech = rig.get("mandible_mechanism")) cfg.mechanism = parse_mandible_mechanism(*mech);
+  if (cfg.mechanism) refuse_strut_derating(cfg);
   if (auto limits = rig.get("coupled_limits")) {
     const auto rows = limits->items();
     if (rows.size() > CoupledConstraints::kMaxConstraints) {

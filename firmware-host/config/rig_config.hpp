@@ -7,6 +7,7 @@
 
 #include "control/controller_model.hpp"
 #include "control/limits/coupled_constraints.hpp"
+#include "control/protection/drive_protection.hpp"
 #include "firmware-host/config/bus_config.hpp"
 #include "firmware-host/config/config_node.hpp"
 #include "firmware-host/config/head_config.hpp"
@@ -37,6 +38,8 @@ struct ActuatorConfig {
   bool has_encoding = false;         // an `encoding` block was written
   std::string fault_reaction_where;  // position of its `fault_reaction`, or of the actuator
   std::vector<DirectionExpectation> expect_direction;
+  DriveProtection protection;    // its `protection` block; not configured if none
+  std::string protection_where;  // position of that block
 };
 
 // A coupled limit as written: Σ coeff · signal (YAML units) <= max, over

@@ -322,6 +322,7 @@ void set_mapping(const HeadConfig& head, const RigConfig& rig, const RuntimeConf
     const ActuatorConfig& a = rig.actuators[ordered[i]];
     const std::string who = "actuator '" + a.model.name + "'";
     m.actuators.push_back(a.model);
+    m.protection.push_back(a.protection);
     map.linear.set_offset(i, a.map.offset_si);
     for (const MappingTerm& t : a.map.terms) map.linear.set_gain(i, t.signal, t.gain_si);
     add_point_terms(i, a, who, map);

@@ -11,6 +11,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "firmware-host/run/protection_columns.hpp"
+
 namespace facectl {
 namespace {
 
@@ -94,6 +96,7 @@ void TelemetryWriter::write_header(std::FILE* out, const ControllerModel& model)
   for (const auto& a : model.actuators) std::fprintf(out, ",cmd.%s", a.name.c_str());
   for (const auto& a : model.actuators) std::fprintf(out, ",fb.%s", a.name.c_str());
   for (const auto& a : model.actuators) std::fprintf(out, ",lim.%s", a.name.c_str());
+  write_protection_header(out, model);
   std::fputc('\n', out);
 }
 
@@ -111,6 +114,10 @@ void TelemetryWriter::format_row(std::string& out, const TelemetryRecord& r) {
   for (std::size_t i = 0; i < r.actuator_count; ++i) appendf(out, ",%.9g", r.command[i]);
   for (std::size_t i = 0; i < r.actuator_count; ++i) appendf(out, ",%.9g", r.feedback[i]);
   for (std::size_t i = 0; i < r.actuator_count; ++i) appendf(out, ",%u", r.limits[i]);
+  if (r.protected_mask != 0) {
+    char cols[kProtectionColumnsBytesAtMost * kMaxActuators];
+    out.append(cols, write_protection_columns(cols, r));
+  }
   out.push_back('\n');
 }
 

@@ -95,6 +95,30 @@ json rig_json(const HeadService& service) {
           {"signals", signals}};
 }
 
+namespace {
+
+// Drive-level protection of the actuators with a `protection` block; an
+// unreported reading is null.
+json protection_json(const TelemetryRecord& rec, const ControllerModel& m) {
+  const auto reading = [](float v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json out = json::array();
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    if (((rec.protected_mask >> i) & 1u) == 0) continue;
+    out.push_back({{"actuator", m.actuators[i].name},
+                   {"temperature_c", reading(rec.temperature_c[i])},
+                   {"load", reading(rec.load[i])},
+                   {"current_a", reading(rec.current_a[i])},
+                   {"voltage_v", reading(rec.voltage_v[i])},
+                   {"hardware_error", rec.hardware_error[i]},
+                   {"derate", rec.derate[i]},
+                   {"extreme_s", rec.extreme_s[i]},
+                   {"state", to_string(static_cast<ProtectionMode>(rec.protection[i]))}});
+  }
+  return out;
+}
+
+}  // namespace
+
 json telemetry_json(const TelemetryRecord& rec, const ControllerModel& m,
                     std::span<const double> landmarks_mm) {
   json commands = json::array();
@@ -115,6 +139,7 @@ json telemetry_json(const TelemetryRecord& rec, const ControllerModel& m,
          {"commands", commands},
          {"measured", measured},
          {"face", face}};
+  if (rec.protected_mask != 0) j["protection"] = protection_json(rec, m);
   if (!landmarks_mm.empty()) j["landmarks_mm"] = rounded(landmarks_mm, 1e4);
   return j;
 }

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "firmware-host/run/protection_columns.hpp"
 #include "firmware-host/simulate/limit_flags_or.hpp"
 #include "firmware-host/simulate/write_f6.hpp"
 
@@ -22,6 +23,7 @@ DecimatedTelemetry::DecimatedTelemetry(const ControllerModel& model, const std::
   for (const auto& a : model.actuators) {
     std::fprintf(file_, ",cmd.%s,pos.%s,lim.%s", a.name.c_str(), a.name.c_str(), a.name.c_str());
   }
+  write_protection_header(file_, model);
   std::fputc('\n', file_);
 }
 
@@ -37,7 +39,7 @@ void DecimatedTelemetry::add(double t, const TelemetryRecord& r,
   or_limit_flags(limits_, r.limits);
   if (seen_++ % every_ != 0) return;
   // Formatted by hand, not fprintf: the same bytes, a fraction of the instructions.
-  char line[64 * kMaxActuators];
+  char line[(64 + kProtectionColumnsBytesAtMost) * kMaxActuators];
   char* p = line;
   // An integer takes at most 20 characters; bounding to_chars by that (not by
   // `end`) also shows the compiler that the row stays inside `line`.
@@ -65,6 +67,7 @@ void DecimatedTelemetry::add(double t, const TelemetryRecord& r,
     value(last_position_[i], positions[i]);
     separated(limits_[i]);
   }
+  p = write_protection_columns(p, r);
   *p++ = '\n';
   std::fwrite(line, 1, static_cast<std::size_t>(p - line), file_);
   envelope_ = 0;

@@ -23,8 +23,11 @@ enum class Mode { kUniform, kExtremes, kBangBang, kNeutral, kNaN };
 // extreme input, which no servo's thermal rating is meant to survive: it
 // checks the control law's limits, so the simulated servos keep their thermal
 // statistics but never trip (a show's own load is checked by show_check).
+// Drive-level protection likewise derates and cools down but never faults:
+// its derating stays in the search, so every limit is checked with it.
 LoadedConfig without_servo_overload(LoadedConfig cfg) {
   for (ActuatorConfig& a : cfg.rig.actuators) a.plant.thermal.trips = false;
+  for (DriveProtection& p : cfg.built.model.protection) p.faults = false;
   return cfg;
 }
 

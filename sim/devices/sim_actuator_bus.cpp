@@ -1,6 +1,7 @@
 #include "sim/devices/sim_actuator_bus.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace facectl {
@@ -24,6 +25,29 @@ SimActuatorBus::SimActuatorBus(std::string name, const std::vector<sim::ServoPla
     }
   }
   plant_enabled_.assign(plants.size(), 0);
+  scripted_.assign(plants.size(), ActuatorHealth{});
+  for (const auto& p : plants) reports_health_.push_back(p.thermal.full_effort > 0.0 ? 1 : 0);
+}
+
+void SimActuatorBus::read_health(std::span<ActuatorHealth> health) {
+  const std::size_t n = std::min(plants_.size(), health.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    ActuatorHealth h;
+    if (reports_health_[i] != 0) {
+      h.temperature_c = plants_[i].temperature_c();
+      h.load = plants_[i].load();
+    }
+    const ActuatorHealth& s = scripted_[i];
+    const auto pick = [](double scripted, double own) {
+      return std::isnan(scripted) ? own : scripted;
+    };
+    h.temperature_c = pick(s.temperature_c, h.temperature_c);
+    h.load = pick(s.load, h.load);
+    h.current_a = pick(s.current_a, h.current_a);
+    h.voltage_v = pick(s.voltage_v, h.voltage_v);
+    h.hardware_error = s.hardware_error;
+    health[i] = h;
+  }
 }
 
 void SimActuatorBus::read(const TickTime& time, std::span<double> positions) {

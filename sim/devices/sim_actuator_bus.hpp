@@ -26,6 +26,14 @@ class SimActuatorBus final : public ActuatorBus {
   void set_enabled(bool enabled) override;
   void set_actuators_enabled(std::span<std::uint8_t> enabled) override;
   BusStatus status() const override;
+  // Each plant's thermal model's temperature and load (when it has one, as
+  // for a smart servo), overridden by scripted health.
+  void read_health(std::span<ActuatorHealth> health) override;
+
+  // Test hooks, from the thread that steps the bus: health that replaces the
+  // plant's (its non-NaN fields; hardware_error as given), and an obstacle.
+  void script_health(std::size_t i, const ActuatorHealth& h) { scripted_[i] = h; }
+  void block_above(std::size_t i, double stop) { plants_[i].block_above(stop); }
 
   // Fault injection (thread-safe). `reason` must be a static string.
   void inject_fault(const char* reason) { fault_reason_.store(reason, std::memory_order_release); }
@@ -46,6 +54,8 @@ class SimActuatorBus final : public ActuatorBus {
   BusTiming timing_;
   std::atomic<bool> enabled_{false};  // any plant enabled
   std::vector<std::uint8_t> plant_enabled_;
+  std::vector<ActuatorHealth> scripted_;
+  std::vector<std::uint8_t> reports_health_;  // the plant has a thermal model
   std::atomic<const char*> fault_reason_{nullptr};
   std::uint64_t frames_ = 0;
   std::uint64_t writes_while_disabled_ = 0;

@@ -119,6 +119,11 @@ void ServoPlant::advance(std::int64_t now_ns) {
     }
     // Gear play: the output follows only once the motor takes up the slack.
     output_ = std::clamp(output_, motor_ - half_backlash_, motor_ + half_backlash_);
+    if (motor_ > block_above_) {
+      motor_ = block_above_;
+      velocity_ = 0.0;
+    }
+    output_ = std::min(output_, block_above_);
   }
   thermal_.step(now_ns, dt, enabled_, output_, active_command_ - motor_);
 }

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 
@@ -62,6 +63,11 @@ class ServoPlant {
   bool enabled() const { return enabled_; }
 
   const PlantStats& stats() const { return thermal_.stats(); }
+  double temperature_c() const { return thermal_.temperature_c(); }
+  double load() const { return thermal_.load(); }
+  // An obstacle (skin, a jammed linkage): neither motor nor output passes
+  // `stop` upward; +inf = none. The motor then pushes against it.
+  void block_above(double stop) { block_above_ = stop; }
   // The latched overload fault ("thermal: <name> ..."), or nullptr. The text
   // lives as long as the plant.
   const char* fault() const { return thermal_.fault(); }
@@ -101,6 +107,7 @@ class ServoPlant {
   double kd_ = 0.0;    // 2ζω
   std::int64_t last_ns_ = -1;
   bool enabled_ = false;
+  double block_above_ = std::numeric_limits<double>::infinity();
   MeasurementNoise noise_;
   ThermalModel thermal_;
 };

@@ -32,6 +32,11 @@ struct ThermalParams {
   double time_constant_s = 60.0;  // of the duty and thermal averages
   double rated_duty = 0.5;        // the continuous effort the servo tolerates
   bool trips = true;              // false: statistics only, the servo never faults
+  // The temperature it reports (ActuatorHealth): ambient at no heat, rated
+  // at 1.0 of the continuous rating. 72 °C: the XL430-W250's default
+  // Temperature Limit (ROBOTIS e-Manual, XL430-W250, control table item 31).
+  double ambient_c = 25.0;
+  double rated_c = 72.0;
 };
 
 class ThermalModel {
@@ -43,6 +48,12 @@ class ThermalModel {
   // every simulated servo every tick.
   void step(std::int64_t now_ns, double dt, bool powered, double output, double error);
   const PlantStats& stats() const { return stats_; }
+  // What a smart servo would report of itself: temperature (°C) from the
+  // heat average, load as the signed effort of the last step.
+  double temperature_c() const {
+    return p_.ambient_c + heat_ * heat_scale_ * (p_.rated_c - p_.ambient_c);
+  }
+  double load() const { return load_; }
   const char* fault() const { return fault_; }
   void clear_fault() { fault_ = nullptr; }
 
@@ -54,6 +65,7 @@ class ThermalModel {
   PlantStats stats_;
   double duty_ = 0.0;
   double heat_ = 0.0;  // averaged e²
+  double load_ = 0.0;  // last step's effort, signed as the error
   double continuous_s_ = 0.0;
   double alpha_dt_ = -1.0;  // the dt alpha_ was computed for
   double alpha_ = 0.0;
@@ -88,6 +100,7 @@ inline void ThermalModel::step(std::int64_t now_ns, double dt, bool powered, dou
   if (powered && effort_per_error_ > 0.0) effort = std::fabs(error) * effort_per_error_;
   if (at_extreme) effort = std::max(effort, p_.extreme_effort);
   effort = std::min(effort, 1.0);
+  load_ = error < 0.0 ? -effort : effort;
   if (dt != alpha_dt_) set_dt(dt);
   const double alpha = alpha_;
   duty_ += alpha * (effort - duty_);

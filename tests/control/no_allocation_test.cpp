@@ -12,6 +12,7 @@
 #include "firmware-host/run/realtime_loop.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "tests/support/sim_head.hpp"
+#include "tests/support/text_files.hpp"
 
 namespace facectl {
 namespace {
@@ -129,6 +130,60 @@ TEST(NoAllocation, TicksInEveryStateAllocateNothing) {
   }
   EXPECT_EQ(head.controller().state(), SafetyState::kFault);
   EXPECT_EQ(total, 0) << "allocations in " << ticks << " ticks";
+}
+
+TEST(NoAllocation, DriveProtectionTicksAllocateNothing) {
+  // The hobby DYNAMIXEL rig configures protection on every actuator: derate,
+  // a temperature FAULT (its event text written in the tick), reset, and a
+  // hardware-error FAULT, all under the guard.
+  ConfigOverrides o;
+  o.rig_path = testing::source_path("config/rigs/hobby_dynamixel.yaml").string();
+  OfflineHead head(load_config(default_config_path(), o), 1 << 14);
+  ASSERT_TRUE(head.model().protection.at(1).configured);
+  auto cmd = head.model().neutral;
+  head.controller().request_enable();
+  head.send(cmd);
+  head.step(head.period());
+  SimActuatorBus& bus = *head.hardware().find("servos");
+  long total = 0;
+  auto run = [&](double seconds) {
+    for (long i = 0; i < static_cast<long>(seconds / head.period()); ++i) {
+      cmd[static_cast<std::size_t>(i) % head.model().layout.muscle_count()] =
+          static_cast<double>(i % 7) / 7.0;
+      head.send(cmd);
+      {
+        AllocationGuard guard;
+        head.step(head.period());
+      }
+      total += AllocationGuard::last();
+    }
+    while (head.telemetry()->front() != nullptr) head.telemetry()->pop();
+    while (head.events().front() != nullptr) head.events().pop();
+  };
+  run(1.5);
+  ASSERT_EQ(head.controller().state(), SafetyState::kRunning);
+  ActuatorHealth h;
+  h.temperature_c = 65.0;
+  bus.script_health(1, h);
+  run(0.5);
+  EXPECT_LT(head.controller().protection(1).factor, 1.0);
+  h.temperature_c = 71.0;
+  bus.script_health(1, h);
+  run(0.2);
+  EXPECT_EQ(head.controller().state(), SafetyState::kFault);
+  h = ActuatorHealth{};
+  bus.script_health(1, h);
+  head.controller().request_reset();
+  run(0.01);
+  EXPECT_EQ(head.controller().state(), SafetyState::kIdle);
+  head.controller().request_enable();
+  run(1.5);
+  ASSERT_EQ(head.controller().state(), SafetyState::kRunning);
+  h.hardware_error = 4;
+  bus.script_health(2, h);
+  run(0.1);
+  EXPECT_EQ(head.controller().state(), SafetyState::kFault);
+  EXPECT_EQ(total, 0);
 }
 
 // The whole real-time loop (timer, histograms, tick) on a real thread.
