@@ -7,13 +7,15 @@ namespace {
 
 // What each bus type fills in ActuatorBus::read_health. DYNAMIXEL X-series:
 // Present Temperature, Present Load or Current, Present Input Voltage and
-// Hardware Error Status (drivers/dynamixel/dynamixel_bus.cpp).
+// Hardware Error Status (drivers/dynamixel/dynamixel_bus.cpp). Pololu
+// Maestro: its error register only (drivers/maestro/maestro_bus.cpp).
 struct Reported {
   bool temperature = false, load = false, current = false, voltage = false, error = false;
 };
 
 Reported reported_by(const std::string& type) {
   if (type == "dynamixel") return {true, true, true, true, true};
+  if (type == "maestro") return {false, false, false, false, true};
   return {};
 }
 
