@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "drivers/dynamixel/dynamixel_bus.hpp"
+#include "drivers/feetech/feetech_bus.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
 
 namespace facectl {
@@ -28,12 +29,13 @@ void check_modbus_answers(const ModbusBus& bus, const ModbusTiming& timing) {
                                          " of its boards do not answer");
 }
 
-// Waits until every servo of a DYNAMIXEL bus has been set up (it answered,
-// is an X-series servo without a hardware error), or a fault names the one
-// that is not.
-void check_dynamixel_ready(const DynamixelBus& bus, const DynamixelOptions& options) {
-  const auto limit = std::chrono::steady_clock::now() +
-                     std::chrono::duration<double>(2.0 * options.fault_after_s + 0.5);
+// Waits until every servo of a smart-servo bus (DYNAMIXEL, Feetech) has
+// been set up (it answered, without a hardware error), or a fault names the
+// one that is not.
+template <typename ServoBus>
+void check_servos_ready(const ServoBus& bus, double fault_after_s) {
+  const auto limit =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(2.0 * fault_after_s + 0.5);
   while (std::chrono::steady_clock::now() < limit) {
     if (bus.ready() && !bus.status().fault) return;
     if (bus.status().fault) break;
@@ -79,9 +81,13 @@ std::unique_ptr<RealHardware> make_real_hardware(const ControllerModel& model,
       hw->notes.push_back(it->name + ": " + std::to_string(mb->board_count()) +
                           " Modbus boards answer at " + it->endpoint);
     } else if (auto* db = dynamic_cast<DynamixelBus*>(rb.bus.get())) {
-      check_dynamixel_ready(*db, it->dynamixel);
+      check_servos_ready(*db, it->dynamixel.fault_after_s);
       hw->notes.push_back(it->name + ": " + std::to_string(actuators.size()) +
                           " DYNAMIXEL servos set up at " + it->endpoint);
+    } else if (auto* fb = dynamic_cast<FeetechBus*>(rb.bus.get())) {
+      check_servos_ready(*fb, it->feetech.fault_after_s);
+      hw->notes.push_back(it->name + ": " + std::to_string(actuators.size()) +
+                          " Feetech servos set up at " + it->endpoint);
     } else {
       hw->notes.push_back(rb.budget + " on " + it->endpoint);
     }
