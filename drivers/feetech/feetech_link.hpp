@@ -71,6 +71,9 @@ int FeetechLink::receive(int want, std::int64_t deadline_ns, OnStatus&& on_statu
       echo_pending_ = false;
       continue;
     }
+    // No servo answers from the broadcast ID: an echo of an earlier
+    // broadcast (a sync write) that came late.
+    if (r == scs::ParseResult::kOk && pk.id == scs::kBroadcastId) continue;
     if (r == scs::ParseResult::kOk) {
       ++got;
       ++counters_.status_packets;
