@@ -257,7 +257,7 @@ TEST_P(FeetechBusTest, WorksThroughAnEchoingHalfDuplexAdapter) {
   EXPECT_TRUE(eventually([&] { return word(1, ft::kGoalPosition) == step_of(series(), -5); }));
 }
 
-TEST_P(FeetechBusTest, APortLostWhileRunningIsAFaultAndTheBusComesBack) {
+TEST_P(FeetechBusTest, APortLostWhileRunningIsAFault) {
   start({0.0});
   auto bus = bus_on(1, fast(series()));
   ASSERT_TRUE(eventually([&] { return bus->ready(); }));
