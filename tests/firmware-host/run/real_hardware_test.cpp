@@ -315,7 +315,6 @@ TEST(RealHardware, TheShippedDynamixelRigDrivesSimulatedServos) {
   })) << "torque off in ESTOP";
 }
 
-
 // The shipped Feetech hobby rig, its port pointed at ten simulated STS3215s
 // standing at their actuators' rest: set up, enabled bumplessly, the jaw
 // commanded through its linkage, and the e-stop drops the torque.
