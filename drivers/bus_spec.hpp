@@ -22,8 +22,8 @@ struct BusSpec {
   ModbusTiming modbus;
   modbus_map::Addresses modbus_registers;
   DynamixelOptions dynamixel;
-  FeetechOptions feetech;  // type feetech
-  Pca9685Options pca9685;  // type pca9685
+  Pca9685Options pca9685;    // type pca9685
+  FeetechOptions feetech{};  // type feetech; `{}` keeps older aggregate initialisers whole
 };
 
 }  // namespace facectl
