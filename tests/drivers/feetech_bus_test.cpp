@@ -205,9 +205,12 @@ TEST_P(FeetechBusTest, AnErrorStatusSwitchesTorqueOffUntilClearedAndReEnabled) {
             "ft servo 1 (servo1): error status: angle sensor (torque off until it clears and "
             "the controller enables again)");
   ASSERT_TRUE(eventually([&] { return !torque(1); }));
+  // The feedback is published at the end of the cycle that found the bits.
   ActuatorHealth h[1];
-  bus->read_health(h);
-  EXPECT_EQ(h[0].hardware_error, ft::kErrAngle);
+  EXPECT_TRUE(eventually([&] {
+    bus->read_health(h);
+    return h[0].hardware_error == ft::kErrAngle;
+  })) << h[0].hardware_error;
   // Cleared: no fault, but torque stays off while the controller still enables.
   wire->with_servo(1, [](FeetechServoSim& s) { s.raise_error(0); });
   ASSERT_TRUE(eventually([&] { return !bus->status().fault; }));
