@@ -272,9 +272,7 @@ TEST_P(FeetechBusTest, APortLostWhileRunningIsAFault) {
 
 INSTANTIATE_TEST_SUITE_P(Series, FeetechBusTest,
                          ::testing::Values(ft::Series::kSts, ft::Series::kScs),
-                         [](const auto& info) {
-                           return info.param == ft::Series::kSts ? "Sts" : "Scs";
-                         });
+                         [](const auto& p) { return p.param == ft::Series::kSts ? "Sts" : "Scs"; });
 
 TEST(FeetechBus, APortThatIsNotThereIsAFault) {
   FeetechBus bus("ft", "/dev/facectl-no-such-port", 1'000'000, servos(ft::Series::kSts, 1), {0.0},
