@@ -6,6 +6,7 @@
 #include "drivers/can/custom_can_bus.hpp"
 #include "drivers/can/socketcan_transport.hpp"
 #include "drivers/dynamixel/dynamixel_bus.hpp"
+#include "drivers/feetech/feetech_bus.hpp"
 #include "drivers/i2c/i2c_dev_transport.hpp"
 #include "drivers/i2c/pca9685_bus.hpp"
 #include "drivers/maestro/maestro_bus.hpp"
@@ -29,6 +30,11 @@ RealBus make_bus(const BusSpec& spec, const std::vector<ActuatorModel>& actuator
   if (spec.type == "maestro") {
     out.bus = std::make_unique<MaestroBus>(spec.name, spec.endpoint, spec.bitrate, actuators,
                                            initial, spec.maestro);
+    return out;
+  }
+  if (spec.type == "feetech") {
+    out.bus = std::make_unique<FeetechBus>(spec.name, spec.endpoint, spec.bitrate, actuators,
+                                           initial, spec.feetech);
     return out;
   }
   if (spec.type == "pca9685") {

@@ -25,7 +25,7 @@ FUZZ_NICE="${FUZZ_NICE:-0}"
 all_targets=(runtime_config head_config rig_config expressions show fap_file fap_udp recorded_input
              live_link_face_packet osc_datagram
              telemetry_csv modbus_reply custom_can cia402_can hid_report hid_descriptor
-             dynamixel2_status)
+             dynamixel2_status feetech_status)
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then targets=("${all_targets[@]}"); fi
 
@@ -71,6 +71,7 @@ done
 seed custom_can  # none: no recorded CAN traffic in the repository
 seed cia402_can
 seed dynamixel2_status  # none: the e-Manual's status packets are in the unit test
+seed feetech_status  # none: the protocol examples are in the unit test
 # Every input a finding was fixed for (tests/fuzz/regressions/TARGET) runs again.
 for d in "$src"/tests/fuzz/regressions/*/; do
   t=$(basename "$d")

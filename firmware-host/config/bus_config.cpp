@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "firmware-host/config/feetech_bus_config.hpp"
+
 namespace facectl {
 namespace {
 
@@ -298,12 +300,14 @@ BusConfig parse_bus_config(const ConfigNode& node) {
                       "cycle_ms", "reconnect_ms", "return_delay_us", "watchdog_ms",
                       "write_position_limits"});
     parse_dynamixel(node, bus);
+  } else if (bus.type == "feetech") {
+    parse_feetech(node, bus);
   } else if (bus.type == "pca9685") {
     parse_pca9685(node, bus);
   } else if (bus.type == "maestro") {
     parse_maestro(node, bus);
   } else {
-    node["type"].fail("one of: can, modbus_rtu, modbus_tcp, dynamixel, pca9685, maestro");
+    node["type"].fail("one of: can, modbus_rtu, modbus_tcp, dynamixel, feetech, pca9685, maestro");
   }
   return bus;
 }

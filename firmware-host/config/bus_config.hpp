@@ -17,6 +17,7 @@ struct BusConfig : BusSpec {
   bool is_can() const { return type == "can"; }
   bool is_modbus() const { return type == "modbus_rtu" || type == "modbus_tcp"; }
   bool is_dynamixel() const { return type == "dynamixel"; }
+  bool is_feetech() const { return type == "feetech"; }
   bool is_cia402() const { return is_can() && can_protocol == "cia402"; }
   bool is_pca9685() const { return type == "pca9685"; }
   bool is_maestro() const { return type == "maestro"; }

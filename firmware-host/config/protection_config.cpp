@@ -8,7 +8,9 @@ namespace {
 // What each bus type fills in ActuatorBus::read_health. DYNAMIXEL X-series:
 // Present Temperature, Present Load or Current, Present Input Voltage and
 // Hardware Error Status (drivers/dynamixel/dynamixel_bus.cpp). Pololu
-// Maestro: its error register only (drivers/maestro/maestro_bus.cpp).
+// Maestro: its error register only (drivers/maestro/maestro_bus.cpp). Feetech
+// SCS/STS: Present Temperature, Load and Voltage, and the status packet's
+// error flags (drivers/feetech/feetech_bus.cpp).
 struct Reported {
   bool temperature = false, load = false, current = false, voltage = false, error = false;
 };
@@ -16,6 +18,7 @@ struct Reported {
 Reported reported_by(const std::string& type) {
   if (type == "dynamixel") return {true, true, true, true, true};
   if (type == "maestro") return {false, false, false, false, true};
+  if (type == "feetech") return {true, true, false, true, true};
   return {};
 }
 

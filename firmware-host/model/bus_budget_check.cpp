@@ -6,6 +6,8 @@
 
 #include "drivers/protocol/dynamixel2_packet.hpp"
 #include "drivers/protocol/dynamixel_x_table.hpp"
+#include "drivers/protocol/feetech_packet.hpp"
+#include "drivers/protocol/feetech_table.hpp"
 #include "drivers/protocol/maestro_serial.hpp"
 #include "drivers/protocol/modbus_register_map.hpp"
 #include "drivers/protocol/modbus_rtu_wire.hpp"
@@ -166,6 +168,42 @@ BusBudgetResult budget_maestro(const BusConfig& bus,
   return r;
 }
 
+// Feetech: the bytes of one I/O cycle (ft::cycle_bytes) and each servo's
+// return delay against the cycle; a cycle at or beyond fault_after_ms would
+// fault the bus by itself.
+BusBudgetResult budget_feetech(const BusConfig& bus,
+                               const std::vector<const ActuatorConfig*>& acts) {
+  for (const ActuatorConfig* a : acts) {
+    if (a->model.address < 0 || a->model.address > scs::kMaxId) {
+      throw ConfigError(a->where + ": rig.actuators '" + a->model.name +
+                        "'.address: expected a servo ID 0.." + std::to_string(scs::kMaxId) +
+                        " on Feetech bus " + bus.name + ", found " +
+                        std::to_string(a->model.address));
+    }
+  }
+  BusBudgetResult r;
+  const FeetechOptions& o = bus.feetech;
+  const double bytes = static_cast<double>(ft::cycle_bytes(o.series, acts.size()));
+  const double wire_s = bytes * serial_byte_s(bus.bitrate) +
+                        static_cast<double>(acts.size()) * o.return_delay_us * 1e-6;
+  r.load = wire_s / o.cycle_period_s;
+  const bool refused = wire_s >= o.fault_after_s;
+  r.verdict = refused        ? BusBudgetResult::Verdict::kRefused
+              : r.load > 1.0 ? BusBudgetResult::Verdict::kWarning
+                             : BusBudgetResult::Verdict::kOk;
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "%s: %zu servos, %.0f bytes per I/O cycle = %.2f ms at %ld baud, %.0f%% of the "
+                "%g ms cycle%s",
+                bus.name.c_str(), acts.size(), bytes, wire_s * 1e3, bus.bitrate, 100.0 * r.load,
+                o.cycle_period_s * 1e3,
+                refused ? " (refused: not under fault_after_ms; a faster baud or fewer servos)"
+                : r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)"
+                               : "");
+  r.text = buf;
+  return r;
+}
+
 // PCA9685: the I2C clocks of one I/O cycle (pca9685_cycle_bits) against the
 // cycle, one PWM period unless cycle_ms says otherwise.
 BusBudgetResult budget_pca9685(const BusConfig& bus,
@@ -210,6 +248,7 @@ std::vector<BusBudgetResult> check_bus_budgets(const RigConfig& rig, double tick
     }
     BusBudgetResult r = bus.is_can()         ? budget_can(bus, acts, tick_hz)
                         : bus.is_dynamixel() ? budget_dynamixel(bus, acts)
+                        : bus.is_feetech()   ? budget_feetech(bus, acts)
                         : bus.is_pca9685()   ? budget_pca9685(bus, acts)
                         : bus.is_maestro()   ? budget_maestro(bus, acts)
                                              : budget_modbus(bus, acts);

@@ -8,6 +8,7 @@
 #include "control/units.hpp"
 #include "drivers/protocol/cia402_counts.hpp"
 #include "drivers/protocol/custom_can_frames.hpp"
+#include "drivers/protocol/feetech_table.hpp"
 #include "drivers/protocol/maestro_serial.hpp"
 #include "drivers/protocol/pca9685_registers.hpp"
 #include "drivers/protocol/wire_encoding.hpp"
@@ -27,31 +28,54 @@ std::string number(double v) {
                     expected + ", found " + found);
 }
 
-// An X-series servo in position control: 4096 pulses a turn, goal and
-// present position in 4 bytes; without an encoding, 0 deg is its centre.
-void check_dynamixel_encoding(ActuatorConfig& actuator, const BusConfig& bus, double per_unit) {
+// A smart servo in position control, `steps` steps over its travel; without an
+// encoding, 0 deg is its centre. `family` names it in errors.
+struct ServoFamily {
+  const char* family;         // "DYNAMIXEL"
+  ActuatorEncoding::Raw raw;  // its position's wire type
+  const char* raw_why;        // "positions are 4 bytes"
+  int steps;                  // over its travel
+  double travel_deg;          // 360: a turn
+  const char* range_why;      // "one turn, position control mode"
+};
+
+void check_servo_encoding(ActuatorConfig& actuator, const BusConfig& bus, double per_unit,
+                          const ServoFamily& f) {
   ActuatorEncoding& e = actuator.model.encoding;
+  const std::string on = std::string(f.family) + " bus " + bus.name;
   if (actuator.model.kind != ActuatorKind::kRotary) {
     throw ConfigError(actuator.where + ": actuator " + actuator.model.name +
-                      ": expected kind rotary on DYNAMIXEL bus " + bus.name + ", found linear");
+                      ": expected kind rotary on " + on + ", found linear");
   }
-  if (!actuator.has_encoding) e = {ActuatorEncoding::Raw::kInt32, 4096.0 / 360.0, 2048.0};
-  if (e.raw != ActuatorEncoding::Raw::kInt32) {
-    refuse(actuator, "raw int32 on DYNAMIXEL bus " + bus.name + " (positions are 4 bytes)",
+  if (!actuator.has_encoding) e = {f.raw, f.steps / f.travel_deg, f.steps / 2.0};
+  if (e.raw != f.raw) {
+    refuse(actuator, std::string("raw ") + raw_name(f.raw) + " on " + on + " (" + f.raw_why + ")",
            std::string("raw ") + raw_name(e.raw));
   }
+  const int top = f.steps - 1;
   for (const double si : {actuator.model.limits.position_min, actuator.model.limits.position_max}) {
     const double pulses = std::nearbyint(si / per_unit * e.scale + e.offset);
-    if (pulses < 0 || pulses > 4095) {
+    if (pulses < 0 || pulses > top) {
       refuse(
           actuator,
-          "the hardware range within 0..4095 pulses (one turn, position control mode) on "
-          "DYNAMIXEL bus " +
-              bus.name,
+          "the hardware range within 0.." + std::to_string(top) + " pulses (" + f.range_why +
+              ") on " + on,
           "position " + number(si / per_unit) + " deg encoding to " + number(pulses) + " pulses");
     }
   }
 }
+
+constexpr ServoFamily kDynamixel{
+    "DYNAMIXEL", ActuatorEncoding::Raw::kInt32,    "positions are 4 bytes", 4096,
+    360.0,       "one turn, position control mode"};
+// Feetech positions are 2 bytes: 0..4095 over a turn on STS, 0..1023 over
+// the 300 deg travel of an SCS servo (SCS0009/SCS15 data sheets).
+constexpr ServoFamily kFeetechSts{
+    "Feetech STS", ActuatorEncoding::Raw::kUint16, "positions are 2 bytes", 4096,
+    360.0,         "one turn of an STS servo"};
+constexpr ServoFamily kFeetechScs{
+    "Feetech SCS", ActuatorEncoding::Raw::kUint16, "positions are 2 bytes", 1024,
+    300.0,         "the travel of an SCS servo"};
 
 }  // namespace
 
@@ -112,8 +136,11 @@ void check_actuator_encoding(ActuatorConfig& actuator, const BusConfig& bus) {
   }
   const double per_unit = si_per_yaml(actuator.model.kind);
   const char* unit = yaml_unit(actuator.model.kind);
-  if (bus.is_dynamixel()) {
-    check_dynamixel_encoding(actuator, bus, per_unit);
+  if (bus.is_dynamixel() || bus.is_feetech()) {
+    check_servo_encoding(actuator, bus, per_unit,
+                         bus.is_dynamixel()                       ? kDynamixel
+                         : bus.feetech.series == ft::Series::kSts ? kFeetechSts
+                                                                  : kFeetechScs);
     return;
   }
   // A CiA 402 drive counts with the actuator's int32 encoding or, without

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "drivers/dynamixel/dynamixel_bus.hpp"
+#include "drivers/feetech/feetech_bus.hpp"
 #include "drivers/maestro/maestro_bus.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
 
@@ -29,9 +30,9 @@ void check_modbus_answers(const ModbusBus& bus, const ModbusTiming& timing) {
                                          " of its boards do not answer");
 }
 
-// Waits until a serial servo bus is ready (DYNAMIXEL: every servo set up,
-// an X-series one without a hardware error; Maestro: a whole cycle answered
-// with no error bits), or a fault names what is not; `not_ready` otherwise.
+// Waits until a serial servo bus is ready (DYNAMIXEL, Feetech: every servo
+// set up, without a hardware error; Maestro: a whole cycle answered with no
+// error bits), or a fault names what is not; `not_ready` otherwise.
 template <typename Bus>
 void check_ready(const Bus& bus, double fault_after_s, const char* not_ready) {
   const auto limit =
@@ -88,6 +89,10 @@ std::unique_ptr<RealHardware> make_real_hardware(const ControllerModel& model,
       check_ready(*ma, it->maestro.fault_after_s, "the Maestro does not answer");
       hw->notes.push_back(it->name + ": a Maestro with " + std::to_string(actuators.size()) +
                           " channels answers at " + it->endpoint);
+    } else if (auto* fb = dynamic_cast<FeetechBus*>(rb.bus.get())) {
+      check_ready(*fb, it->feetech.fault_after_s, "its servos are not all set up");
+      hw->notes.push_back(it->name + ": " + std::to_string(actuators.size()) +
+                          " Feetech servos set up at " + it->endpoint);
     } else {
       hw->notes.push_back(rb.budget + " on " + it->endpoint);
     }

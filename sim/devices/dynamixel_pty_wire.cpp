@@ -1,66 +1,21 @@
 #include "sim/devices/dynamixel_pty_wire.hpp"
 
-#include <fcntl.h>
-#include <poll.h>
-#include <termios.h>
-#include <unistd.h>
-
-#include <cstdlib>
 #include <cstring>
-#include <stdexcept>
 
 #include "control/clock.hpp"
 #include "drivers/protocol/dynamixel2_packet.hpp"
 #include "drivers/protocol/dynamixel_x_table.hpp"
 
 namespace facectl::sim {
-namespace {
-
-void write_all(int fd, const std::uint8_t* data, std::size_t n) {
-  while (n > 0) {
-    const ssize_t w = ::write(fd, data, n);
-    if (w < 0) {
-      if (errno == EAGAIN || errno == EINTR) {
-        pollfd p{fd, POLLOUT, 0};
-        ::poll(&p, 1, 10);
-        continue;
-      }
-      return;
-    }
-    data += w;
-    n -= static_cast<std::size_t>(w);
-  }
-}
-
-void sleep_us(int us) {
-  if (us <= 0) return;
-  timespec t{us / 1'000'000, (us % 1'000'000) * 1000L};
-  nanosleep(&t, nullptr);
-}
-
-}  // namespace
 
 DynamixelPtyWire::DynamixelPtyWire(std::vector<std::unique_ptr<DynamixelServoSim>> servos)
     : servos_(std::move(servos)) {
-  master_ = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (master_ < 0 || ::grantpt(master_) != 0 || ::unlockpt(master_) != 0) {
-    throw std::runtime_error(std::string("pty: ") + std::strerror(errno));
-  }
-  device_ = ::ptsname(master_);
-  slave_ = ::open(device_.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
-  if (slave_ < 0) throw std::runtime_error("pty " + device_ + ": " + std::strerror(errno));
-  termios t{};
-  ::tcgetattr(slave_, &t);
-  ::cfmakeraw(&t);  // no echo, no line editing, before the driver opens it
-  ::tcsetattr(slave_, TCSANOW, &t);
   thread_ = std::thread([this] { run(); });
 }
 
 DynamixelPtyWire::~DynamixelPtyWire() {
   stop_.store(true);
   if (thread_.joinable()) thread_.join();
-  if (slave_ >= 0) ::close(slave_);
-  if (master_ >= 0) ::close(master_);
 }
 
 std::uint64_t DynamixelPtyWire::requests_of(std::uint8_t instruction) const {
@@ -72,14 +27,9 @@ void DynamixelPtyWire::run() {
   std::vector<std::uint8_t> params(8192);
   std::size_t len = 0;
   while (!stop_.load()) {
-    pollfd p{master_, POLLIN, 0};
-    if (::poll(&p, 1, 20) <= 0) continue;
-    const ssize_t n = ::read(master_, buf.data() + len, buf.size() - len);
-    if (n <= 0) {
-      sleep_us(1000);
-      continue;
-    }
-    len += static_cast<std::size_t>(n);
+    const std::size_t n = pty_.read(buf.data() + len, buf.size() - len, 20);
+    if (n == 0) continue;
+    len += n;
     for (;;) {
       dxl2::Packet pk;
       const dxl2::ParseResult r = dxl2::parse_packet({buf.data(), len}, pk, params);
@@ -102,7 +52,7 @@ void DynamixelPtyWire::run() {
 void DynamixelPtyWire::serve(std::uint8_t id, std::uint8_t instruction,
                              const std::vector<std::uint8_t>& params, const std::uint8_t* raw,
                              std::size_t raw_size) {
-  if (faults_.echo.load()) write_all(master_, raw, raw_size);
+  if (faults_.echo.load()) pty_.write_all(raw, raw_size);
   // Sync read: the servos answer in the order the request lists them.
   std::vector<std::uint8_t> order;
   if (instruction == dxl2::kSyncRead) {
@@ -128,7 +78,7 @@ void DynamixelPtyWire::serve(std::uint8_t id, std::uint8_t instruction,
       reply.back() ^= 0x5A;
     }
     sleep_us(delay_us + faults_.extra_delay_us.load());
-    write_all(master_, reply.data(), reply.size());
+    pty_.write_all(reply.data(), reply.size());
   }
 }
 

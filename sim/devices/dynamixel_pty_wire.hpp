@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sim/devices/dynamixel_servo_sim.hpp"
+#include "sim/devices/pty_master.hpp"
 
 namespace facectl::sim {
 
@@ -32,7 +33,7 @@ class DynamixelPtyWire {
   DynamixelPtyWire(const DynamixelPtyWire&) = delete;
   DynamixelPtyWire& operator=(const DynamixelPtyWire&) = delete;
 
-  const std::string& device() const { return device_; }
+  const std::string& device() const { return pty_.device(); }
   DynamixelWireFaults& faults() { return faults_; }
   // Runs `f(servo)` on the servo with this ID under the wire's lock.
   template <typename F>
@@ -53,9 +54,7 @@ class DynamixelPtyWire {
 
   std::vector<std::unique_ptr<DynamixelServoSim>> servos_;
   std::mutex mutex_;
-  std::string device_;
-  int master_ = -1;
-  int slave_ = -1;  // held open so the pty lives while the driver reopens it
+  PtyMaster pty_;
   DynamixelWireFaults faults_;
   std::atomic<std::uint64_t> requests_{0};
   std::array<std::atomic<std::uint64_t>, 256> by_instruction_{};

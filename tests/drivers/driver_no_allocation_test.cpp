@@ -12,6 +12,7 @@
 #include "drivers/can/cia402_bus.hpp"
 #include "drivers/can/custom_can_bus.hpp"
 #include "drivers/dynamixel/dynamixel_bus.hpp"
+#include "drivers/feetech/feetech_bus.hpp"
 #include "drivers/i2c/pca9685_bus.hpp"
 #include "drivers/maestro/maestro_bus.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
@@ -19,6 +20,7 @@
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
 #include "sim/devices/dynamixel_pty_wire.hpp"
+#include "sim/devices/feetech_pty_wire.hpp"
 #include "sim/devices/maestro_pty_wire.hpp"
 #include "sim/devices/memory_can_link.hpp"
 #include "sim/devices/memory_i2c_bus.hpp"
@@ -224,6 +226,39 @@ TEST(DriverNoAllocation, MaestroBusAllocatesNothingInTheTick) {
   wire.with_maestro([&](sim::MaestroSim& m) { targets = m.commands(0x84); });
   EXPECT_GT(targets, 50u) << "Set Target commands";
   EXPECT_GT(bus.stats().replies, 10u);
+  EXPECT_EQ(total, 0);
+}
+
+TEST(DriverNoAllocation, FeetechBusAllocatesNothingInTheTick) {
+  std::vector<std::unique_ptr<sim::FeetechServoSim>> servos;
+  std::vector<ActuatorModel> acts = testing::rotary_axes(3);
+  for (std::size_t i = 0; i < acts.size(); ++i) {
+    acts[i].address = static_cast<int>(i + 1);
+    acts[i].encoding = {ActuatorEncoding::Raw::kUint16, 4096.0 / 360.0, 2048.0};
+    servos.push_back(
+        std::make_unique<sim::FeetechServoSim>(static_cast<std::uint8_t>(i + 1), ft::Series::kSts));
+  }
+  sim::FeetechPtyWire wire(std::move(servos));
+  FeetechBus bus("ft", wire.device(), 1'000'000, acts, std::vector<double>(3, 0.0));
+  std::vector<double> cmd(3, 2 * kDeg), meas(3);
+  std::vector<ActuatorHealth> health(3);
+  std::vector<std::uint8_t> on = {1, 0, 1};
+  long total = 0;
+  for (int k = 0; k < 300; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (k == 100) wire.faults().mute_id = 2;
+    total += allocations_in([&] {
+      if (k == 50) bus.set_enabled(true);
+      if (k == 150) bus.set_actuators_enabled(on);
+      bus.read({0, 0.001}, meas);
+      bus.read_health(health);
+      bus.write({0, 0.001}, cmd);
+      (void)bus.status();
+      if (k == 299) bus.set_enabled(false);
+    });
+  }
+  EXPECT_GT(wire.requests_of(0x83), 5u) << "sync writes of the goals";
+  EXPECT_TRUE(bus.status().fault) << "servo 2 muted";
   EXPECT_EQ(total, 0);
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "drivers/protocol/can_bus_budget.hpp"
+#include "drivers/protocol/feetech_table.hpp"
 #include "firmware-host/config/head_config.hpp"
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/config/rig_config.hpp"
@@ -570,6 +571,93 @@ TEST(RigEncoding, DynamixelServosTakePulsesOfOneTurn) {
   EXPECT_EQ(results.at(0).text,
             "b0: 10 servos, 408 bytes per I/O cycle = 4.08 ms at 1000000 baud, 82% of the 5 ms "
             "cycle");
+}
+
+const std::string kSts = "type: feetech, device: /dev/ttyUSB0, baud: 1000000, series: sts";
+const std::string kScs = "type: feetech, device: /dev/ttyUSB0, baud: 1000000, series: scs";
+
+TEST(BusConfig, FeetechKeysReachTheOptions) {
+  TempFile f(rig(kScs + ", response_timeout_ms: 4, fault_after_ms: 60, cycle_ms: 8, "
+                        "reconnect_ms: 250, return_delay_us: 20, write_position_limits: false"));
+  const BusConfig b = load_rig_config(f.path(), head().layout).buses.at(0);
+  EXPECT_TRUE(b.is_feetech());
+  EXPECT_EQ(b.endpoint, "/dev/ttyUSB0");
+  EXPECT_EQ(b.bitrate, 1000000);
+  EXPECT_EQ(b.feetech.series, ft::Series::kScs);
+  EXPECT_DOUBLE_EQ(b.feetech.response_timeout_s, 0.004);
+  EXPECT_DOUBLE_EQ(b.feetech.fault_after_s, 0.06);
+  EXPECT_DOUBLE_EQ(b.feetech.cycle_period_s, 0.008);
+  EXPECT_DOUBLE_EQ(b.feetech.reconnect_interval_s, 0.25);
+  EXPECT_EQ(b.feetech.return_delay_us, 20);
+  EXPECT_FALSE(b.feetech.write_position_limits);
+}
+
+TEST(BusConfig, BadFeetechKeysNameTheirPositionKeyExpectedAndFound) {
+  const auto has = [](const std::string& error, const std::string& part) {
+    return error.find(part) != std::string::npos && error.rfind("RIG:4:", 0) == 0;
+  };
+  std::string e = budget_error(rig("type: feetech, device: /dev/ttyUSB0, baud: 9600, series: sts"));
+  EXPECT_TRUE(has(e,
+                  "rig.buses[0].baud: expected a rate a Feetech servo runs at: 38400, 57600, "
+                  "76800, 115200, 128000, 250000, 500000 or 1000000, found '9600'"))
+      << e;
+  e = budget_error(rig("type: feetech, device: /dev/ttyUSB0, baud: 1000000, series: xl"));
+  EXPECT_TRUE(has(e,
+                  "rig.buses[0].series: expected sts (STS/SMS, e.g. STS3215) or scs (SCS, "
+                  "e.g. SCS0009), found 'xl'"))
+      << e;
+  e = budget_error(rig("type: feetech, device: /dev/ttyUSB0, baud: 1000000"));
+  EXPECT_NE(e.find("series"), std::string::npos) << e;
+  e = budget_error(rig(kSts + ", return_delay_us: 3"));
+  EXPECT_TRUE(has(e, "rig.buses[0].return_delay_us: expected an even number of microseconds")) << e;
+  e = budget_error(rig(kSts + ", response_timeout_ms: 50, fault_after_ms: 40"));
+  EXPECT_TRUE(has(e,
+                  "rig.buses[0].fault_after_ms: expected fault_after_ms above "
+                  "response_timeout_ms (50 ms), found 40 ms"))
+      << e;
+  e = budget_error(rig(kSts + ", watchdog_ms: 100"));
+  EXPECT_NE(e.find("watchdog_ms"), std::string::npos) << e;  // Feetech servos have none
+}
+
+TEST(RigEncoding, FeetechServosTakeStepsOfTheirSeries) {
+  // STS without an encoding: 4096 steps a turn, 0 deg at the centre.
+  TempFile sts(encoded_rig(kSts, ""));
+  const RigConfig r = load_rig_config(sts.path(), head().layout);
+  EXPECT_EQ(r.actuators.at(0).model.encoding.raw, ActuatorEncoding::Raw::kUint16);
+  EXPECT_DOUBLE_EQ(r.actuators.at(0).model.encoding.scale, 4096.0 / 360.0);
+  EXPECT_DOUBLE_EQ(r.actuators.at(0).model.encoding.offset, 2048.0);
+  // SCS: 1024 steps over 300 deg.
+  TempFile scs(encoded_rig(kScs, ""));
+  const RigConfig c = load_rig_config(scs.path(), head().layout);
+  EXPECT_DOUBLE_EQ(c.actuators.at(0).model.encoding.scale, 1024.0 / 300.0);
+  EXPECT_DOUBLE_EQ(c.actuators.at(0).model.encoding.offset, 512.0);
+  // 1024 steps a turn fit an STS, not an SCS at its upper end.
+  const std::string wide = encoded_rig(kScs, "{ raw: uint16, scale: 50, offset: 512 }");
+  EXPECT_EQ(budget_error(wide),
+            at(wide) +
+                ": actuator a1 encoding: expected the hardware range within 0..1023 pulses (the "
+                "travel of an SCS servo) on Feetech SCS bus b0, found position 20 deg encoding "
+                "to 1512 pulses");
+  const std::string wide32 = encoded_rig(kSts, "{ raw: int32, scale: 11.377778, offset: 2048 }");
+  EXPECT_EQ(budget_error(wide32), at(wide32) +
+                                      ": actuator a1 encoding: expected raw uint16 on Feetech "
+                                      "STS bus b0 (positions are 2 bytes), found raw int32");
+  std::vector<BusBudgetResult> results;
+  EXPECT_EQ(budget_error(rig(kSts, 10), 1000.0, &results), "ok");
+  // Ten STS servos at 1 Mbit/s: sync write 6+2+30, sync read 6+2+10, ten
+  // 14-byte replies: 196 bytes, 1.96 ms of the 10 ms cycle.
+  EXPECT_EQ(results.at(0).text,
+            "b0: 10 servos, 196 bytes per I/O cycle = 1.96 ms at 1000000 baud, 20% of the 10 ms "
+            "cycle");
+  // SCS reads each servo on its own: ten 8-byte reads instead of one sync read.
+  EXPECT_EQ(budget_error(rig(kScs, 10), 1000.0, &results), "ok");
+  EXPECT_EQ(results.at(0).text,
+            "b0: 10 servos, 258 bytes per I/O cycle = 2.58 ms at 1000000 baud, 26% of the 10 ms "
+            "cycle");
+  // At 38400 baud the cycle outlasts fault_after_ms: refused.
+  const std::string slow = rig("type: feetech, device: /dev/ttyUSB0, baud: 38400, series: scs", 20);
+  EXPECT_NE(budget_error(slow).find("refused: not under fault_after_ms"), std::string::npos)
+      << budget_error(slow);
 }
 
 }  // namespace

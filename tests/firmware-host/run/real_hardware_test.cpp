@@ -16,6 +16,7 @@
 #include "control/controller.hpp"
 #include "drivers/protocol/wire_encoding.hpp"
 #include "sim/devices/dynamixel_pty_wire.hpp"
+#include "sim/devices/feetech_pty_wire.hpp"
 #include "sim/devices/maestro_pty_wire.hpp"
 #include "sim/devices/modbus_board_server.hpp"
 #include "sim/devices/sim_gpio_chip.hpp"
@@ -363,6 +364,73 @@ TEST(RealHardware, TheShippedMaestroRigDrivesASimulatedMaestro) {
   EXPECT_FALSE(chip->physical(4)) << "power dropped in ESTOP";
   ASSERT_TRUE(run(500ms, [&] { return target(1) == 0 && target(10) == 0; }))
       << "pulses off in ESTOP";
+}
+
+// The shipped Feetech hobby rig, its port pointed at ten simulated STS3215s
+// standing at their actuators' rest: set up, enabled bumplessly, the jaw
+// commanded through its linkage, and the e-stop drops the torque.
+TEST(RealHardware, TheShippedFeetechRigDrivesSimulatedServos) {
+  std::ifstream in(std::string(FACECTL_SOURCE_DIR) + "/config/rigs/hobby_feetech.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto rig_on = [&](const std::string& device) {
+    std::string r = text.str();
+    const std::string from = "device: /dev/ttyUSB0";
+    r.replace(r.find(from), from.size(), "device: " + device);
+    return r;
+  };
+  std::vector<std::unique_ptr<sim::FeetechServoSim>> servos;
+  {
+    testing::TempFile rig(rig_on("/dev/null"));
+    testing::TempFile runtime(testing::ModbusTcpRig::runtime_text(rig.path(), "sim"));
+    const LoadedConfig cfg = load_config(runtime.path());
+    for (const ActuatorModel& a : cfg.built.model.actuators) {
+      const WireEncoding enc(a.kind, a.encoding);
+      servos.push_back(std::make_unique<sim::FeetechServoSim>(
+          static_cast<std::uint8_t>(a.address), ft::Series::kSts,
+          static_cast<std::int32_t>(enc.encode(a.rest))));
+    }
+  }
+  ASSERT_EQ(servos.size(), 10u);
+  sim::FeetechPtyWire wire(std::move(servos));
+  testing::TempFile rig(rig_on(wire.device()));
+  testing::TempFile runtime(testing::ModbusTcpRig::runtime_text(rig.path(), "sim"));
+  const LoadedConfig cfg = load_config(runtime.path());
+  SimGpioChip* chip = nullptr;
+  auto hw = make_real_hardware(cfg.built.model, cfg, sim_gpio(chip));
+  EXPECT_EQ(hw->notes.at(0), "servos: 10 Feetech servos set up at " + wire.device());
+
+  TickLoop loop(cfg.built.model, *hw);
+  loop.jaw_rad = 0.0;
+  Controller& controller = loop.controller;
+  auto run = [&](std::chrono::milliseconds limit, auto done) { return loop.run(limit, done); };
+  std::int32_t rest_goal = 0;
+  wire.with_servo(1, [&](sim::FeetechServoSim& s) { rest_goal = s.present(); });
+  controller.request_enable();
+  ASSERT_TRUE(run(5000ms, [&] { return controller.state() == SafetyState::kRunning; }))
+      << to_string(controller.state()) << " " << hw->seams.at(0)->status().reason;
+  bool torque = false;
+  EXPECT_TRUE(run(500ms, [&] {
+    wire.with_servo(1, [&](sim::FeetechServoSim& s) { torque = s.torque(); });
+    return torque;
+  })) << "torque on while running";
+  loop.jaw_rad = 10.0 * 3.14159265358979 / 180.0;
+  std::int32_t goal = rest_goal;
+  ASSERT_TRUE(run(3000ms,
+                  [&] {
+                    wire.with_servo(1, [&](sim::FeetechServoSim& s) { goal = s.goal(); });
+                    return std::abs(goal - rest_goal) > 100;
+                  }))
+      << goal << " vs rest " << rest_goal;
+  EXPECT_EQ(controller.state(), SafetyState::kRunning) << hw->seams.at(0)->status().reason;
+
+  chip->set_physical(3, true);  // e-stop pressed
+  ASSERT_TRUE(run(100ms, [&] { return controller.state() == SafetyState::kEstop; }));
+  EXPECT_FALSE(chip->physical(4)) << "power dropped in ESTOP";
+  ASSERT_TRUE(run(500ms, [&] {
+    wire.with_servo(1, [&](sim::FeetechServoSim& s) { torque = s.torque(); });
+    return !torque;
+  })) << "torque off in ESTOP";
 }
 
 }  // namespace

@@ -278,7 +278,8 @@ TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
     const auto* f = find_failure(proof.findings, "capability");
     EXPECT_EQ(f, nullptr) << entry.path() << ": " << f->subject << ": " << f->message;
   }
-  EXPECT_GE(shipped, 5);  // default, hobby, hobby_dynamixel, hobby_pca9685, hobby_maestro
+  EXPECT_GE(shipped, 6);  // default, hobby, hobby_dynamixel, hobby_feetech, hobby_maestro,
+                         // hobby_pca9685
 }
 
 // hobby_pca9685.yaml copies hobby.yaml's head (the schema has no include):
@@ -294,6 +295,17 @@ TEST(Verify, HobbyPca9685IsTheHobbyHeadOnAPca9685) {
   const std::string maestro = testing::read_text(kSource + "/config/rigs/hobby_maestro.yaml");
   EXPECT_EQ(from_envelope(maestro), from_envelope(modbus));
   EXPECT_NE(maestro.find("type: maestro"), std::string::npos);
+}
+
+// hobby_feetech.yaml copies hobby_dynamixel.yaml's head: only the bus may differ.
+TEST(Verify, HobbyFeetechIsTheHobbyHeadOnFeetechServos) {
+  const auto from_envelope = [](const std::string& text) {
+    return text.substr(text.find("  # Hobby jaws rarely yaw"));
+  };
+  const std::string dxl = testing::read_text(kSource + "/config/rigs/hobby_dynamixel.yaml");
+  const std::string ft = testing::read_text(kSource + "/config/rigs/hobby_feetech.yaml");
+  EXPECT_EQ(from_envelope(ft), from_envelope(dxl));
+  EXPECT_NE(ft.find("type: feetech"), std::string::npos);
 }
 
 // A neck servo slower than the rig's limit cannot follow: the static check
