@@ -140,6 +140,13 @@ class Controller {
     return protected_at(i) &&
            (health_[i].hardware_error & model_.protection[i].hardware_error_mask) != 0;
   }
+  // In FAULT an actuator that its own protection faulted, or whose servo
+  // reports a hardware error, relaxes whatever its reaction: holding, or
+  // going to a rest that may be where it is pushing (a jaw closing on a
+  // finger), would keep the load or heat on.
+  bool protection_relaxes(std::size_t i) const {
+    return hardware_error(i) || (protected_at(i) && protection_[i].mode == ProtectionMode::kFault);
+  }
   bool limit_actuators(double dt, LimitFlags* flags);  // true if the backstop acted
   // Actuator coupled limits as this tick's position bounds (bound_lo_,
   // bound_hi_); returns the bit set of the actuators they bound.

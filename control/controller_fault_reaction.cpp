@@ -31,9 +31,8 @@ bool Controller::start_fault_reactions(SafetyState from, TransitionReason reason
     const ActuatorModel& a = model_.actuators[i];
     // An actuator whose own command breached its range is not trusted to hold.
     const bool breached = (flags_[i] & kLimitBreach) != 0;
-    // A servo that reports a hardware error has switched its output off.
     fault_driven_[i] =
-        a.fault_reaction == FaultReaction::kRelax || breached || hardware_error(i) ? 0 : 1;
+        a.fault_reaction == FaultReaction::kRelax || breached || protection_relaxes(i) ? 0 : 1;
     fault_target_[i] =
         a.fault_reaction == FaultReaction::kRest ? a.rest : stop_point(a.limits, limiter_[i]);
   }
@@ -71,7 +70,7 @@ void Controller::relax_uncommandable(bool io_fault) {
   // far from where it is. Likewise the jaw's struts when their measured pose is
   // outside the envelope or no pose at all. At entry and on every later tick.
   for (std::size_t i = 0; i < model_.actuators.size(); ++i) {
-    if (fault_driven_[i] != 0 && (!measured_in_range(i) || hardware_error(i))) {
+    if (fault_driven_[i] != 0 && (!measured_in_range(i) || protection_relaxes(i))) {
       fault_driven_[i] = 0;
       changed = true;
     }

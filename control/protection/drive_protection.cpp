@@ -83,8 +83,9 @@ bool protection_condition_present(const DriveProtection& p, const ActuatorHealth
 double protected_target(const DriveProtection& p, const ActuatorLimits& l, double rest,
                         const ProtectionState& s, double target) {
   if (!p.configured) return target;
-  // A convex combination of the target and rest: inside every convex set
-  // (soft range, actuator coupled limits) that holds both.
+  // Between the target and rest: inside the actuator's soft range. Other
+  // actuators derate by their own factors, so coupled limits are the coupled
+  // bounds' work, downstream (docs/SAFETY.md, "Drive-level protection").
   double t = rest + s.factor * (target - rest);
   if (s.cooldown_left_s > 0.0) {
     t = std::clamp(t, l.position_min + p.extreme_band, l.position_max - p.extreme_band);

@@ -126,13 +126,23 @@ FeetechBus::FeetechBus(std::string name, std::string device, long baud,
 FeetechBus::~FeetechBus() {
   stop_.store(true, std::memory_order_release);
   if (thread_.joinable()) thread_.join();
-  if (link_) {
-    // Torque off on the way out: one broadcast sync write, which no servo
-    // answers. Without it the servos would hold their last goal for ever.
-    std::vector<std::uint8_t> ids, zeros(count_, 0);
-    for (const auto& s : servos_) ids.push_back(s->id);
-    const std::size_t n = scs::encode_sync_write(ft::kTorqueEnable, 1, ids, zeros, tx_);
-    if (n > 0) link_->send({tx_.data(), n}, seconds_ns(0.05));
+  // Torque off on the way out. Without it the servos would hold their last
+  // goal for ever.
+  std::uint8_t ids[kMaxActuators];
+  for (std::size_t i = 0; i < count_; ++i) ids[i] = servos_[i]->id;
+  broadcast_torque_off({ids, count_});
+}
+
+// Torque off with one Sync Write, which no servo answers: it also reaches a
+// servo whose replies are lost (a broken return line, an ID clash), which a
+// confirmed write would take for silent and leave holding its goal.
+void FeetechBus::broadcast_torque_off(std::span<const std::uint8_t> ids) {
+  if (!link_ || ids.empty()) return;
+  static constexpr std::uint8_t kZeros[kMaxActuators] = {};
+  const std::size_t n =
+      scs::encode_sync_write(ft::kTorqueEnable, 1, ids, {kZeros, ids.size()}, tx_);
+  if (n > 0 && !link_->send({tx_.data(), n}, seconds_ns(options_.response_timeout_s))) {
+    lose_port(port_lost_.c_str());
   }
 }
 
@@ -273,6 +283,7 @@ bool FeetechBus::open_port(std::int64_t now_ns) {
 }
 
 void FeetechBus::lose_port(const char* reason) {
+  if (!link_) return;  // already lost, by an earlier step of this cycle
   publish_counters();
   const FeetechLink::Counters& c = link_->counters();
   counted_.status_packets += c.status_packets;
@@ -282,7 +293,7 @@ void FeetechBus::lose_port(const char* reason) {
   link_.reset();
   port_reason_.store(reason, std::memory_order_release);
   for (auto& s : servos_) {
-    if (s->stage == Stage::kOn) latch_off(*s);
+    if (s->stage == Stage::kOn || s->wanted.load(std::memory_order_acquire)) latch_off(*s);
     s->stage = Stage::kSetUp;
     s->on.store(false, std::memory_order_release);
     s->ready.store(false, std::memory_order_release);
@@ -311,6 +322,14 @@ void FeetechBus::latch_off(Servo& s) {
 void FeetechBus::run_cycle(std::int64_t now_ns) {
   Command fresh;
   if (commands_.consume(fresh)) current_ = fresh;
+  // A servo not (or no longer) set up, or whose torque-off was not
+  // confirmed, may still hold torque: it is told to let go every cycle.
+  std::uint8_t off[kMaxActuators];
+  std::size_t n_off = 0;
+  for (const auto& sp : servos_) {
+    if (sp->stage == Stage::kSetUp || sp->off_pending) off[n_off++] = sp->id;
+  }
+  broadcast_torque_off({off, n_off});
   for (auto& sp : servos_) {
     Servo& s = *sp;
     if (!link_) return;
@@ -373,6 +392,7 @@ bool FeetechBus::set_up(Servo& s) {
   }
   std::uint8_t error = 0;
   const std::size_t r = scs::encode_read(s.id, ft::kPresentPosition, 2, tx_);
+  if (!link_) return false;
   const FeetechLink::Reply reply =
       link_->request(s.id, {tx_.data(), r}, {b, 2}, options_.response_timeout_s,
                      options_.return_delay_us * 1e-6, &error);
@@ -406,7 +426,7 @@ bool FeetechBus::switch_torque(Servo& s, bool on) {
   if (on) {
     // Bumpless: the goal is where the servo is before the torque comes on.
     std::uint8_t b[2];
-    s.hold = s.present;
+    s.hold = std::clamp(s.present, s.min_step, s.max_step);
     s.on_epoch = epoch_.load(std::memory_order_acquire);
     ft::put_u16(series_, b, static_cast<std::uint16_t>(s.hold));
     const std::uint8_t one = 1;
@@ -524,7 +544,7 @@ void FeetechBus::read_feedback(std::int64_t now_ns) {
       // Silent too long: it may have lost power and come back with its RAM
       // (torque, response level) at defaults, so it is set up anew.
       fail(s, s.silent.c_str());
-      if (s.stage == Stage::kOn) latch_off(s);
+      if (s.stage == Stage::kOn || s.wanted.load(std::memory_order_acquire)) latch_off(s);
       s.stage = Stage::kSetUp;
       s.on.store(false, std::memory_order_release);
       s.ready.store(false, std::memory_order_release);
@@ -549,14 +569,15 @@ void FeetechBus::check_error(Servo& s, std::uint8_t error) {
   fail(s, s.hardware[k].c_str());
   if (s.hardware_fault) return;
   s.hardware_fault = true;
-  if (s.stage == Stage::kOn) {
-    switch_torque(s, false);
-    latch_off(s);
-  }
+  // Latched even if it was not on yet: it must not come on by itself once
+  // the flags clear.
+  if (s.stage == Stage::kOn || s.wanted.load(std::memory_order_acquire)) latch_off(s);
+  if (s.stage == Stage::kOn) switch_torque(s, false);
 }
 
 bool FeetechBus::transact(Servo& s, std::span<const std::uint8_t> packet,
                           std::span<std::uint8_t> data) {
+  if (!link_) return false;  // lost by an earlier step of this cycle
   std::uint8_t error = 0;
   const FeetechLink::Reply r = link_->request(s.id, packet, data, options_.response_timeout_s,
                                               options_.return_delay_us * 1e-6, &error);

@@ -100,6 +100,7 @@ class FeetechBus final : public ActuatorBus {
   void latch_off(Servo& s);
   void fail(Servo& s, const char* reason);
   void lose_port(const char* reason);
+  void broadcast_torque_off(std::span<const std::uint8_t> ids);
 
   std::string name_;
   std::string device_;

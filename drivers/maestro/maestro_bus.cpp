@@ -270,7 +270,8 @@ void MaestroBus::lose_port() {
 
 void MaestroBus::latch_all() {
   for (auto& c : channels_) {
-    if (c->on && !c->latched) {
+    // Wanted but not yet on counts too: it must not come on by itself.
+    if ((c->on || c->wanted.load(std::memory_order_acquire)) && !c->latched) {
       c->latched = true;
       c->latched_disables = c->disables.load(std::memory_order_acquire);
     }
@@ -384,6 +385,12 @@ void MaestroBus::read_back(std::int64_t now_ns) {
       ready_.store(false, std::memory_order_release);
       latch_all();
     }
+    return;
+  }
+  // The replies carry no framing: a late byte of an earlier cycle shifts them
+  // all. Error bits the Maestro does not have (above bit 8) show such a shift.
+  if ((maestro::reply_u16(&rx_[2 * count_]) & ~0x01FFu) != 0) {
+    stats_.short_replies.fetch_add(1, std::memory_order_relaxed);
     return;
   }
   stats_.replies.fetch_add(1, std::memory_order_relaxed);
