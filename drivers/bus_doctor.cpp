@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -55,6 +56,23 @@ std::string doctor_format(const char* format, double a, double b, double c) {
   char buf[256];
   std::snprintf(buf, sizeof buf, format, a, b, c);
   return buf;
+}
+
+std::string round_trip_text(std::vector<double>& ms) {
+  std::sort(ms.begin(), ms.end());
+  return doctor_format("round trip median %.2f ms, max %.2f ms", ms[ms.size() / 2], ms.back());
+}
+
+void check_hard_range(DoctorReport& r, const std::string& who, const ActuatorModel& a, double at,
+                      const std::string& check) {
+  if (at >= a.limits.position_min && at <= a.limits.position_max) return;
+  r.findings.push_back({DoctorFinding::Level::kWarning,
+                        who +
+                            doctor_format(": at %.1f deg, outside the rig's hard range "
+                                          "%.1f..%.1f deg",
+                                          at * 180.0 / M_PI, a.limits.position_min * 180.0 / M_PI,
+                                          a.limits.position_max * 180.0 / M_PI) +
+                            " (moved by hand? check " + check + ")"});
 }
 
 bool DoctorReport::has_problems() const {

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -8,6 +10,7 @@
 #include "drivers/can/can_bus_options.hpp"
 #include "drivers/can/can_transport.hpp"
 #include "drivers/dynamixel/dynamixel_options.hpp"
+#include "drivers/feetech/feetech_options.hpp"
 #include "drivers/maestro/maestro_options.hpp"
 #include "drivers/modbus/modbus_bus.hpp"
 
@@ -59,6 +62,30 @@ DoctorReport diagnose_can(const std::string& bus, CanTransport& transport,
                           const CanBusOptions& options, double tick_hz, long bitrate,
                           double listen_s = 0.5);
 
+// Opens a serial doctor's port or link (`Port(device, baud)`, which throws
+// std::runtime_error naming the device): then the latency timer's finding;
+// or nullptr and a "cannot open" problem.
+template <typename Port>
+std::unique_ptr<Port> doctor_open(DoctorReport& r, const std::string& device, long baud) {
+  try {
+    auto port = std::make_unique<Port>(device, baud);
+    r.findings.push_back(usb_latency_finding(device));
+    return port;
+  } catch (const std::runtime_error& e) {
+    r.findings.push_back({DoctorFinding::Level::kProblem, std::string("cannot open: ") + e.what()});
+    return nullptr;
+  }
+}
+
+// "round trip median A ms, max B ms" of the times in `ms` (sorted here; not
+// empty).
+std::string round_trip_text(std::vector<double>& ms);
+
+// A warning for `who` when `at` (its decoded position) is outside the rig's
+// hard range; `check` names what may be wrong besides a hand moving it.
+void check_hard_range(DoctorReport& r, const std::string& who, const ActuatorModel& a, double at,
+                      const std::string& check);
+
 // DYNAMIXEL: pings every servo of the rig `samples` times (round trip,
 // model, firmware), reads what would stop or surprise a run (Hardware Error
 // Status, torque already on, the Return Delay Time the bus would rewrite,
@@ -67,6 +94,16 @@ DoctorReport diagnose_can(const std::string& bus, CanTransport& transport,
 DoctorReport diagnose_dynamixel(const std::string& bus, const std::string& device, long baud,
                                 const std::vector<ActuatorModel>& actuators,
                                 const DynamixelOptions& options, int samples = 20);
+
+// Feetech SCS/STS: pings every servo of the rig `samples` times (round
+// trip, the status packet's error flags), reads its model number, torque
+// already on, Response Level, the Return Delay the bus would rewrite,
+// voltage, temperature and a position outside the rig's hard range, then
+// pings IDs 0..kFeetechScanLastId not in the rig, naming any that answer.
+inline constexpr int kFeetechScanLastId = 20;
+DoctorReport diagnose_feetech(const std::string& bus, const std::string& device, long baud,
+                              const std::vector<ActuatorModel>& actuators,
+                              const FeetechOptions& options, int samples = 20);
 
 // Maestro: Get Errors `samples` times (round trip, and the error register,
 // which reading clears), then each channel's Get Position (the pulse it is

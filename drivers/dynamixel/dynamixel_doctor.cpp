@@ -42,7 +42,7 @@ void examine(DoctorReport& r, DynamixelLink& link, const ActuatorModel& a,
                                                " PINGs (ID, baud rate, wiring, power?)"});
     return;
   }
-  std::sort(ms.begin(), ms.end());
+  const std::string round_trip = round_trip_text(ms);
   const dxl_x::Model* model = dxl_x::find_model(dxl_x::get_u16(info));
   if (model == nullptr) {
     r.findings.push_back({Level::kProblem, who + ": Model Number " +
@@ -54,7 +54,7 @@ void examine(DoctorReport& r, DynamixelLink& link, const ActuatorModel& a,
       {ms.size() == static_cast<std::size_t>(samples) ? Level::kOk : Level::kWarning,
        who + ": " + model->name + ", firmware " + std::to_string(info[2]) + ", " +
            std::to_string(ms.size()) + "/" + std::to_string(samples) + " PINGs answered, " +
-           fmt("round trip median %.2f ms, max %.2f ms", ms[ms.size() / 2], ms.back())});
+           round_trip});
   const auto read = [&](std::uint16_t address, std::span<std::uint8_t> out) {
     const std::size_t n =
         dxl2::encode_read(id, address, static_cast<std::uint16_t>(out.size()), tx);
@@ -90,14 +90,7 @@ void examine(DoctorReport& r, DynamixelLink& link, const ActuatorModel& a,
     const WireEncoding enc(a.kind, a.encoding);
     const double at =
         enc.decode(dxl_x::get_i32(feedback + (dxl_x::kPresentPosition - dxl_x::kPresentLoad)));
-    if (at < a.limits.position_min || at > a.limits.position_max) {
-      r.findings.push_back(
-          {Level::kWarning,
-           who + fmt(": at %.1f deg, outside the rig's hard range %.1f..%.1f deg (moved by "
-                     "hand? check its encoding)",
-                     at * 180.0 / M_PI, a.limits.position_min * 180.0 / M_PI,
-                     a.limits.position_max * 180.0 / M_PI)});
-    }
+    check_hard_range(r, who, a, at, "its encoding");
   }
 }
 
@@ -108,14 +101,8 @@ DoctorReport diagnose_dynamixel(const std::string& bus, const std::string& devic
                                 const DynamixelOptions& options, int samples) {
   DoctorReport r;
   r.bus = bus + " (DYNAMIXEL " + device + " " + std::to_string(baud) + " baud)";
-  std::unique_ptr<DynamixelLink> link;
-  try {
-    link = std::make_unique<DynamixelLink>(device, baud);
-  } catch (const std::runtime_error& e) {
-    r.findings.push_back({Level::kProblem, std::string("cannot open: ") + e.what()});
-    return r;
-  }
-  r.findings.push_back(usb_latency_finding(device));
+  const auto link = doctor_open<DynamixelLink>(r, device, baud);
+  if (link == nullptr) return r;
   for (const ActuatorModel& a : actuators) examine(r, *link, a, options, samples);
   // Who is on the bus: every servo answers a broadcast PING, one after the
   // other, each after its own return delay (up to 508 us).

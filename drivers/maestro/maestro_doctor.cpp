@@ -56,14 +56,8 @@ DoctorReport diagnose_maestro(const std::string& bus, const std::string& device,
                ? std::string("compact protocol")
                : "Pololu protocol, device " + std::to_string(options.device_number)) +
           ")";
-  std::unique_ptr<SerialPort> port;
-  try {
-    port = std::make_unique<SerialPort>(device, baud);
-  } catch (const std::runtime_error& e) {
-    r.findings.push_back({Level::kProblem, std::string("cannot open: ") + e.what()});
-    return r;
-  }
-  r.findings.push_back(usb_latency_finding(device));
+  const auto port = doctor_open<SerialPort>(r, device, baud);
+  if (port == nullptr) return r;
   const double wait_s = std::max(options.response_timeout_s, 0.002) + 4 * serial_byte_s(baud);
   std::uint8_t tx[8];
   const std::size_t n_errors = maestro::encode_get_errors(to, tx);
@@ -84,11 +78,10 @@ DoctorReport diagnose_maestro(const std::string& bus, const std::string& device,
              "device number, wiring, power?)"});
     return r;
   }
-  std::sort(ms.begin(), ms.end());
   r.findings.push_back(
       {ms.size() == static_cast<std::size_t>(samples) ? Level::kOk : Level::kWarning,
        std::to_string(ms.size()) + "/" + std::to_string(samples) + " Get Errors answered, " +
-           doctor_format("round trip median %.2f ms, max %.2f ms", ms[ms.size() / 2], ms.back())});
+           round_trip_text(ms)});
   if (seen != 0) {
     r.findings.push_back(
         {Level::kProblem,

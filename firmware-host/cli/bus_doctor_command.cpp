@@ -20,6 +20,13 @@ namespace {
 
 using Level = DoctorFinding::Level;
 
+DoctorReport with_wire_time(DoctorReport r, const BusBudgetResult& budget) {
+  r.findings.insert(r.findings.begin(),
+                    {budget.verdict == BusBudgetResult::Verdict::kOk ? Level::kOk : Level::kWarning,
+                     "wire time: " + budget.text});
+  return r;
+}
+
 DoctorReport diagnose(const BusConfig& bus, const std::vector<ActuatorModel>& actuators,
                       const BusBudgetResult& budget, const BusDoctorOptions& options,
                       double tick_hz) {
@@ -50,23 +57,21 @@ DoctorReport diagnose(const BusConfig& bus, const std::vector<ActuatorModel>& ac
     }
     return r;
   }
+  // The serial buses: their wire-time budget first.
   if (bus.is_dynamixel()) {
-    DoctorReport r = diagnose_dynamixel(bus.name, bus.endpoint, bus.bitrate, actuators,
-                                        bus.dynamixel, options.samples);
-    r.findings.insert(
-        r.findings.begin(),
-        {budget.verdict == BusBudgetResult::Verdict::kOk ? Level::kOk : Level::kWarning,
-         "wire time: " + budget.text});
-    return r;
+    return with_wire_time(diagnose_dynamixel(bus.name, bus.endpoint, bus.bitrate, actuators,
+                                             bus.dynamixel, options.samples),
+                          budget);
+  }
+  if (bus.is_feetech()) {
+    return with_wire_time(diagnose_feetech(bus.name, bus.endpoint, bus.bitrate, actuators,
+                                           bus.feetech, options.samples),
+                          budget);
   }
   if (bus.is_maestro()) {
-    DoctorReport r = diagnose_maestro(bus.name, bus.endpoint, bus.bitrate, actuators, bus.maestro,
-                                      options.samples);
-    r.findings.insert(
-        r.findings.begin(),
-        {budget.verdict == BusBudgetResult::Verdict::kOk ? Level::kOk : Level::kWarning,
-         "wire time: " + budget.text});
-    return r;
+    return with_wire_time(diagnose_maestro(bus.name, bus.endpoint, bus.bitrate, actuators,
+                                           bus.maestro, options.samples),
+                          budget);
   }
   std::unique_ptr<SocketCanTransport> transport;
   try {

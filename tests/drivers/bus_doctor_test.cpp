@@ -1,6 +1,6 @@
 // `bus doctor` against real peers: the libmodbus server with simulated boards,
-// simulated CAN devices on the in-process wire, and simulated DYNAMIXEL
-// servos on a pty.
+// simulated CAN devices on the in-process wire, and simulated DYNAMIXEL and
+// Feetech servos and a Maestro on a pty.
 #include "drivers/bus_doctor.hpp"
 
 #include <gtest/gtest.h>
@@ -11,10 +11,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include "drivers/protocol/feetech_packet.hpp"
 #include "sim/devices/can_device_network.hpp"
 #include "sim/devices/cia402_drive_sim.hpp"
 #include "sim/devices/custom_can_board_sim.hpp"
 #include "sim/devices/dynamixel_pty_wire.hpp"
+#include "sim/devices/feetech_pty_wire.hpp"
 #include "sim/devices/maestro_pty_wire.hpp"
 #include "sim/devices/memory_can_link.hpp"
 #include "sim/devices/modbus_board_server.hpp"
@@ -152,6 +154,79 @@ TEST(BusDoctor, DynamixelNamesEachServosStateAndOnesNotInTheRig) {
   EXPECT_TRUE(r.has_problems());
   // Read-only: no WRITE, no SYNC WRITE reached the servos.
   EXPECT_EQ(wire.requests_of(0x03) + wire.requests_of(0x83), writes_before);
+}
+
+// Servos 1 and 2 of a three-servo rig, and ID 9 that the rig lacks. Servo 1
+// is outside the hard range with torque on; servo 2 is overheating and at
+// Response Level 0.
+void check_feetech_doctor(ft::Series series, const std::string& model) {
+  const int steps = ft::steps_per_turn(series);
+  std::vector<std::unique_ptr<sim::FeetechServoSim>> servos;
+  servos.push_back(std::make_unique<sim::FeetechServoSim>(1, series, steps * 3 / 4));  // +90 deg
+  servos.push_back(std::make_unique<sim::FeetechServoSim>(2, series));
+  servos.push_back(std::make_unique<sim::FeetechServoSim>(9, series));  // not in the rig
+  std::vector<std::uint8_t> reply;
+  const std::uint8_t torque_on[] = {ft::kTorqueEnable, 1};
+  servos[0]->handle(1, scs::kWrite, torque_on, 0, reply);  // as another program would
+  const std::uint8_t level_0[] = {ft::kResponseLevel, 0};
+  servos[1]->handle(2, scs::kWrite, level_0, 0, reply);
+  servos[1]->raise_error(ft::kErrOverheat);
+  sim::FeetechPtyWire wire(std::move(servos));
+  std::vector<ActuatorModel> acts = testing::rotary_axes(3);  // IDs 1, 2, 3; +-30 deg
+  for (auto& a : acts) a.encoding = {ActuatorEncoding::Raw::kUint16, steps / 360.0, steps / 2.0};
+  FeetechOptions options;
+  options.series = series;
+  options.return_delay_us = 10;
+  const DoctorReport r = diagnose_feetech("ft", wire.device(), 1'000'000, acts, options, 5);
+  std::printf("%s", r.to_text().c_str());
+  EXPECT_TRUE(has(r, L::kOk, "servo 1 (axis1): model number " + model + ", 5/5 PINGs answered"));
+  EXPECT_TRUE(has(r, L::kWarning, "servo 1 (axis1): torque is on"));
+  EXPECT_TRUE(has(r, L::kOk, "servo 1 (axis1): Return Delay 0 us; facectl writes 10 us"));
+  EXPECT_TRUE(has(r, L::kOk, "servo 1 (axis1): 7.4 V, 27 deg C"));
+  EXPECT_TRUE(has(r, L::kWarning, "servo 1 (axis1): at 90.0 deg, outside the rig's hard range"));
+  EXPECT_FALSE(has(r, L::kProblem, "servo 1 (axis1)"));
+  EXPECT_TRUE(has(r, L::kProblem, "servo 2 (axis2): error status: overheating"));
+  EXPECT_TRUE(has(r, L::kOk, "servo 2 (axis2): Response Level 0"));
+  EXPECT_FALSE(has(r, L::kWarning, "servo 2 (axis2): at"));
+  EXPECT_TRUE(has(r, L::kProblem, "servo 3 (axis3): no answer to 5 PINGs"));
+  EXPECT_TRUE(has(r, L::kWarning, "servo ID 9 answers but is not in the rig"));
+  EXPECT_TRUE(has(r, L::kOk, "IDs 0..20 not in the rig: 1 answered a PING"));
+  EXPECT_TRUE(r.has_problems());
+  // Read-only: no WRITE, REG_WRITE, ACTION or SYNC WRITE reached the servos.
+  for (const std::uint8_t i : {scs::kWrite, scs::kRegWrite, scs::kAction, scs::kSyncWrite}) {
+    EXPECT_EQ(wire.requests_of(i), 0u) << "instruction " << int{i};
+  }
+  wire.with_servo(1, [](sim::FeetechServoSim& s) {
+    EXPECT_TRUE(s.torque());
+    EXPECT_EQ(s.eeprom_writes(), 0u);
+  });
+}
+
+TEST(BusDoctor, FeetechStsNamesEachServosStateAndOnesNotInTheRig) {
+  check_feetech_doctor(ft::Series::kSts, "777");
+}
+
+TEST(BusDoctor, FeetechScsNamesEachServosStateAndOnesNotInTheRig) {
+  check_feetech_doctor(ft::Series::kScs, "1284");
+}
+
+TEST(BusDoctor, FeetechMutedServoIsAProblemAndAMissingPortIsNamed) {
+  std::vector<std::unique_ptr<sim::FeetechServoSim>> servos;
+  servos.push_back(std::make_unique<sim::FeetechServoSim>(1, ft::Series::kSts));
+  servos.push_back(std::make_unique<sim::FeetechServoSim>(2, ft::Series::kSts));
+  sim::FeetechPtyWire wire(std::move(servos));
+  wire.faults().mute_id = 2;
+  std::vector<ActuatorModel> acts = testing::rotary_axes(2);
+  for (auto& a : acts) a.encoding = {ActuatorEncoding::Raw::kUint16, 4096 / 360.0, 2048.0};
+  const DoctorReport r = diagnose_feetech("ft", wire.device(), 1'000'000, acts, {}, 3);
+  SCOPED_TRACE(r.to_text());
+  EXPECT_TRUE(has(r, L::kOk, "servo 1 (axis1): model number 777, 3/3 PINGs answered"));
+  EXPECT_FALSE(has(r, L::kOk, "servo 1 (axis1): Return Delay"));  // 0 as the bus writes
+  EXPECT_TRUE(has(r, L::kProblem, "servo 2 (axis2): no answer to 3 PINGs"));
+  EXPECT_TRUE(has(r, L::kOk, "IDs 0..20 not in the rig: 0 answered a PING"));
+  const DoctorReport gone =
+      diagnose_feetech("ft", "/dev/facectl-no-such-port", 1'000'000, acts, {});
+  EXPECT_TRUE(has(gone, L::kProblem, "cannot open: "));
 }
 
 TEST(BusDoctor, MaestroReportsItsErrorRegisterAndEachChannelsPulse) {
