@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sstream>
 
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/verify/static_proof.hpp"
@@ -279,7 +280,7 @@ TEST(Verify, ARigLimitBeyondItsServoFailsNamingBothValues) {
     EXPECT_EQ(f, nullptr) << entry.path() << ": " << f->subject << ": " << f->message;
   }
   EXPECT_GE(shipped, 6);  // default, hobby, hobby_dynamixel, hobby_feetech, hobby_maestro,
-                         // hobby_pca9685
+                          // hobby_pca9685
 }
 
 // hobby_pca9685.yaml copies hobby.yaml's head (the schema has no include):
@@ -297,10 +298,24 @@ TEST(Verify, HobbyPca9685IsTheHobbyHeadOnAPca9685) {
   EXPECT_NE(maestro.find("type: maestro"), std::string::npos);
 }
 
-// hobby_feetech.yaml copies hobby_dynamixel.yaml's head: only the bus may differ.
+// hobby_feetech.yaml copies hobby_dynamixel.yaml's head: only the bus and
+// the servos' protection (their own limits) may differ.
 TEST(Verify, HobbyFeetechIsTheHobbyHeadOnFeetechServos) {
   const auto from_envelope = [](const std::string& text) {
-    return text.substr(text.find("  # Hobby jaws rarely yaw"));
+    std::istringstream in(text.substr(text.find("  # Hobby jaws rarely yaw")));
+    std::string out, line;
+    bool in_block = false;
+    while (std::getline(in, line)) {
+      const bool comment = line.rfind("      # Drive-level protection", 0) == 0;
+      const bool block = line.rfind("      protection: &", 0) == 0;
+      if (comment || block) in_block = true;
+      const bool inside = line.rfind("      #", 0) == 0 || line.rfind("        ", 0) == 0;
+      if (in_block && (comment || block || inside)) continue;
+      in_block = false;
+      if (line.rfind("      protection: *", 0) == 0) continue;
+      out += line + "\n";
+    }
+    return out;
   };
   const std::string dxl = testing::read_text(kSource + "/config/rigs/hobby_dynamixel.yaml");
   const std::string ft = testing::read_text(kSource + "/config/rigs/hobby_feetech.yaml");
