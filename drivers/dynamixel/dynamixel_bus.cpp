@@ -296,7 +296,7 @@ void DynamixelBus::lose_port(const char* reason) {
   link_.reset();
   port_reason_.store(reason, std::memory_order_release);
   for (auto& s : servos_) {
-    if (s->stage == Stage::kOn) latch_off(*s);
+    if (s->stage == Stage::kOn || s->wanted.load(std::memory_order_acquire)) latch_off(*s);
     s->stage = Stage::kSetUp;
     s->on.store(false, std::memory_order_release);
     s->ready.store(false, std::memory_order_release);
@@ -553,7 +553,7 @@ void DynamixelBus::sync_read_feedback(std::int64_t now_ns) {
       // Silent too long: it may have lost power and come back with its RAM
       // (torque, watchdog, status level) at defaults, so it is set up anew.
       fail(s, s.silent.c_str());
-      if (s.stage == Stage::kOn) latch_off(s);
+      if (s.stage == Stage::kOn || s.wanted.load(std::memory_order_acquire)) latch_off(s);
       s.stage = Stage::kSetUp;
       s.on.store(false, std::memory_order_release);
       s.ready.store(false, std::memory_order_release);

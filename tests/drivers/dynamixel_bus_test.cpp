@@ -286,7 +286,9 @@ TEST(DynamixelBus, ATrippedBusWatchdogIsAFaultAndTheServoIsSwitchedOff) {
             "dxl servo 1 (servo1): its Bus Watchdog tripped (no instruction for watchdog_ms): it "
             "stopped and refuses goals");
   EXPECT_TRUE(eventually([&] { return !servo_value(*w, 1, &DynamixelServoSim::torque); }));
-  EXPECT_EQ(servo_byte(*w, 1, dxl_x::kBusWatchdog), 0);  // cleared
+  // Cleared by the write after the torque's: wait for it too.
+  EXPECT_TRUE(eventually([&] { return servo_byte(*w, 1, dxl_x::kBusWatchdog) == 0; }))
+      << int(servo_byte(*w, 1, dxl_x::kBusWatchdog));
   EXPECT_FALSE(bus.torque_on(0));
 }
 
