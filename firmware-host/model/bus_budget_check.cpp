@@ -87,6 +87,29 @@ BusBudgetResult budget_modbus(const BusConfig& bus,
   return r;
 }
 
+// The verdict and the line of a serial bus's budget: `wire_s` of bytes per
+// I/O cycle against its period, refused when `refused` (with `refusal`).
+BusBudgetResult serial_budget(const BusConfig& bus, std::size_t count, const char* units,
+                              double bytes, double wire_s, double cycle_period_s, bool refused,
+                              const char* refusal) {
+  BusBudgetResult r;
+  r.load = wire_s / cycle_period_s;
+  r.verdict = refused        ? BusBudgetResult::Verdict::kRefused
+              : r.load > 1.0 ? BusBudgetResult::Verdict::kWarning
+                             : BusBudgetResult::Verdict::kOk;
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "%s: %zu %s, %.0f bytes per I/O cycle = %.2f ms at %ld baud, %.0f%% of the %g ms "
+                "cycle%s",
+                bus.name.c_str(), count, units, bytes, wire_s * 1e3, bus.bitrate, 100.0 * r.load,
+                cycle_period_s * 1e3,
+                refused        ? refusal
+                : r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)"
+                               : "");
+  r.text = buf;
+  return r;
+}
+
 BusBudgetResult budget_dynamixel(const BusConfig& bus,
                                  const std::vector<const ActuatorConfig*>& acts) {
   for (const ActuatorConfig* a : acts) {
@@ -97,33 +120,19 @@ BusBudgetResult budget_dynamixel(const BusConfig& bus,
                         std::to_string(a->model.address));
     }
   }
-  BusBudgetResult r;
   const DynamixelOptions& o = bus.dynamixel;
   const double bytes = static_cast<double>(dxl_x::cycle_bytes(acts.size()));
   const double wire_s = bytes * serial_byte_s(bus.bitrate) +
                         static_cast<double>(acts.size()) * o.return_delay_us * 1e-6;
-  r.load = wire_s / o.cycle_period_s;
   // A cycle that outlasts half the servos' Bus Watchdog, or the silence that
   // makes a FAULT, would stop the servos or fault the bus by itself.
   const double limit_ms = o.bus_watchdog_ms > 0
                               ? std::min(0.5 * o.bus_watchdog_ms, o.fault_after_s * 1e3)
                               : o.fault_after_s * 1e3;
-  const bool refused = wire_s * 1e3 >= limit_ms;
-  r.verdict = refused        ? BusBudgetResult::Verdict::kRefused
-              : r.load > 1.0 ? BusBudgetResult::Verdict::kWarning
-                             : BusBudgetResult::Verdict::kOk;
-  char buf[320];
-  std::snprintf(buf, sizeof buf,
-                "%s: %zu servos, %.0f bytes per I/O cycle = %.2f ms at %ld baud, %.0f%% of the "
-                "%g ms cycle%s",
-                bus.name.c_str(), acts.size(), bytes, wire_s * 1e3, bus.bitrate, 100.0 * r.load,
-                o.cycle_period_s * 1e3,
-                refused ? " (refused: not under half watchdog_ms and under fault_after_ms; a "
-                          "faster baud or fewer servos)"
-                : r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)"
-                               : "");
-  r.text = buf;
-  return r;
+  return serial_budget(bus, acts.size(), "servos", bytes, wire_s, o.cycle_period_s,
+                       wire_s * 1e3 >= limit_ms,
+                       " (refused: not under half watchdog_ms and under fault_after_ms; a "
+                       "faster baud or fewer servos)");
 }
 
 // Maestro: the bytes of one I/O cycle (every target, a Get Position per
@@ -138,7 +147,6 @@ BusBudgetResult budget_maestro(const BusConfig& bus,
                         ", found " + std::to_string(a->model.address));
     }
   }
-  BusBudgetResult r;
   const MaestroOptions& o = bus.maestro;
   int lo = maestro::kMaxChannels, hi = -1;
   for (const ActuatorConfig* a : acts) {
@@ -149,23 +157,10 @@ BusBudgetResult budget_maestro(const BusConfig& bus,
   const double bytes =
       static_cast<double>(maestro::cycle_bytes(o.protocol, acts.size(), o.multiple_targets, span));
   const double wire_s = bytes * serial_byte_s(bus.bitrate);
-  r.load = wire_s / o.cycle_period_s;
   // A cycle that outlasts the silence that makes a FAULT faults the bus by itself.
-  const bool refused = wire_s >= o.fault_after_s;
-  r.verdict = refused        ? BusBudgetResult::Verdict::kRefused
-              : r.load > 1.0 ? BusBudgetResult::Verdict::kWarning
-                             : BusBudgetResult::Verdict::kOk;
-  char buf[320];
-  std::snprintf(buf, sizeof buf,
-                "%s: %zu Maestro channels, %.0f bytes per I/O cycle = %.2f ms at %ld baud, %.0f%% "
-                "of the %g ms cycle%s",
-                bus.name.c_str(), acts.size(), bytes, wire_s * 1e3, bus.bitrate, 100.0 * r.load,
-                o.cycle_period_s * 1e3,
-                refused ? " (refused: not under fault_after_ms; a faster baud or fewer channels)"
-                : r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)"
-                               : "");
-  r.text = buf;
-  return r;
+  return serial_budget(bus, acts.size(), "Maestro channels", bytes, wire_s, o.cycle_period_s,
+                       wire_s >= o.fault_after_s,
+                       " (refused: not under fault_after_ms; a faster baud or fewer channels)");
 }
 
 // Feetech: the bytes of one I/O cycle (ft::cycle_bytes) and each servo's
@@ -181,27 +176,13 @@ BusBudgetResult budget_feetech(const BusConfig& bus,
                         std::to_string(a->model.address));
     }
   }
-  BusBudgetResult r;
   const FeetechOptions& o = bus.feetech;
   const double bytes = static_cast<double>(ft::cycle_bytes(o.series, acts.size()));
   const double wire_s = bytes * serial_byte_s(bus.bitrate) +
                         static_cast<double>(acts.size()) * o.return_delay_us * 1e-6;
-  r.load = wire_s / o.cycle_period_s;
-  const bool refused = wire_s >= o.fault_after_s;
-  r.verdict = refused        ? BusBudgetResult::Verdict::kRefused
-              : r.load > 1.0 ? BusBudgetResult::Verdict::kWarning
-                             : BusBudgetResult::Verdict::kOk;
-  char buf[320];
-  std::snprintf(buf, sizeof buf,
-                "%s: %zu servos, %.0f bytes per I/O cycle = %.2f ms at %ld baud, %.0f%% of the "
-                "%g ms cycle%s",
-                bus.name.c_str(), acts.size(), bytes, wire_s * 1e3, bus.bitrate, 100.0 * r.load,
-                o.cycle_period_s * 1e3,
-                refused ? " (refused: not under fault_after_ms; a faster baud or fewer servos)"
-                : r.load > 1.0 ? " (warning: the I/O cycle cannot keep its period)"
-                               : "");
-  r.text = buf;
-  return r;
+  return serial_budget(bus, acts.size(), "servos", bytes, wire_s, o.cycle_period_s,
+                       wire_s >= o.fault_after_s,
+                       " (refused: not under fault_after_ms; a faster baud or fewer servos)");
 }
 
 // PCA9685: the I2C clocks of one I/O cycle (pca9685_cycle_bits) against the
