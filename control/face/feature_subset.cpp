@@ -24,11 +24,7 @@ void evaluate_features(const FeatureSubset& s, FeatureSubsetWorkspace& w,
                        double protrusion_m) {
   fill_feature_variables(contractions, pitch_rad, yaw_rad, protrusion_m,
                          std::span<double>(w.variables.data(), s.variables));
-  const double* v = w.variables.data();
-  for (std::size_t k = 0; k < s.factors.size(); ++k) {
-    const auto [a, b, c] = s.factors[k];
-    w.values[static_cast<Eigen::Index>(k)] = v[a] * v[b] * v[c];
-  }
+  fill_features(std::span<const double>(w.variables.data(), s.variables), s.factors, w.values);
 }
 
 }  // namespace facectl::face

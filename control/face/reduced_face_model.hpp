@@ -1,11 +1,10 @@
 // The reduced face for the 1 kHz loop: a fitted response surface from (muscle
 // contractions, mandible pitch/yaw/protrusion) to the steady-state displacement of named
 // skin control points. Its fit to the full model lives in sim/face (reduced_model_fit.hpp).
-// Features: c_i, c_i², c_i³, c_i·pitch, c_i·yaw, c_i·protrusion for every muscle; pitch, yaw,
-// protrusion, their squares and pairwise products; and c_i·c_j for muscle pairs that both move some
-// control point.
-// evaluate() is one small dense matrix-vector product over preallocated storage: no
-// allocation, no branches on the data.
+// Features: products of up to three of the variables v = (c_0 … c_{n−1}, pitch, yaw,
+// protrusion in scaled units, 1), listed per model (`features`), so the fit chooses the
+// form: per muscle its powers and couplings with the jaw, the jaw's cubic, and products of
+// muscles that move the same control point.
 #pragma once
 
 #include <Eigen/Core>
@@ -17,14 +16,17 @@
 
 namespace facectl::face {
 
-constexpr std::size_t kFeaturesPerMuscle = 6;  // c, c², c³, c·pitch, c·yaw, c·protrusion
 // Jaw terms in scaled units (deg-like and mm-like) so the fit is well conditioned.
 constexpr double kPitchScale = 10, kYawScale = 10, kProtrusionScale = 100;
 
 struct ReducedFaceModel {
   std::vector<std::string> muscles;         // head.yaml order
   std::vector<std::string> control_points;  // landmark names
-  std::vector<std::array<int, 2>> pairs;    // muscle pairs with an interaction feature
+  // Feature k is v[a]·v[b]·v[c] for features[k] = {a, b, c} over fill_feature_variables()'s
+  // v; a factor n + 3 is the constant 1. Each triple ascending and listed once.
+  std::vector<std::array<int, 3>> features;
+  // {file, SHA-256} of the head files the model was fitted to (sim/face checks them at load).
+  std::vector<std::array<std::string, 2>> fitted_to;
   // (3·control_points) × features, row-major so each output is one contiguous dot product.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> coefficients;
   int feature_count() const { return static_cast<int>(coefficients.cols()); }
@@ -54,6 +56,7 @@ void fill_feature_variables(std::span<const double> contractions, double pitch_r
                             double protrusion_m, std::span<double> v);
 
 struct ReducedFaceWorkspace {
+  Eigen::VectorXd variables;  // n + 4, as fill_feature_variables()
   Eigen::VectorXd features;
 };
 
@@ -71,12 +74,12 @@ void evaluate(const ReducedFaceModel& m, ReducedFaceWorkspace& w,
               std::span<const double> contractions, double pitch_rad, double yaw_rad,
               double protrusion_m, std::span<double> out_displacements_m);
 
-// Feature count for `muscles` muscles and `pairs` interaction pairs.
-int reduced_feature_count(std::size_t muscles, std::size_t pairs);
-// The whole feature vector f (reduced_feature_count entries) for one input; the fit builds
-// its design matrix with it, evaluate() its input.
-void fill_features(std::span<const double> contractions, double pitch_rad, double yaw_rad,
-                   double protrusion_m, const std::vector<std::array<int, 2>>& pairs,
+// The index of the constant variable 1 for `muscles` muscles.
+inline int constant_variable(std::size_t muscles) {
+  return static_cast<int>(muscles) + 3;
+}
+// The feature vector f (one entry per triple) from the variables v.
+void fill_features(std::span<const double> v, const std::vector<std::array<int, 3>>& features,
                    Eigen::Ref<Eigen::VectorXd> f);
 
 }  // namespace facectl::face

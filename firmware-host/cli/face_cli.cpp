@@ -11,6 +11,7 @@
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/obj_io.hpp"
 #include "facectl/face/reduced_model_fit.hpp"
+#include "facectl/face/reduced_test_sets.hpp"
 #include "firmware-host/config/config_location.hpp"
 
 namespace {
@@ -70,6 +71,27 @@ std::unique_ptr<Posed> pose(const FaceArgs& a, const std::string& expression) {
   p->data = make_face_data(p->model);
   simulate_expression(p->model, p->data, *e, a.frames);
   return p;
+}
+
+// Prints one line per named set; true when every set meets the targets.
+bool print_set_errors(const std::vector<SetError>& errors, double rms_mm, double p99_mm) {
+  bool ok = true;
+  std::printf("%-20s %7s %8s %8s %8s  %s\n", "set", "samples", "rms_mm", "p99_mm", "max_mm",
+              "worst");
+  for (const SetError& e : errors) {
+    const bool pass = e.rms_mm <= rms_mm && e.p99_mm <= p99_mm;
+    ok = ok && pass;
+    std::printf("%-20s %7d %8.3f %8.3f %8.3f  %s%s\n", e.name.c_str(), e.samples, e.rms_mm,
+                e.p99_mm, e.max_mm, e.worst.c_str(), pass ? "" : "  (over target)");
+  }
+  return ok;
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw InputError(path + ": cannot open file for writing");
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok) throw InputError(path + ": write failed");
 }
 
 View parse_view(const std::string& v) {
@@ -164,7 +186,8 @@ void register_face_commands(CLI::App& app) {
   reduce->callback([] {
     guarded([] {
       const HeadSpec spec = load_head_spec(args.head);
-      const FaceModel m = build_face_model(spec);
+      const FaceModel m =
+          build_face_model(spec, static_cast<std::size_t>(std::max(0, args.resolution)));
       ro.frames = args.frames;
       ReduceReport r;
       const auto t0 = std::chrono::steady_clock::now();
@@ -174,13 +197,55 @@ void register_face_commands(CLI::App& app) {
       const std::string path = reduced_out.empty() ? args.head + "/reduced_face.txt" : reduced_out;
       save_reduced_model(red, path);
       std::printf(
-          "wrote %s: %zu control points, %d features; train RMS %.3f mm; held-out (%d) RMS %.3f "
-          "mm, median %.3f mm, 95th percentile %.3f mm, max %.3f mm; %.1f s\n",
-          path.c_str(), red.control_points.size(), red.feature_count(), r.train_rms_mm,
-          r.test_samples, r.test_rms_mm, r.test_median_mm, r.test_p95_mm, r.test_max_mm, secs);
+          "wrote %s: %zu control points, %d features; train (%d) RMS %.3f mm; held-out (%d) RMS "
+          "%.3f mm, median %.3f mm, 95th percentile %.3f mm, max %.3f mm; %.1f s\n",
+          path.c_str(), red.control_points.size(), red.feature_count(), r.train_samples,
+          r.train_rms_mm, r.test_samples, r.test_rms_mm, r.test_median_mm, r.test_p95_mm,
+          r.test_max_mm, secs);
+      // The same named sets as check-reduced, with its defaults.
+      const ExpressionLibrary lib = load_expression_library(args.library, spec);
+      print_set_errors(reduced_errors(m, red, reduced_test_sets(spec, lib, 200, 1), args.frames),
+                       0.5, 2.0);
       if (max_rms_mm > 0 && r.test_rms_mm > max_rms_mm) {
         std::fprintf(stderr, "facectl face reduce: held-out RMS %.3f mm exceeds %.3f mm\n",
                      r.test_rms_mm, max_rms_mm);
+        throw CLI::RuntimeError(1);
+      }
+    });
+  });
+
+  static std::string check_json;
+  static int check_samples = 200;
+  static unsigned check_seed = 1;
+  static double target_rms_mm = 0.5, target_p99_mm = 2.0;
+  CLI::App* check = face->add_subcommand(
+      "check-reduced", "the shipped reduced model's error against the full model, per test set");
+  add_common(check, args);
+  check->add_option("--samples", check_samples, "inputs in each random set")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  check->add_option("--seed", check_seed)->capture_default_str();
+  check->add_option("--json", check_json, "also write the errors as JSON, keyed by set name");
+  check->add_option("--rms-mm", target_rms_mm, "exit 1 if a set's RMS error exceeds this")
+      ->capture_default_str();
+  check->add_option("--p99-mm", target_p99_mm, "exit 1 if a set's 99th percentile exceeds this")
+      ->capture_default_str();
+  check->callback([] {
+    guarded([] {
+      const HeadSpec spec = load_head_spec(args.head);
+      const ReducedFaceModel red = load_reduced_model(args.head + "/reduced_face.txt", spec);
+      const FaceModel m =
+          build_face_model(spec, static_cast<std::size_t>(std::max(0, args.resolution)));
+      const ExpressionLibrary lib = load_expression_library(args.library, spec);
+      const auto errors = reduced_errors(
+          m, red, reduced_test_sets(spec, lib, check_samples, check_seed), args.frames);
+      const bool ok = print_set_errors(errors, target_rms_mm, target_p99_mm);
+      if (!check_json.empty()) write_text_file(check_json, set_errors_json(errors));
+      if (!ok) {
+        std::fprintf(stderr,
+                     "facectl face check-reduced: a set is over %.3f mm RMS or %.3f mm at the "
+                     "99th percentile\n",
+                     target_rms_mm, target_p99_mm);
         throw CLI::RuntimeError(1);
       }
     });

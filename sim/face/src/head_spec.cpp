@@ -121,9 +121,11 @@ HeadSpec load_head_spec(const std::string& dir) {
   HeadSpec h;
   h.dir = dir;
   Doc face = load(dir + "/face.yaml");
+  h.files.push_back("face.yaml");
   YAML::Node f = need(face, face.root, "face");
   YAML::Node skin = need(face, f, "skin");
-  h.skin_file = dir + "/" + as<std::string>(face, need(face, skin, "file"), "file", "a file name");
+  h.files.push_back(as<std::string>(face, need(face, skin, "file"), "file", "a file name"));
+  h.skin_file = dir + "/" + h.files.back();
   std::string units = as<std::string>(face, need(face, skin, "units"), "units", "m, cm or mm");
   if (units == "m")
     h.skin_scale = 1;
@@ -181,8 +183,8 @@ HeadSpec load_head_spec(const std::string& dir) {
   }
   if (f["variants"].IsDefined()) h.variants = int_list(face, f["variants"], "variants");
 
-  Doc lm = load(dir + "/" +
-                as<std::string>(face, need(face, f, "landmarks"), "landmarks", "a file name"));
+  h.files.push_back(as<std::string>(face, need(face, f, "landmarks"), "landmarks", "a file name"));
+  Doc lm = load(dir + "/" + h.files.back());
   YAML::Node lms = need(lm, lm.root, "landmarks");
   if (!lms.IsMap())
     fail(lm, lms, "landmarks", "a mapping name -> { vertex | vertices, offset_mm }");
@@ -212,8 +214,8 @@ HeadSpec load_head_spec(const std::string& dir) {
     }
   }
 
-  Doc mu =
-      load(dir + "/" + as<std::string>(face, need(face, f, "muscles"), "muscles", "a file name"));
+  h.files.push_back(as<std::string>(face, need(face, f, "muscles"), "muscles", "a file name"));
+  Doc mu = load(dir + "/" + h.files.back());
   YAML::Node ms = need(mu, mu.root, "muscles");
   if (!ms.IsSequence()) fail(mu, ms, "muscles", "a list of muscles");
   for (const auto& n : ms) {
@@ -249,6 +251,7 @@ HeadSpec load_head_spec(const std::string& dir) {
   }
 
   Doc hd = load(dir + "/head.yaml");
+  h.files.push_back("head.yaml");
   YAML::Node head = need(hd, hd.root, "head");
   for (const auto& e : need(hd, head, "muscles"))
     h.commanded.push_back(as<std::string>(hd, need(hd, e, "name"), "name", "a muscle name"));

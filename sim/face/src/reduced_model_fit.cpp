@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <initializer_list>
+#include <map>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -12,6 +14,7 @@
 
 #include "control/envelope/mandible_envelope.hpp"
 #include "control/units.hpp"
+#include "facectl/face/file_digest.hpp"
 #include "facectl/face/input_error.hpp"
 
 namespace facectl::face {
@@ -45,6 +48,8 @@ std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
   FaceInput in;
   in.contractions = s.contractions;
   in.jaw = s.jaw;
+  in.eyelid_closure[0] = s.eyelid_closure[0];
+  in.eyelid_closure[1] = s.eyelid_closure[1];
   for (int f = 0; f < frames; ++f) step_face(m, d, in);
   std::vector<double> out;
   for (int l : cps) {
@@ -54,82 +59,150 @@ std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
   return out;
 }
 
+std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  // Each jaw DOF at its lower or upper limit 15% of the time each, so the envelope's faces
+  // and corners are in the fit, and uniform between otherwise.
+  auto dof = [&](double lo, double hi) {
+    const double x = u(rng);
+    return x < 0.15 ? lo : x < 0.3 ? hi : lo + (hi - lo) * u(rng);
+  };
+  const std::size_t M = head.commanded.size();
+  std::vector<ReducedSample> out;
+  for (int k = 0; k < n; ++k) {
+    // Mixes from sparse to dense: 15%, 35%, 70% and all muscles active, c ~ U(0, 1).
+    constexpr std::array<double, 4> kActive = {0.15, 0.35, 0.7, 1.0};
+    const double active = kActive[static_cast<std::size_t>(k) % kActive.size()];
+    ReducedSample s;
+    s.contractions.assign(M, 0.0);
+    for (double& c : s.contractions) {
+      const bool on = u(rng) < active;
+      const double v = u(rng);
+      c = on ? v : 0.0;
+    }
+    s.jaw.pitch_rad = dof(kJawPitchMinDeg, kJawPitchMaxDeg) * kDeg;
+    s.jaw.yaw_rad = dof(-kJawYawMaxDeg, kJawYawMaxDeg) * kDeg;
+    s.jaw.protrusion_m = dof(0, kJawProtrusionMaxMm) * 1e-3;
+    out.push_back(std::move(s));
+  }
+  // Each muscle alone over its range, half of them with the jaw at rest.
+  for (std::size_t i = 0; i < M; ++i)
+    for (double c : {0.25, 0.5, 0.75, 1.0}) {
+      ReducedSample s;
+      s.contractions.assign(M, 0.0);
+      s.contractions[i] = c;
+      if (u(rng) < 0.5) {
+        s.jaw.pitch_rad = dof(kJawPitchMinDeg, kJawPitchMaxDeg) * kDeg;
+        s.jaw.yaw_rad = dof(-kJawYawMaxDeg, kJawYawMaxDeg) * kDeg;
+        s.jaw.protrusion_m = dof(0, kJawProtrusionMaxMm) * 1e-3;
+      }
+      out.push_back(std::move(s));
+    }
+  return out;
+}
+
+namespace {
+
+using Triple = std::array<int, 3>;
+
+// The feature triples a control point moved by `muscles` is fitted on: per muscle c, c²,
+// c³ and c times each jaw variable; the jaw's full cubic; c_a·c_b for each pair. Richer
+// forms (c²·jaw, c·jaw², c_a²·c_b) fit 5-15% better but left verify's branch and bound on
+// a brow channel unconverged after 400 000 boxes (docs/FACE_MODEL.md).
+std::vector<Triple> point_features(const std::vector<int>& muscles, int n) {
+  const int P = n, Y = n + 1, T = n + 2, one = n + 3;
+  std::vector<Triple> f;
+  // The jaw's cubic: every product of up to three of pitch, yaw and protrusion.
+  for (int a = P; a <= one; ++a)
+    for (int b = a; b <= one; ++b)
+      for (int c = b; c <= one; ++c)
+        if (a != one) f.push_back({a, b, c});
+  for (int i : muscles)
+    for (const Triple& t : std::initializer_list<Triple>{
+             {i, one, one}, {i, i, one}, {i, i, i}, {i, P, one}, {i, Y, one}, {i, T, one}})
+      f.push_back(t);
+  for (std::size_t x = 0; x < muscles.size(); ++x)
+    for (std::size_t y = x + 1; y < muscles.size(); ++y) {
+      const int a = std::min(muscles[x], muscles[y]), b = std::max(muscles[x], muscles[y]);
+      f.push_back({a, b, one});
+    }
+  return f;
+}
+
+}  // namespace
+
 ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions& o,
                                      ReduceReport* report) {
   ReducedFaceModel r;
   r.muscles = full.spec.commanded;
   r.control_points = full.spec.control_points;
+  r.fitted_to = head_file_digests(full.spec);
   std::vector<int> cps;
   for (const auto& n : r.control_points) cps.push_back(full.landmark_index(n));
   const int M = static_cast<int>(r.muscles.size()), P = static_cast<int>(cps.size());
   FaceData d = make_face_data(full);
 
-  // Which muscles move which control point: one full-model run per muscle alone.
-  std::vector<std::vector<char>> moves(M, std::vector<char>(P, 0));
+  // Which muscles move which control point: one full-model run per muscle alone at 1.
+  std::vector<std::vector<int>> movers(static_cast<std::size_t>(P));
   for (int i = 0; i < M; ++i) {
     ReducedSample s;
-    s.contractions.assign(M, 0.0);
-    s.contractions[i] = 0.6;
+    s.contractions.assign(static_cast<std::size_t>(M), 0.0);
+    s.contractions[static_cast<std::size_t>(i)] = 1.0;
     const std::vector<double> y = full_model_response(full, d, cps, s, o.frames);
     for (int p = 0; p < P; ++p)
-      moves[i][p] = Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3 > o.relevance_mm;
+      if (Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3 > o.relevance_mm)
+        movers[static_cast<std::size_t>(p)].push_back(i);
   }
-  for (int i = 0; i < M; ++i)
-    for (int j = i + 1; j < M; ++j)
-      for (int p = 0; p < P; ++p)
-        if (moves[i][p] && moves[j][p]) {
-          r.pairs.push_back({i, j});
-          break;
-        }
-  const int F = reduced_feature_count(r.muscles.size(), r.pairs.size());
-  // Columns used by control point p: its muscles' terms, the jaw terms, its pairs.
-  std::vector<std::vector<int>> cols(P);
-  for (int p = 0; p < P; ++p) {
-    for (int i = 0; i < M; ++i)
-      if (moves[i][p])
-        for (int k = 0; k < static_cast<int>(kFeaturesPerMuscle); ++k) cols[p].push_back(k * M + i);
-    const int jaw = static_cast<int>(kFeaturesPerMuscle) * M;
-    for (int k = 0; k < 9; ++k) cols[p].push_back(jaw + k);
-    for (std::size_t k = 0; k < r.pairs.size(); ++k)
-      if (moves[r.pairs[k][0]][p] && moves[r.pairs[k][1]][p])
-        cols[p].push_back(jaw + 9 + static_cast<int>(k));
-  }
+  // Each point's columns in the model's shared, deduplicated feature list.
+  std::map<Triple, int> index;
+  std::vector<std::vector<int>> cols(static_cast<std::size_t>(P));
+  for (int p = 0; p < P; ++p)
+    for (const Triple& t : point_features(movers[static_cast<std::size_t>(p)], M)) {
+      const auto [it, added] = index.emplace(t, static_cast<int>(r.features.size()));
+      if (added) r.features.push_back(t);
+      cols[static_cast<std::size_t>(p)].push_back(it->second);
+    }
+  const int F = static_cast<int>(r.features.size());
 
   auto collect = [&](const std::vector<ReducedSample>& set, Eigen::MatrixXd& X,
                      Eigen::MatrixXd& Y) {
     X.resize(static_cast<Eigen::Index>(set.size()), F);
     Y.resize(static_cast<Eigen::Index>(set.size()), 3 * P);
+    Eigen::VectorXd v(M + 4), f(F);
     for (std::size_t k = 0; k < set.size(); ++k) {
-      Eigen::VectorXd f(F);
-      fill_features(set[k].contractions, set[k].jaw.pitch_rad, set[k].jaw.yaw_rad,
-                    set[k].jaw.protrusion_m, r.pairs, f);
+      fill_feature_variables(set[k].contractions, set[k].jaw.pitch_rad, set[k].jaw.yaw_rad,
+                             set[k].jaw.protrusion_m, std::span<double>(v.data(), v.size()));
+      fill_features(std::span<const double>(v.data(), v.size()), r.features, f);
       X.row(static_cast<Eigen::Index>(k)) = f.transpose();
       const std::vector<double> y = full_model_response(full, d, cps, set[k], o.frames);
       for (int j = 0; j < 3 * P; ++j) Y(static_cast<Eigen::Index>(k), j) = y[j];
     }
   };
   Eigen::MatrixXd Xtr, Ytr, Xte, Yte;
-  collect(random_samples(full.spec, o, o.train_samples, o.seed), Xtr, Ytr);
+  collect(training_samples(full.spec, o.train_samples, o.seed), Xtr, Ytr);
   r.coefficients.setZero(3 * P, F);
   for (int p = 0; p < P; ++p) {
     // Ridge-regularised normal equations on this point's columns, solved by LDLT.
-    const Eigen::Index n = static_cast<Eigen::Index>(cols[p].size());
+    const std::vector<int>& cp = cols[static_cast<std::size_t>(p)];
+    const Eigen::Index n = static_cast<Eigen::Index>(cp.size());
     Eigen::MatrixXd Xp(Xtr.rows(), n);
-    for (Eigen::Index c = 0; c < n; ++c) Xp.col(c) = Xtr.col(cols[p][c]);
+    for (Eigen::Index c = 0; c < n; ++c) Xp.col(c) = Xtr.col(cp[static_cast<std::size_t>(c)]);
     const Eigen::MatrixXd A = Xp.transpose() * Xp + o.ridge * Eigen::MatrixXd::Identity(n, n);
     const Eigen::MatrixXd B = Xp.transpose() * Ytr.middleCols(3 * p, 3);
     const Eigen::MatrixXd W = A.ldlt().solve(B);  // n × 3
     for (Eigen::Index c = 0; c < n; ++c)
-      for (int k = 0; k < 3; ++k) r.coefficients(3 * p + k, cols[p][c]) = W(c, k);
+      for (int k = 0; k < 3; ++k)
+        r.coefficients(3 * p + k, cp[static_cast<std::size_t>(c)]) = W(c, k);
   }
   if (report) {
-    report->train_samples = o.train_samples;
-    report->test_samples = o.test_samples;
+    report->train_samples = static_cast<int>(Xtr.rows());
     const Eigen::MatrixXd Etr = Xtr * r.coefficients.transpose() - Ytr;
     report->train_rms_mm =
         1e3 * std::sqrt(Etr.squaredNorm() / (static_cast<double>(Etr.rows() * Etr.cols()) / 3.0));
     if (o.test_samples > 0) {
-      collect(random_samples(full.spec, o, o.test_samples, o.seed + 7919), Xte, Yte);
+      collect(training_samples(full.spec, o.test_samples, o.seed + 7919), Xte, Yte);
+      report->test_samples = static_cast<int>(Xte.rows());
       const Eigen::MatrixXd E = Xte * r.coefficients.transpose() - Yte;
       double sum = 0, worst = 0;
       std::vector<double> errors;
@@ -155,13 +228,15 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
 void save_reduced_model(const ReducedFaceModel& m, const std::string& path) {
   std::ofstream out(path);
   if (!out) throw InputError(path + ": cannot open file for writing");
-  out << "facectl-reduced-face 1\n";
-  out << "muscles " << m.muscles.size();
+  out << "facectl-reduced-face 2\n";
+  out << "fitted_to " << m.fitted_to.size();
+  for (const auto& [file, digest] : m.fitted_to) out << ' ' << file << ' ' << digest;
+  out << "\nmuscles " << m.muscles.size();
   for (const auto& s : m.muscles) out << ' ' << s;
   out << "\ncontrol_points " << m.control_points.size();
   for (const auto& s : m.control_points) out << ' ' << s;
-  out << "\npairs " << m.pairs.size();
-  for (const auto& p : m.pairs) out << ' ' << p[0] << ' ' << p[1];
+  out << "\nfeatures " << m.features.size();
+  for (const auto& t : m.features) out << ' ' << t[0] << ' ' << t[1] << ' ' << t[2];
   out << "\ncoefficients " << m.coefficients.rows() << ' ' << m.coefficients.cols() << '\n';
   out.precision(17);
   for (Eigen::Index i = 0; i < m.coefficients.rows(); ++i) {
@@ -184,25 +259,36 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
     ++ln;
     return std::istringstream(line);
   };
+  constexpr const char* kRebuild = " (rebuild with `facectl face reduce`)";
   {
-    auto s = next("the header 'facectl-reduced-face 1'");
+    auto s = next("the header 'facectl-reduced-face 2'");
     std::string tag;
     int v = 0;
-    if (!(s >> tag >> v) || tag != "facectl-reduced-face" || v != 1)
-      throw InputError(path, ln, 0, "expected 'facectl-reduced-face 1', found '" + line + "'");
+    if (!(s >> tag) || tag != "facectl-reduced-face")
+      throw InputError(path, ln, 0, "expected 'facectl-reduced-face 2', found '" + line + "'");
+    if (!(s >> v) || v != 2)
+      throw InputError(path, ln, 0,
+                       "expected format 2, found '" + line +
+                           "': an older model has another form and no record of its head" +
+                           kRebuild);
   }
-  auto names = [&](const char* key, std::vector<std::string>& out) {
+  // A line "key N" followed by N groups of `width` tokens; N is bounded by what the line holds.
+  auto counted = [&](const char* key, std::size_t width, const char* what) {
     auto s = next(key);
     std::string tag;
     std::size_t n = 0;
     if (!(s >> tag >> n) || tag != key)
-      throw InputError(path, ln, 0,
-                       std::string("expected '") + key + " N ...', found '" + line + "'");
-    // Bounded before allocating: a count is checked against what the line can hold.
-    if (n > line.size() / 2)
       throw InputError(
           path, ln, 0,
-          std::string("'") + key + " " + std::to_string(n) + "': more names than the line holds");
+          std::string("expected '") + key + " N " + what + "', found '" + line.substr(0, 80) + "'");
+    if (n > line.size() / (2 * width))
+      throw InputError(path, ln, 0,
+                       std::string("'") + key + " " + std::to_string(n) + "': more " + what +
+                           " than the line holds");
+    return std::pair(std::move(s), n);
+  };
+  auto names = [&](const char* key, std::vector<std::string>& out) {
+    auto [s, n] = counted(key, 1, "names");
     out.resize(n);
     for (auto& x : out)
       if (!(s >> x))
@@ -210,51 +296,65 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
             path, ln, 0,
             std::string("expected ") + std::to_string(n) + " names after '" + key + "'");
   };
+  {
+    auto [s, n] = counted("fitted_to", 2, "file digests");
+    m.fitted_to.resize(n);
+    for (auto& [file, digest] : m.fitted_to)
+      if (!(s >> file >> digest))
+        throw InputError(path, ln, 0,
+                         "expected " + std::to_string(n) + " pairs of a file and its SHA-256");
+    // Refused when the head's files are not the ones it was fitted to, naming the first.
+    const auto now = head_file_digests(head);
+    for (const auto& [file, digest] : now) {
+      const auto it = std::find_if(m.fitted_to.begin(), m.fitted_to.end(),
+                                   [&](const auto& r) { return r[0] == file; });
+      if (it == m.fitted_to.end())
+        throw InputError(path, ln, 0,
+                         "stale: fitted without " + file + ", which the head now reads" + kRebuild);
+      if ((*it)[1] != digest)
+        throw InputError(
+            path, ln, 0,
+            "stale: " + head.dir + "/" + file + " changed since the model was fitted (SHA-256 " +
+                (*it)[1].substr(0, 12) + "…, now " + digest.substr(0, 12) + "…)" + kRebuild);
+    }
+    if (m.fitted_to.size() != now.size())
+      throw InputError(path, ln, 0,
+                       "stale: fitted to files the head no longer reads" + std::string(kRebuild));
+  }
   names("muscles", m.muscles);
   if (m.muscles != head.commanded)
-    throw InputError(path, ln, 0,
-                     "expected the muscles of head.yaml in order, found a different list (rebuild "
-                     "with `facectl face reduce`)");
+    throw InputError(
+        path, ln, 0,
+        std::string("expected the muscles of head.yaml in order, found a different list") +
+            kRebuild);
   names("control_points", m.control_points);
   {
-    auto ps = next("'pairs N i j ...'");
-    std::string tag;
-    std::size_t n = 0;
-    if (!(ps >> tag >> n) || tag != "pairs")
-      throw InputError(path, ln, 0, "expected 'pairs N i j ...', found '" + line + "'");
-    const std::size_t most = m.muscles.size() * (m.muscles.size() - 1) / 2;
-    if (n > most)
-      throw InputError(path, ln, 0,
-                       "'pairs " + std::to_string(n) + "': expected at most " +
-                           std::to_string(most) + ", the pairs of " +
-                           std::to_string(m.muscles.size()) + " muscles");
-    m.pairs.resize(n);
-    for (auto& pr : m.pairs)
-      if (!(ps >> pr[0] >> pr[1]) || pr[0] < 0 || pr[1] < 0 ||
-          pr[0] >= static_cast<int>(m.muscles.size()) ||
-          pr[1] >= static_cast<int>(m.muscles.size()))
+    auto [s, n] = counted("features", 3, "factor triples");
+    const int last = constant_variable(m.muscles.size());
+    m.features.resize(n);
+    for (auto& t : m.features)
+      if (!(s >> t[0] >> t[1] >> t[2]) || t[0] < 0 || t[2] > last || t[0] > t[1] || t[1] > t[2])
         throw InputError(path, ln, 0,
-                         "expected " + std::to_string(n) + " muscle index pairs in 0.." +
-                             std::to_string(m.muscles.size() - 1));
+                         "expected " + std::to_string(n) +
+                             " ascending factor triples of variables 0.." + std::to_string(last));
   }
   auto s = next("'coefficients ROWS COLS'");
   std::string tag;
   Eigen::Index rows = 0, cols = 0;
   if (!(s >> tag >> rows >> cols) || tag != "coefficients" ||
       rows != 3 * static_cast<Eigen::Index>(m.control_points.size()) ||
-      cols != reduced_feature_count(m.muscles.size(), m.pairs.size()))
+      cols != static_cast<Eigen::Index>(m.features.size()))
     throw InputError(path, ln, 0,
                      "expected 'coefficients " + std::to_string(3 * m.control_points.size()) + " " +
-                         std::to_string(reduced_feature_count(m.muscles.size(), m.pairs.size())) +
-                         "', found '" + line + "'");
+                         std::to_string(m.features.size()) + "', found '" + line + "'");
   m.coefficients.resize(rows, cols);
   for (Eigen::Index i = 0; i < rows; ++i) {
     auto r = next("a row of coefficients");
     for (Eigen::Index j = 0; j < cols; ++j)
-      if (!(r >> m.coefficients(i, j)))
+      if (!(r >> m.coefficients(i, j)) || !std::isfinite(m.coefficients(i, j)))
         throw InputError(
             path, ln, 0,
-            "expected " + std::to_string(cols) + " numbers, found fewer or a non-number");
+            "expected " + std::to_string(cols) + " finite numbers, found fewer or a non-number");
   }
   return m;
 }

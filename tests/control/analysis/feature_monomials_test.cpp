@@ -49,9 +49,11 @@ TEST(FeatureMonomials, DescribeEveryFeatureOfTheShippedModel) {
   expect_monomials_match_features(m, 1);
 }
 
-TEST(FeatureMonomials, DescribeAnyPairList) {
+TEST(FeatureMonomials, DescribeAnyFeatureList) {
   ReducedFaceModel m = shipped();
-  m.pairs = {{3, 1}, {0, 28}, {5, 5}};  // reversed, wide and a muscle with itself
+  const int one = constant_variable(m.muscles.size());
+  // A muscle cubed, a wide pair, the jaw's three variables, a muscle by pitch squared.
+  m.features = {{5, 5, 5}, {0, 28, one}, {29, 30, 31}, {1, 29, 29}, {30, 30, one}};
   expect_monomials_match_features(m, 2);
 }
 

@@ -63,11 +63,12 @@ TEST(FeatureSubset, EveryColumnEqualsTheFullFeatureVectorBitForBit) {
   expect_every_column_bit_for_bit(shipped(), 1);
 }
 
-TEST(FeatureSubset, AnyPairListToo) {
+TEST(FeatureSubset, AnyFeatureListToo) {
   ReducedFaceModel m = shipped();
-  m.pairs = {{3, 1}, {0, 28}, {5, 5}};  // reversed, wide and a muscle with itself
-  m.coefficients.resize(m.coefficients.rows(),
-                        static_cast<Eigen::Index>(6 * m.muscles.size() + 9 + m.pairs.size()));
+  const int one = constant_variable(m.muscles.size());
+  // A muscle cubed, a wide pair, the jaw alone and with a muscle, the constant.
+  m.features = {{5, 5, 5}, {0, 28, one}, {29, 30, 31}, {1, 29, 29}, {one, one, one}};
+  m.coefficients.resize(m.coefficients.rows(), static_cast<Eigen::Index>(m.features.size()));
   expect_every_column_bit_for_bit(m, 2);
 }
 

@@ -9,6 +9,7 @@
 
 #include "alloc_counter.hpp"
 #include "default_head.hpp"
+#include "facectl/face/head_spec.hpp"
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/reduced_model_fit.hpp"
 #include "tests/support/sample_count.hpp"
@@ -77,7 +78,8 @@ TEST(ReducedFaceModel, SaveLoadRoundTripIsExact) {
   save_reduced_model(r, p);
   const ReducedFaceModel back = load_reduced_model(p, testing::default_spec());
   EXPECT_EQ(back.control_points, r.control_points);
-  EXPECT_EQ(back.pairs, r.pairs);
+  EXPECT_EQ(back.features, r.features);
+  EXPECT_EQ(back.fitted_to, r.fitted_to);
   EXPECT_TRUE(back.coefficients == r.coefficients);
 }
 
@@ -112,13 +114,57 @@ TEST(ReducedFaceModel, MalformedFileNamesFileAndLine) {
   const std::string p = (std::filesystem::temp_directory_path() /
                          ("facectl_bad_reduced_" + std::to_string(getpid()) + ".txt"))
                             .string();
-  std::ofstream(p) << "facectl-reduced-face 1\nmuscles 1 frontalis_l\n";
+  std::ofstream(p) << "facectl-reduced-face 2\nfitted_to 1 face.yaml\n";
   try {
     load_reduced_model(p, testing::default_spec());
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(p + ":2:"), std::string::npos) << e.what();
   }
+}
+
+// A copy of the default head in a fresh folder, with the shipped reduced model.
+std::filesystem::path copy_of_default_head(const std::string& tag) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("facectl_head_" + tag + "_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::copy(FACECTL_DEFAULT_HEAD_DIR, dir, fs::copy_options::recursive);
+  return dir;
+}
+
+std::string load_error(const std::filesystem::path& dir) {
+  try {
+    load_reduced_model((dir / "reduced_face.txt").string(), load_head_spec(dir.string()));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ReducedFaceModel, AModelFittedToOtherHeadFilesIsRefusedAsStale) {
+  const auto dir = copy_of_default_head("stale");
+  EXPECT_EQ(load_error(dir), "");
+  // Any change of bytes counts, even one the parser ignores.
+  for (const std::string file : {"skin.obj", "landmarks.yaml", "muscles.yaml", "face.yaml"}) {
+    const auto copy = copy_of_default_head("stale_" + std::to_string(file.size()));
+    std::ofstream(copy / file, std::ios::app) << "\n# edited\n";
+    const std::string e = load_error(copy);
+    EXPECT_NE(e.find("reduced_face.txt:2:"), std::string::npos) << e;
+    EXPECT_NE(e.find("stale: " + (copy / file).string() + " changed"), std::string::npos) << e;
+    EXPECT_NE(e.find("facectl face reduce"), std::string::npos) << e;
+    std::filesystem::remove_all(copy);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ReducedFaceModel, AnOlderFormatIsRefusedWithTheReason) {
+  const auto dir = copy_of_default_head("v1");
+  std::ofstream(dir / "reduced_face.txt") << "facectl-reduced-face 1\nmuscles 0\n";
+  const std::string e = load_error(dir);
+  EXPECT_NE(e.find("reduced_face.txt:1:"), std::string::npos) << e;
+  EXPECT_NE(e.find("expected format 2"), std::string::npos) << e;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

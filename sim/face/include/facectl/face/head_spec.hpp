@@ -46,6 +46,7 @@ struct SkinStiffness {
 
 struct HeadSpec {
   std::string dir;
+  std::vector<std::string> files;  // every file read, relative to dir, in reading order
   std::string skin_file;
   double skin_scale = 0.01;
   std::vector<std::pair<std::string, std::vector<int>>> openings;

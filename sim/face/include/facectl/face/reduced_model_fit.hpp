@@ -13,12 +13,12 @@
 namespace facectl::face {
 
 struct ReduceOptions {
-  int train_samples = 400, test_samples = 100;
+  int train_samples = 2000, test_samples = 200;
   int frames = 250;  // full-model frames to steady state per sample
   double active_probability = 0.35, max_contraction = 0.7;
   unsigned seed = 1;
   double ridge = 1e-6;
-  double relevance_mm = 0.3;  // a muscle moves a point if c = 0.6 alone moves it this much
+  double relevance_mm = 0.3;  // a muscle moves a point if c = 1 alone moves it this much
 };
 
 struct ReduceReport {
@@ -31,7 +31,11 @@ struct ReduceReport {
 struct ReducedSample {
   std::vector<double> contractions;
   MandiblePose jaw;
+  double eyelid_closure[2] = {0, 0};  // left, right; the reduced model does not take them
 };
+// The fit's inputs: mixes from sparse to dense with c ~ U(0, 1), the jaw over its envelope
+// with its limits weighted, then each muscle alone at 0.25, 0.5, 0.75 and 1 (n + 4·muscles).
+std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigned seed);
 std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOptions& o, int n,
                                           unsigned seed);
 // Full-model steady-state control-point displacements (m) for one sample.
@@ -42,7 +46,8 @@ std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
 ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions& o,
                                      ReduceReport* report);
 void save_reduced_model(const ReducedFaceModel& m, const std::string& path);
-// Throws InputError naming file:line when the file is malformed or does not match `head`.
+// Throws InputError naming file:line when the file is malformed, does not match `head`, or
+// was fitted to head files that have changed since (stale).
 ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& head);
 
 }  // namespace facectl::face

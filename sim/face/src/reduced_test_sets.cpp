@@ -1,0 +1,137 @@
+#include "facectl/face/reduced_test_sets.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "control/envelope/mandible_envelope.hpp"
+#include "control/units.hpp"
+
+namespace facectl::face {
+
+namespace {
+
+ReducedSample relaxed(const HeadSpec& head) {
+  ReducedSample s;
+  s.contractions.assign(head.commanded.size(), 0.0);
+  return s;
+}
+
+std::vector<ReducedSample> random_set(const HeadSpec& head, double active, double max_c, int n,
+                                      unsigned seed) {
+  ReduceOptions o;
+  o.active_probability = active;
+  o.max_contraction = max_c;
+  return random_samples(head, o, n, seed);
+}
+
+}  // namespace
+
+std::vector<NamedSampleSet> reduced_test_sets(const HeadSpec& head,
+                                              const ExpressionLibrary& library, int n,
+                                              unsigned seed) {
+  std::vector<NamedSampleSet> sets;
+  sets.push_back({"in_distribution", "35% of muscles active at c ~ U(0, 0.7), jaw uniform",
+                  random_set(head, 0.35, 0.7, n, seed + 101)});
+  sets.push_back({"sparse_uniform", "35% of muscles active at c ~ U(0, 1), jaw uniform",
+                  random_set(head, 0.35, 1.0, n, seed + 202)});
+  sets.push_back({"dense_uniform", "every muscle at c ~ U(0, 1), jaw uniform",
+                  random_set(head, 1.0, 1.0, n, seed + 303)});
+
+  NamedSampleSet single{"single_muscle_full", "each muscle alone at c = 1, jaw at rest", {}};
+  for (std::size_t i = 0; i < head.commanded.size(); ++i) {
+    ReducedSample s = relaxed(head);
+    s.contractions[i] = 1.0;
+    single.samples.push_back(std::move(s));
+  }
+  sets.push_back(std::move(single));
+
+  // The envelope's corners, relaxed and under a random sparse mix.
+  NamedSampleSet corners{
+      "jaw_corners", "the 8 corners of the mandible envelope, relaxed and with a sparse mix", {}};
+  const std::vector<ReducedSample> mixes = random_set(head, 0.35, 1.0, 8, seed + 404);
+  for (int k = 0; k < 16; ++k) {
+    ReducedSample s = k < 8 ? relaxed(head) : mixes[static_cast<std::size_t>(k - 8)];
+    const int c = k % 8;
+    s.jaw.pitch_rad = ((c & 1) ? kJawPitchMaxDeg : kJawPitchMinDeg) * kDeg;
+    s.jaw.yaw_rad = ((c & 2) ? kJawYawMaxDeg : -kJawYawMaxDeg) * kDeg;
+    s.jaw.protrusion_m = (c & 4) ? kJawProtrusionMaxMm * 1e-3 : 0.0;
+    corners.samples.push_back(std::move(s));
+  }
+  sets.push_back(std::move(corners));
+
+  NamedSampleSet lib{"library", "every expression of the library, with its eyelids", {}};
+  for (const Expression& e : library.expressions) {
+    ReducedSample s;
+    s.contractions = e.contractions;
+    s.jaw = e.jaw;
+    s.eyelid_closure[0] = e.eyelid_closure[0];
+    s.eyelid_closure[1] = e.eyelid_closure[1];
+    lib.samples.push_back(std::move(s));
+  }
+  sets.push_back(std::move(lib));
+  return sets;
+}
+
+std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceModel& reduced,
+                                     const std::vector<NamedSampleSet>& sets, int frames) {
+  std::vector<int> cps;
+  for (const auto& name : reduced.control_points) cps.push_back(full.landmark_index(name));
+  FaceData d = make_face_data(full);
+  ReducedFaceWorkspace w = make_reduced_workspace(reduced);
+  std::vector<double> predicted(3 * cps.size());
+  std::vector<SetError> out;
+  for (const NamedSampleSet& set : sets) {
+    SetError e;
+    e.name = set.name;
+    e.samples = static_cast<int>(set.samples.size());
+    std::vector<double> errors;
+    double sum = 0;
+    for (std::size_t k = 0; k < set.samples.size(); ++k) {
+      const ReducedSample& s = set.samples[k];
+      const std::vector<double> truth = full_model_response(full, d, cps, s, frames);
+      evaluate(reduced, w, s.contractions, s.jaw.pitch_rad, s.jaw.yaw_rad, s.jaw.protrusion_m,
+               predicted);
+      for (std::size_t p = 0; p < cps.size(); ++p) {
+        const double dx = predicted[3 * p] - truth[3 * p];
+        const double dy = predicted[3 * p + 1] - truth[3 * p + 1];
+        const double dz = predicted[3 * p + 2] - truth[3 * p + 2];
+        const double mm = 1e3 * std::sqrt(dx * dx + dy * dy + dz * dz);
+        sum += mm * mm;
+        if (mm > e.max_mm) {
+          e.max_mm = mm;
+          e.worst = reduced.control_points[p] + " in sample " + std::to_string(k);
+        }
+        errors.push_back(mm);
+      }
+    }
+    if (!errors.empty()) {
+      std::sort(errors.begin(), errors.end());
+      e.rms_mm = std::sqrt(sum / static_cast<double>(errors.size()));
+      // Nearest-rank 99th percentile.
+      const auto rank =
+          static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(errors.size())));
+      e.p99_mm = errors[std::max<std::size_t>(rank, 1) - 1];
+    }
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+std::string set_errors_json(const std::vector<SetError>& errors) {
+  std::string s = "{";
+  char buf[256];
+  for (std::size_t k = 0; k < errors.size(); ++k) {
+    const SetError& e = errors[k];
+    std::snprintf(buf, sizeof buf,
+                  "%s\n  \"%s\": {\"samples\": %d, \"rms_mm\": %.4f, \"p99_mm\": %.4f, "
+                  "\"max_mm\": %.4f, \"worst\": \"%s\"}",
+                  k ? "," : "", e.name.c_str(), e.samples, e.rms_mm, e.p99_mm, e.max_mm,
+                  e.worst.c_str());
+    s += buf;
+  }
+  return s + "\n}\n";
+}
+
+}  // namespace facectl::face
