@@ -1,5 +1,6 @@
 #include "face_cli.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -7,6 +8,7 @@
 #include <string>
 
 #include "facectl/face/expression_library.hpp"
+#include "facectl/face/expression_sheet.hpp"
 #include "facectl/face/face_renderer.hpp"
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/obj_io.hpp"
@@ -17,6 +19,10 @@
 namespace {
 
 using namespace facectl::face;
+
+// Pictures default to the head's finest variant: at the base mesh's 468 vertices
+// sadness, disgust and fear barely differ from neutral (issue #20).
+constexpr int kLargestVariant = -1;
 
 struct FaceArgs {
   std::string head = facectl::shipped_dirs().config + "/heads/default";
@@ -32,8 +38,27 @@ void add_common(CLI::App* c, FaceArgs& a) {
   c->add_option("--frames", a.frames, "full-model frames to steady state")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  c->add_option("--resolution", a.resolution, "skin vertex count (0 = the base mesh)")
-      ->capture_default_str();
+  auto* r = c->add_option("--resolution", a.resolution,
+                          "skin vertex count: 0 = the base mesh, or more (edge splitting)")
+                ->check(CLI::Range(0, 100000));
+  if (a.resolution == kLargestVariant)
+    r->default_str("the largest of face.yaml's variants");
+  else
+    r->capture_default_str();
+}
+
+// The model at the requested skin resolution; a count the base mesh cannot be refined to
+// is an error rather than a silent fallback to the base mesh.
+FaceModel build_model(const HeadSpec& spec, int resolution) {
+  int n = resolution;
+  if (n == kLargestVariant)
+    n = spec.variants.empty() ? 0 : *std::max_element(spec.variants.begin(), spec.variants.end());
+  FaceModel m = build_face_model(spec, static_cast<std::size_t>(n));
+  if (n != 0 && m.skin.v.size() != static_cast<std::size_t>(n))
+    throw std::invalid_argument("--resolution " + std::to_string(n) +
+                                ": must be 0, or at least the base mesh's " +
+                                std::to_string(m.skin.v.size()) + " vertices");
+  return m;
 }
 
 // Runs `body`; unusable input becomes exit code 2 with the InputError's file:line message.
@@ -52,6 +77,7 @@ void guarded(F&& body) {
 
 struct Posed {
   HeadSpec spec;
+  ExpressionLibrary library;
   FaceModel model;
   FaceData data;
 };
@@ -59,7 +85,8 @@ struct Posed {
 std::unique_ptr<Posed> pose(const FaceArgs& a, const std::string& expression) {
   auto p = std::make_unique<Posed>();
   p->spec = load_head_spec(a.head);
-  const ExpressionLibrary lib = load_expression_library(a.library, p->spec);
+  p->library = load_expression_library(a.library, p->spec);
+  const ExpressionLibrary& lib = p->library;
   const Expression* e = lib.find(expression);
   if (!e) {
     std::string names;
@@ -67,7 +94,7 @@ std::unique_ptr<Posed> pose(const FaceArgs& a, const std::string& expression) {
     throw InputError(a.library + ": expected an expression name, found '" + expression +
                      "'; known:" + names);
   }
-  p->model = build_face_model(p->spec, static_cast<std::size_t>(std::max(0, a.resolution)));
+  p->model = build_model(p->spec, a.resolution);
   p->data = make_face_data(p->model);
   simulate_expression(p->model, p->data, *e, a.frames);
   return p;
@@ -100,6 +127,21 @@ View parse_view(const std::string& v) {
   return View::kThreeQuarter;
 }
 
+void add_picture_options(CLI::App* c, std::string& view, std::string& lighting,
+                         double& heat_max_mm) {
+  c->add_option("--view", view, "camera")
+      ->check(CLI::IsMember({"front", "side", "three-quarter"}))
+      ->capture_default_str();
+  c->add_option("--lighting", lighting,
+                "raking: a grazing key light that shades folds; frontal: flat and even")
+      ->check(CLI::IsMember({"raking", "frontal"}))
+      ->capture_default_str();
+  c->add_option("--heat-max-mm", heat_max_mm,
+                "displacement shown red in the heat map (fixed scale, mm)")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
+}
+
 }  // namespace
 
 void register_face_commands(CLI::App& app) {
@@ -108,51 +150,78 @@ void register_face_commands(CLI::App& app) {
   face->require_subcommand(1);
   static FaceArgs args;  // CLI11 binds options to storage that must outlive parsing
 
-  static std::string expression = "neutral", out, view = "front";
-  static bool muscles = false;
+  static FaceArgs picture_args{.resolution = kLargestVariant};
+  static std::string expression = "neutral", out, view = "three-quarter", lighting = "raking";
+  static bool muscles = false, heat_map = false;
   static int width = 480, height = 600;
+  static double heat_max_mm = 10;
   CLI::App* render = face->add_subcommand("render", "render an expression to PNG (headless CPU)");
-  add_common(render, args);
+  add_common(render, picture_args);
   render->add_option("--expression", expression, "expression name from the library")->required();
   render->add_option("--out", out, "output PNG file")->required();
-  render->add_option("--view", view, "camera")
-      ->check(CLI::IsMember({"front", "side", "three-quarter"}))
-      ->capture_default_str();
+  add_picture_options(render, view, lighting, heat_max_mm);
   render->add_flag("--muscles", muscles, "draw the skull and muscles instead of the skin");
+  render
+      ->add_flag("--heat-map", heat_map,
+                 "also draw the displacement from neutral beside it, labelled, with its scale")
+      ->excludes("--muscles");
   render->add_option("--width", width)->capture_default_str()->check(CLI::Range(16, 4096));
   render->add_option("--height", height)->capture_default_str()->check(CLI::Range(16, 4096));
   render->callback([] {
     guarded([] {
-      auto p = pose(args, expression);
-      RenderOptions o{parse_view(view), width, height, muscles};
-      write_png(out, render_face(p->model, p->data, o));
-      std::printf("wrote %s (%s, %s view)\n", out.c_str(), expression.c_str(), view.c_str());
+      auto p = pose(picture_args, expression);
+      const Lighting light = lighting == "frontal" ? Lighting::kFrontal : Lighting::kRaking;
+      if (heat_map) {
+        SheetOptions so;
+        so.view = parse_view(view);
+        so.lighting = light;
+        so.tile_width = width;
+        so.tile_height = height;
+        so.heat_max_mm = heat_max_mm;
+        so.frames = picture_args.frames;
+        const Points neutral = neutral_skin(p->model, p->library, so.frames);
+        write_png(out, with_colour_bar(expression_cell(p->model, p->data, neutral, expression, so),
+                                       heat_max_mm));
+      } else {
+        write_png(
+            out, render_face(p->model, p->data, {parse_view(view), width, height, muscles, light}));
+      }
+      std::printf("wrote %s (%s, %s view, %zu skin vertices)\n", out.c_str(), expression.c_str(),
+                  view.c_str(), p->model.skin.v.size());
     });
   });
 
-  static std::string sheet_out;
-  static int columns = 5;
-  CLI::App* sheet =
-      face->add_subcommand("contact-sheet", "render every expression of the library into one PNG");
-  add_common(sheet, args);
+  static std::string sheet_out, sheet_view = "three-quarter", sheet_lighting = "raking";
+  static SheetOptions sheet_options;
+  CLI::App* sheet = face->add_subcommand(
+      "contact-sheet",
+      "render every expression of the library beside its displacement heat map into one PNG");
+  add_common(sheet, picture_args);
   sheet->add_option("--out", sheet_out, "output PNG file")->required();
-  sheet->add_option("--columns", columns)->capture_default_str()->check(CLI::Range(1, 20));
+  add_picture_options(sheet, sheet_view, sheet_lighting, sheet_options.heat_max_mm);
+  sheet->add_option("--columns", sheet_options.columns, "expressions (picture + heat map) a row")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 20));
+  sheet->add_option("--tile-width", sheet_options.tile_width, "pixels of each picture")
+      ->capture_default_str()
+      ->check(CLI::Range(120, 4096));
+  sheet->add_option("--tile-height", sheet_options.tile_height, "pixels of each picture")
+      ->capture_default_str()
+      ->check(CLI::Range(120, 4096));
   sheet->callback([] {
     guarded([] {
-      const HeadSpec spec = load_head_spec(args.head);
-      const ExpressionLibrary lib = load_expression_library(args.library, spec);
-      const FaceModel m =
-          build_face_model(spec, static_cast<std::size_t>(std::max(0, args.resolution)));
-      FaceData d = make_face_data(m);
-      std::vector<Image> tiles;
-      for (const Expression& e : lib.expressions) {
-        simulate_expression(m, d, e, args.frames);
-        tiles.push_back(render_face(m, d, {View::kFront, 240, 300, false}));
-        std::printf("  %s\n", e.name.c_str());
-      }
-      write_png(sheet_out, contact_sheet(tiles, columns, 6));
-      std::printf("wrote %s (%zu expressions, row by row in library order)\n", sheet_out.c_str(),
-                  tiles.size());
+      const HeadSpec spec = load_head_spec(picture_args.head);
+      const ExpressionLibrary lib = load_expression_library(picture_args.library, spec);
+      const FaceModel m = build_model(spec, picture_args.resolution);
+      sheet_options.view = parse_view(sheet_view);
+      sheet_options.lighting = sheet_lighting == "frontal" ? Lighting::kFrontal : Lighting::kRaking;
+      sheet_options.frames = picture_args.frames;
+      const Image img = expression_sheet(m, lib, sheet_options, [](const std::string& name) {
+        std::printf("  %s\n", name.c_str());
+      });
+      write_png(sheet_out, img);
+      std::printf("wrote %s (%zu expressions, row by row in library order, %zu skin vertices)\n",
+                  sheet_out.c_str(), lib.expressions.size(), m.skin.v.size());
     });
   });
 

@@ -2,6 +2,7 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "facectl/face/input_error.hpp"
@@ -49,16 +50,28 @@ Image downsample(const Image& img, int f) {
   return out;
 }
 
+void blit(Image& dst, const Image& src, int x, int y) {
+  const int x0 = std::max(0, x), x1 = std::min(dst.width, x + src.width);
+  if (x0 >= x1) return;
+  for (int sy = std::max(0, -y); sy < src.height && y + sy < dst.height; ++sy)
+    std::memcpy(&dst.rgb[3 * ((y + sy) * dst.width + x0)], &src.rgb[3 * (sy * src.width + x0 - x)],
+                3u * (x1 - x0));
+}
+
+Image stack_vertically(const Image& top, const Image& bottom, int gap) {
+  Image out(std::max(top.width, bottom.width), top.height + gap + bottom.height, 255);
+  blit(out, top, (out.width - top.width) / 2, 0);
+  blit(out, bottom, (out.width - bottom.width) / 2, top.height + gap);
+  return out;
+}
+
 Image contact_sheet(const std::vector<Image>& tiles, int cols, int gap) {
   if (tiles.empty()) return {};
   const int tw = tiles[0].width, th = tiles[0].height;
   const int n = static_cast<int>(tiles.size()), rows = (n + cols - 1) / cols;
   Image out(cols * tw + (cols + 1) * gap, rows * th + (rows + 1) * gap, 255);
-  for (int k = 0; k < n; ++k) {
-    const int ox = gap + (k % cols) * (tw + gap), oy = gap + (k / cols) * (th + gap);
-    for (int y = 0; y < th; ++y)
-      std::memcpy(&out.rgb[3 * ((oy + y) * out.width + ox)], &tiles[k].rgb[3 * y * tw], 3u * tw);
-  }
+  for (int k = 0; k < n; ++k)
+    blit(out, tiles[k], gap + (k % cols) * (tw + gap), gap + (k / cols) * (th + gap));
   return out;
 }
 

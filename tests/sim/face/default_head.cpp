@@ -12,4 +12,10 @@ const FaceModel& default_model() {
   return model;
 }
 
+const ExpressionLibrary& default_library() {
+  static const ExpressionLibrary lib =
+      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", default_spec());
+  return lib;
+}
+
 }  // namespace facectl::face::testing

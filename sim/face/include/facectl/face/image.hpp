@@ -20,6 +20,10 @@ void write_png(const std::string& path, const Image& img);
 Image read_png(const std::string& path);
 // Averages factor × factor blocks (anti-aliasing after supersampled rendering).
 Image downsample(const Image& img, int factor);
+// Copies src into dst with its top-left corner at (x, y), clipped to dst.
+void blit(Image& dst, const Image& src, int x, int y);
+// `top` above `bottom`, each centred horizontally on a white background.
+Image stack_vertically(const Image& top, const Image& bottom, int gap);
 // Tiles images of equal size into a grid with `cols` columns and a `gap`-pixel border.
 Image contact_sheet(const std::vector<Image>& tiles, int cols, int gap);
 
