@@ -161,11 +161,18 @@ void register_face_commands(CLI::App& app) {
   reduce->add_option("--test-samples", ro.test_samples, "held-out inputs")->capture_default_str();
   reduce->add_option("--seed", ro.seed)->capture_default_str();
   reduce->add_option("--check-rms-mm", max_rms_mm, "exit 1 if the held-out RMS error exceeds this");
-  reduce->callback([] {
-    guarded([] {
+  reduce
+      ->add_option("--tolerance-mm", ro.steady.tolerance_mm,
+                   "a sample is settled when no skin vertex moved more than this over the "
+                   "last 20 frames (--frames caps the frames, default 2000)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  reduce->callback([reduce] {
+    guarded([reduce] {
       const HeadSpec spec = load_head_spec(args.head);
       const FaceModel m = build_face_model(spec);
-      ro.frames = args.frames;
+      // Each sample runs to a steady state; --frames, if given, caps it.
+      if (reduce->count("--frames") > 0) ro.steady.max_frames = args.frames;
       ReduceReport r;
       const auto t0 = std::chrono::steady_clock::now();
       const ReducedFaceModel red = build_reduced_model(m, ro, &r);
@@ -175,9 +182,11 @@ void register_face_commands(CLI::App& app) {
       save_reduced_model(red, path);
       std::printf(
           "wrote %s: %zu control points, %d features; train RMS %.3f mm; held-out (%d) RMS %.3f "
-          "mm, median %.3f mm, 95th percentile %.3f mm, max %.3f mm; %.1f s\n",
+          "mm, median %.3f mm, 95th percentile %.3f mm, max %.3f mm; %d full-model runs "
+          "unsettled (largest residual %.3f mm); %.1f s\n",
           path.c_str(), red.control_points.size(), red.feature_count(), r.train_rms_mm,
-          r.test_samples, r.test_rms_mm, r.test_median_mm, r.test_p95_mm, r.test_max_mm, secs);
+          r.test_samples, r.test_rms_mm, r.test_median_mm, r.test_p95_mm, r.test_max_mm,
+          r.unsettled_runs, r.worst_residual_mm, secs);
       if (max_rms_mm > 0 && r.test_rms_mm > max_rms_mm) {
         std::fprintf(stderr, "facectl face reduce: held-out RMS %.3f mm exceeds %.3f mm\n",
                      r.test_rms_mm, max_rms_mm);

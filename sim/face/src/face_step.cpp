@@ -71,13 +71,15 @@ void detect_teeth(const FaceModel& m, FaceData& d, const Points& p) {
 // Gauss–Seidel on the violated no-inversion constraints alone, until none is violated (at
 // most kUntangleRounds rounds): each round projects the list in index order, then lists
 // the violated constraints next to a vertex it moved. A violated constraint is projected
-// onto 1.5 times its bound, a margin so that a neighbour's correction does not at once
-// undo it (projecting onto the bound itself ping-pongs between neighbours for hundreds of
-// rounds). Usually empty; where the anchors fold the skin (the mouth corners) about 25
-// rounds over a few hundred constraints clear it. Deterministic and allocation-free.
+// onto its bound. (A margin, projecting onto 1.5 times the bound, took fewer rounds but
+// made the frame map jump: a constraint just violated moved by half its bound and one just
+// satisfied not at all, and the skin at the mouth corners flip-flopped by up to 1.4 mm a
+// frame forever; docs/FACE_MODEL.md, "Steady state".) Usually empty; where the anchors
+// fold the skin (the mouth corners) a few hundred constraints need it. Deterministic and
+// allocation-free.
 void untangle(const FaceModel& m, FaceData& d, Points& p) {
   constexpr int kUntangleRounds = 256;
-  constexpr double kUntangleTarget = 1.5;
+  constexpr double kUntangleTarget = 1.0;
   const OrientationConstraints& o = m.skin_upright;
   int* list = d.untangle_list.data();  // both sized to o.size(): no allocation
   int* next = d.untangle_next.data();

@@ -40,12 +40,14 @@ std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOpti
 
 std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
                                         const std::vector<int>& cps, const ReducedSample& s,
-                                        int frames) {
+                                        const SteadyStateOptions& steady,
+                                        SteadyStateResult* settled) {
   reset_face_data(m, d);
   FaceInput in;
   in.contractions = s.contractions;
   in.jaw = s.jaw;
-  for (int f = 0; f < frames; ++f) step_face(m, d, in);
+  const SteadyStateResult r = run_to_steady_state(m, d, in, steady);
+  if (settled) *settled = r;
   std::vector<double> out;
   for (int l : cps) {
     const Vec3 v = landmark_position(m, d.skin_x, l) - landmark_position(m, m.skin.v, l);
@@ -63,6 +65,14 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   for (const auto& n : r.control_points) cps.push_back(full.landmark_index(n));
   const int M = static_cast<int>(r.muscles.size()), P = static_cast<int>(cps.size());
   FaceData d = make_face_data(full);
+  ReduceReport counts;
+  auto response = [&](const ReducedSample& s) {
+    SteadyStateResult settled;
+    std::vector<double> y = full_model_response(full, d, cps, s, o.steady, &settled);
+    counts.unsettled_runs += !settled.converged;
+    counts.worst_residual_mm = std::max(counts.worst_residual_mm, settled.residual_mm);
+    return y;
+  };
 
   // Which muscles move which control point: one full-model run per muscle alone.
   std::vector<std::vector<char>> moves(M, std::vector<char>(P, 0));
@@ -70,7 +80,7 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
     ReducedSample s;
     s.contractions.assign(M, 0.0);
     s.contractions[i] = 0.6;
-    const std::vector<double> y = full_model_response(full, d, cps, s, o.frames);
+    const std::vector<double> y = response(s);
     for (int p = 0; p < P; ++p)
       moves[i][p] = Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3 > o.relevance_mm;
   }
@@ -104,7 +114,7 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
       fill_features(set[k].contractions, set[k].jaw.pitch_rad, set[k].jaw.yaw_rad,
                     set[k].jaw.protrusion_m, r.pairs, f);
       X.row(static_cast<Eigen::Index>(k)) = f.transpose();
-      const std::vector<double> y = full_model_response(full, d, cps, set[k], o.frames);
+      const std::vector<double> y = response(set[k]);
       for (int j = 0; j < 3 * P; ++j) Y(static_cast<Eigen::Index>(k), j) = y[j];
     }
   };
@@ -148,6 +158,8 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
       report->test_rms_mm = 1e3 * std::sqrt(sum / static_cast<double>(E.rows() * (E.cols() / 3)));
       report->test_max_mm = 1e3 * worst;
     }
+    report->unsettled_runs = counts.unsettled_runs;
+    report->worst_residual_mm = counts.worst_residual_mm;
   }
   return r;
 }
