@@ -122,7 +122,7 @@ void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
   for (int it = 0; it < m.spec.skin_iterations; ++it) {
     project(m.skin_stretch, p, m.skin_w);  // border edges
     project_with_stretch(m.skin_bending, m.skin_pair_stretch, p, m.skin_w);
-    project_signed(m.skin_area, p, m.skin_w, d.anchor_normals, m.skin_area_sign);
+    project(m.skin_area, p, m.skin_w);
     project(m.skin_volume, p, m.skin_w, d.grad);
     project(m.anchors, p, m.skin_w, d.anchor_targets);
     project(m.skin_upright, p, m.skin_w);  // after the anchors, which fold the surface
