@@ -103,13 +103,14 @@ std::unique_ptr<Posed> pose(const FaceArgs& a, const std::string& expression) {
 // Prints one line per named set; true when every set meets the targets.
 bool print_set_errors(const std::vector<SetError>& errors, double rms_mm, double p99_mm) {
   bool ok = true;
-  std::printf("%-20s %7s %8s %8s %8s  %s\n", "set", "samples", "rms_mm", "p99_mm", "max_mm",
-              "worst");
+  std::printf("%-20s %7s %9s %8s %8s %8s  %s\n", "set", "samples", "unsettled", "rms_mm",
+              "p99_mm", "max_mm", "worst");
   for (const SetError& e : errors) {
     const bool pass = e.rms_mm <= rms_mm && e.p99_mm <= p99_mm;
     ok = ok && pass;
-    std::printf("%-20s %7d %8.3f %8.3f %8.3f  %s%s\n", e.name.c_str(), e.samples, e.rms_mm,
-                e.p99_mm, e.max_mm, e.worst.c_str(), pass ? "" : "  (over target)");
+    std::printf("%-20s %7d %9d %8.3f %8.3f %8.3f  %s%s\n", e.name.c_str(), e.samples,
+                e.unsettled, e.rms_mm, e.p99_mm, e.max_mm, e.worst.c_str(),
+                pass ? "" : "  (over target)");
   }
   return ok;
 }
@@ -252,12 +253,19 @@ void register_face_commands(CLI::App& app) {
   reduce->add_option("--test-samples", ro.test_samples, "held-out inputs")->capture_default_str();
   reduce->add_option("--seed", ro.seed)->capture_default_str();
   reduce->add_option("--check-rms-mm", max_rms_mm, "exit 1 if the held-out RMS error exceeds this");
-  reduce->callback([] {
-    guarded([] {
+  reduce
+      ->add_option("--tolerance-mm", ro.steady.tolerance_mm,
+                   "a sample is settled when no skin vertex moved more than this over the "
+                   "last 20 frames (--frames caps the frames, default 2000)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  reduce->callback([reduce] {
+    guarded([reduce] {
       const HeadSpec spec = load_head_spec(args.head);
       const FaceModel m =
           build_face_model(spec, static_cast<std::size_t>(std::max(0, args.resolution)));
-      ro.frames = args.frames;
+      // Each sample runs to a steady state; --frames, if given, caps it.
+      if (reduce->count("--frames") > 0) ro.steady.max_frames = args.frames;
       ReduceReport r;
       const auto t0 = std::chrono::steady_clock::now();
       const ReducedFaceModel red = build_reduced_model(m, ro, &r);
@@ -267,13 +275,14 @@ void register_face_commands(CLI::App& app) {
       save_reduced_model(red, path);
       std::printf(
           "wrote %s: %zu control points, %d features; train (%d) RMS %.3f mm; held-out (%d) RMS "
-          "%.3f mm, median %.3f mm, 95th percentile %.3f mm, max %.3f mm; %.1f s\n",
+          "%.3f mm, median %.3f mm, 95th percentile %.3f mm, max %.3f mm; %d full-model runs "
+          "unsettled (largest residual %.3f mm); %.1f s\n",
           path.c_str(), red.control_points.size(), red.feature_count(), r.train_samples,
           r.train_rms_mm, r.test_samples, r.test_rms_mm, r.test_median_mm, r.test_p95_mm,
-          r.test_max_mm, secs);
+          r.test_max_mm, r.unsettled_runs, r.worst_residual_mm, secs);
       // The same named sets as check-reduced, with its defaults.
       const ExpressionLibrary lib = load_expression_library(args.library, spec);
-      print_set_errors(reduced_errors(m, red, reduced_test_sets(spec, lib, 200, 1), args.frames),
+      print_set_errors(reduced_errors(m, red, reduced_test_sets(spec, lib, 200, 1), ro.steady),
                        0.5, 2.0);
       if (max_rms_mm > 0 && r.test_rms_mm > max_rms_mm) {
         std::fprintf(stderr, "facectl face reduce: held-out RMS %.3f mm exceeds %.3f mm\n",
@@ -299,15 +308,18 @@ void register_face_commands(CLI::App& app) {
       ->capture_default_str();
   check->add_option("--p99-mm", target_p99_mm, "exit 1 if a set's 99th percentile exceeds this")
       ->capture_default_str();
-  check->callback([] {
-    guarded([] {
+  check->callback([check] {
+    guarded([check] {
       const HeadSpec spec = load_head_spec(args.head);
       const ReducedFaceModel red = load_reduced_model(args.head + "/reduced_face.txt", spec);
       const FaceModel m =
           build_face_model(spec, static_cast<std::size_t>(std::max(0, args.resolution)));
       const ExpressionLibrary lib = load_expression_library(args.library, spec);
+      // Each input runs to a steady state; --frames, if given, caps it.
+      SteadyStateOptions steady;
+      if (check->count("--frames") > 0) steady.max_frames = args.frames;
       const auto errors = reduced_errors(
-          m, red, reduced_test_sets(spec, lib, check_samples, check_seed), args.frames);
+          m, red, reduced_test_sets(spec, lib, check_samples, check_seed), steady);
       const bool ok = print_set_errors(errors, target_rms_mm, target_p99_mm);
       if (!check_json.empty()) write_text_file(check_json, set_errors_json(errors));
       if (!ok) {

@@ -104,17 +104,14 @@ FACECTL_INLINE inline void bending_step(P3& a, P3& b, P3& c, P3& d, double wa_, 
   d.z += double(fd * h.n2z) * kDown;
 }
 
-// Area of (a, b, c), signed against the reference normal rn when rs ≠ 0 (project_signed).
+// Area of (a, b, c).
 FACECTL_INLINE inline void area_step(P3& a, P3& b, P3& c, double wa, double wb, double wc, double k,
-                                     double rest, const P3& rn, double rs) {
+                                     double rest) {
   // e1 = pb − pa = (ax, ay, az), e2 = pc − pa = (bx, by, bz)
   const double ax = b.x - a.x, ay = b.y - a.y, az = b.z - a.z;
   const double bx = c.x - a.x, by = c.y - a.y, bz = c.z - a.z;
   const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
   const double len = std::sqrt(cx * cx + cy * cy + cz * cz);  // 2·area
-  // rest_sign 0 (and the unsigned variant): the sides are not told apart.
-  const double cr_ref = cx * rn.x + cy * rn.y + cz * rn.z;
-  const double sign = ((rs != 0) & (cr_ref * rs < -0.5 * len)) ? -1.0 : 1.0;
   // With n̂ = (e1×e2)/len: g2 = ½ e2×n̂ and g3 = ½ n̂×e1 (g1 = −g2 − g3), written with
   // (a×b)×c = b(a·c) − a(b·c) as combinations of e1 and e2; |g2| = ½|e2|, |g3| = ½|e1|
   // and |g1| = ½|e2 − e1| because both edges lie in the plane ⟂ n̂.
@@ -127,8 +124,8 @@ FACECTL_INLINE inline void area_step(P3& a, P3& b, P3& c, double wa, double wb, 
   const double g3a = -e12 * inv, g3b = e11 * inv;  // g3 = g3a·e1 + g3b·e2
   const double g2x = g2a * ax + g2b * bx, g2y = g2a * ay + g2b * by, g2z = g2a * az + g2b * bz;
   const double g3x = g3a * ax + g3b * bx, g3y = g3a * ay + g3b * by, g3z = g3a * az + g3b * bz;
-  // ∇(sign·A) = sign·g, so Δp = −k·(sign·A − A0)·sign·g/Σw|g|².
-  const double q = -k * (sign * 0.5 * len - rest) * sign / (ok ? denom : 1.0);
+  // Δp = −k·(A − A0)·g/Σw|g|².
+  const double q = -k * (0.5 * len - rest) / (ok ? denom : 1.0);
   const double f = ok ? q : 0.0;
   const double fa = f * wa, fb = f * wb, fc = f * wc;
   a.x += -(fa * (g2x + g3x)), a.y += -(fa * (g2y + g3y)), a.z += -(fa * (g2z + g3z));
@@ -225,28 +222,19 @@ FACECTL_INLINE inline void bending_batches(const BendingConstraints& s, const Pa
   });
 }
 
-// Unsigned (ref == nullptr) or signed area; see project_signed().
-FACECTL_INLINE inline void area_batches(const AreaConstraints& s, const SoaAccess& P,
-                                        const Points* ref, const std::vector<double>* rest_sign) {
+FACECTL_INLINE inline void area_batches(const AreaConstraints& s, const SoaAccess& P) {
   for_each_batch(s.runs, s.size(), [&](std::size_t i0, int m) FACECTL_INLINE {
     alignas(32) Index ia, ib, ic;
-    alignas(32) Lanes3 pa, pb, pc, rn;
-    alignas(32) Lanes wa, wb, wc, k, rest, rs;
+    alignas(32) Lanes3 pa, pb, pc;
+    alignas(32) Lanes wa, wb, wc, k, rest;
     lanes_of(s.a, i0, m, ia), lanes_of(s.b, i0, m, ib), lanes_of(s.c, i0, m, ic);
     lanes_of(s.k, i0, m, k), lanes_of(s.rest, i0, m, rest);
-    if (ref) {
-      lanes_of(*rest_sign, i0, m, rs);
-      for (int j = 0; j < kBatch; ++j)
-        rn[0][j] = ref->x[ia[j]], rn[1][j] = ref->y[ia[j]], rn[2][j] = ref->z[ia[j]];
-    } else {
-      for (int j = 0; j < kBatch; ++j) rs[j] = 0, rn[0][j] = rn[1][j] = rn[2][j] = 0;
-    }
     P.gather(ia, pa, wa);
     P.gather(ib, pb, wb);
     P.gather(ic, pc, wc);
     for (int j = 0; j < kBatch; ++j) {
       P3 a = lane(pa, j), b = lane(pb, j), c = lane(pc, j);
-      area_step(a, b, c, wa[j], wb[j], wc[j], k[j], rest[j], lane(rn, j), rs[j]);
+      area_step(a, b, c, wa[j], wb[j], wc[j], k[j], rest[j]);
       set_lane(pa, j, a), set_lane(pb, j, b), set_lane(pc, j, c);
     }
     P.store(ia, pa, m);
@@ -305,12 +293,7 @@ FACECTL_VECTOR_CLONES void project_with_stretch(const BendingConstraints& s,
 
 FACECTL_VECTOR_CLONES void project(const AreaConstraints& s, Points& p,
                                    const std::vector<double>& w) {
-  area_batches(s, SoaAccess(p, w), nullptr, nullptr);
-}
-FACECTL_VECTOR_CLONES void project_signed(const AreaConstraints& s, Points& p,
-                                          const std::vector<double>& w, const Points& ref_normal,
-                                          const std::vector<double>& rest_sign) {
-  area_batches(s, SoaAccess(p, w), &ref_normal, &rest_sign);
+  area_batches(s, SoaAccess(p, w));
 }
 FACECTL_VECTOR_CLONES void project(const OrientationConstraints& s, Points& p,
                                    const std::vector<double>& w) {

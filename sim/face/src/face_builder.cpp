@@ -310,8 +310,8 @@ std::vector<int> bind_skin(const HeadSpec& spec, const Points& skin_n, int nbase
   return seeds;
 }
 
-// Skin constraints (k_stretching, k_bending, k_area, k_volume), with each area's sign
-// from its anchor's support and the upright constraints indexed by vertex.
+// Skin constraints (k_stretching, k_bending, k_area, k_volume), and the upright
+// constraints indexed by vertex.
 void build_skin_constraints(const HeadSpec& spec, FaceModel& m) {
   const int ns = static_cast<int>(m.skin.v.size());
   m.skin_w.assign(ns, 1.0);
@@ -320,17 +320,6 @@ void build_skin_constraints(const HeadSpec& spec, FaceModel& m) {
   // An interior edge's stretch is projected with its bending pair (fused sweep).
   m.skin_pair_stretch = split_pair_stretch(m.skin_stretch, m.skin_bending, m.skin.v);
   add_areas(m.skin_area, m.skin.v, m.skin.tris, spec.skin.area);
-  for (std::size_t t = 0; t < m.skin_area.size(); ++t) {
-    const int a = m.skin_area.a[t];
-    const SurfacePoint& sp = m.anchor_support[a];
-    const Vec3 n = sp.layer == Layer::kSkull
-                       ? sp.normal(m.skull.v)
-                       : Vec3(sp.smooth_frame(m.muscle_rest, m.muscle_rest_normals).col(2));
-    const Vec3 cr = (m.skin.v.get(m.skin_area.b[t]) - m.skin.v.get(a))
-                        .cross(m.skin.v.get(m.skin_area.c[t]) - m.skin.v.get(a));
-    const double cosine = cr.dot(n) / std::max(cr.norm(), 1e-30);
-    m.skin_area_sign.push_back(std::abs(cosine) < 0.5 ? 0.0 : (cosine < 0 ? -1.0 : 1.0));
-  }
   add_orientations(m.skin_upright, m.skin.v, m.skin.tris, spec.skin.min_projected_area, 1.0);
   Adjacency& ua = m.upright_of_vertex;
   ua.start.assign(ns + 1, 0);

@@ -70,25 +70,28 @@ void detect_teeth(const FaceModel& m, FaceData& d, const Points& p) {
 
 // Gauss–Seidel on the violated no-inversion constraints alone, until none is violated (at
 // most kUntangleRounds rounds): each round projects the list in index order, then lists
-// the violated constraints next to a vertex it moved. A violated constraint is projected
-// onto 1.5 times its bound, a margin so that a neighbour's correction does not at once
-// undo it (projecting onto the bound itself ping-pongs between neighbours for hundreds of
-// rounds). Usually empty; where the anchors fold the skin (the mouth corners) about 25
-// rounds over a few hundred constraints clear it. Deterministic and allocation-free.
+// the violated constraints next to a vertex it moved. A constraint counts as violated
+// below 0.9 times its bound and is projected onto the bound. The 10% between keeps the
+// rounds few (with both at the bound, neighbours ping-pong for hundreds of rounds: 3
+// times the step time at 4904 vertices); projecting onto 1.5 times the bound instead
+// made the frame map jump by half a bound and the mouth corners cycle by up to 1.4 mm a
+// frame forever (docs/FACE_MODEL.md, "Steady state"). Usually empty; where the anchors
+// fold the skin (the mouth corners) a few hundred constraints need it. Deterministic and
+// allocation-free.
 void untangle(const FaceModel& m, FaceData& d, Points& p) {
   constexpr int kUntangleRounds = 256;
-  constexpr double kUntangleTarget = 1.5;
+  constexpr double kUntangleFloor = 0.9, kUntangleTarget = 1.0;
   const OrientationConstraints& o = m.skin_upright;
   int* list = d.untangle_list.data();  // both sized to o.size(): no allocation
   int* next = d.untangle_next.data();
   int n = 0;
   for (std::size_t i = 0; i < o.size(); ++i)
-    if (orientation_value(o, i, p) < 0) list[n++] = static_cast<int>(i);
+    if (orientation_value(o, i, p, kUntangleFloor) < 0) list[n++] = static_cast<int>(i);
   for (int round = 0; round < kUntangleRounds && n > 0; ++round) {
     const int id = ++d.untangle_stamp;  // never reset, so marks of earlier frames never match
     for (int j = 0; j < n; ++j) {
       const int i = list[j];
-      if (project_one(o, static_cast<std::size_t>(i), p, m.skin_w, 1.0, kUntangleTarget))
+      if (project_one(o, static_cast<std::size_t>(i), p, m.skin_w, kUntangleFloor, kUntangleTarget))
         for (int v : {o.a[i], o.b[i], o.c[i]}) d.vertex_mark[v] = id;
     }
     int nn = 0;
@@ -100,7 +103,8 @@ void untangle(const FaceModel& m, FaceData& d, Points& p) {
           const int c = m.upright_of_vertex.nbr[k];
           if (d.upright_mark[c] == id) continue;
           d.upright_mark[c] = id;  // each constraint is listed at most once a round
-          if (orientation_value(o, static_cast<std::size_t>(c), p) < 0) next[nn++] = c;
+          if (orientation_value(o, static_cast<std::size_t>(c), p, kUntangleFloor) < 0)
+            next[nn++] = c;
         }
       }
     }
@@ -120,7 +124,7 @@ void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
   for (int it = 0; it < m.spec.skin_iterations; ++it) {
     project(m.skin_stretch, p, m.skin_w);  // border edges
     project_with_stretch(m.skin_bending, m.skin_pair_stretch, p, m.skin_w);
-    project_signed(m.skin_area, p, m.skin_w, d.anchor_normals, m.skin_area_sign);
+    project(m.skin_area, p, m.skin_w);
     project(m.skin_volume, p, m.skin_w, d.grad);
     project(m.anchors, p, m.skin_w, d.anchor_targets);
     project(m.skin_upright, p, m.skin_w);  // after the anchors, which fold the surface

@@ -43,14 +43,16 @@ std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOpti
 
 std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
                                         const std::vector<int>& cps, const ReducedSample& s,
-                                        int frames) {
+                                        const SteadyStateOptions& steady,
+                                        SteadyStateResult* settled) {
   reset_face_data(m, d);
   FaceInput in;
   in.contractions = s.contractions;
   in.jaw = s.jaw;
   in.eyelid_closure[0] = s.eyelid_closure[0];
   in.eyelid_closure[1] = s.eyelid_closure[1];
-  for (int f = 0; f < frames; ++f) step_face(m, d, in);
+  const SteadyStateResult r = run_to_steady_state(m, d, in, steady);
+  if (settled) *settled = r;
   std::vector<double> out;
   for (int l : cps) {
     const Vec3 v = landmark_position(m, d.skin_x, l) - landmark_position(m, m.skin.v, l);
@@ -142,6 +144,14 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   for (const auto& n : r.control_points) cps.push_back(full.landmark_index(n));
   const int M = static_cast<int>(r.muscles.size()), P = static_cast<int>(cps.size());
   FaceData d = make_face_data(full);
+  ReduceReport counts;
+  auto response = [&](const ReducedSample& s) {
+    SteadyStateResult settled;
+    std::vector<double> y = full_model_response(full, d, cps, s, o.steady, &settled);
+    counts.unsettled_runs += !settled.converged;
+    counts.worst_residual_mm = std::max(counts.worst_residual_mm, settled.residual_mm);
+    return y;
+  };
 
   // Which muscles move which control point: one full-model run per muscle alone at 1.
   std::vector<std::vector<int>> movers(static_cast<std::size_t>(P));
@@ -149,7 +159,7 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
     ReducedSample s;
     s.contractions.assign(static_cast<std::size_t>(M), 0.0);
     s.contractions[static_cast<std::size_t>(i)] = 1.0;
-    const std::vector<double> y = full_model_response(full, d, cps, s, o.frames);
+    const std::vector<double> y = response(s);
     for (int p = 0; p < P; ++p)
       if (Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3 > o.relevance_mm)
         movers[static_cast<std::size_t>(p)].push_back(i);
@@ -175,7 +185,7 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
                              set[k].jaw.protrusion_m, std::span<double>(v.data(), v.size()));
       fill_features(std::span<const double>(v.data(), v.size()), r.features, f);
       X.row(static_cast<Eigen::Index>(k)) = f.transpose();
-      const std::vector<double> y = full_model_response(full, d, cps, set[k], o.frames);
+      const std::vector<double> y = response(set[k]);
       for (int j = 0; j < 3 * P; ++j) Y(static_cast<Eigen::Index>(k), j) = y[j];
     }
   };
@@ -221,6 +231,8 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
       report->test_rms_mm = 1e3 * std::sqrt(sum / static_cast<double>(E.rows() * (E.cols() / 3)));
       report->test_max_mm = 1e3 * worst;
     }
+    report->unsettled_runs = counts.unsettled_runs;
+    report->worst_residual_mm = counts.worst_residual_mm;
   }
   return r;
 }

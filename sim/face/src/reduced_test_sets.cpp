@@ -75,7 +75,8 @@ std::vector<NamedSampleSet> reduced_test_sets(const HeadSpec& head,
 }
 
 std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceModel& reduced,
-                                     const std::vector<NamedSampleSet>& sets, int frames) {
+                                     const std::vector<NamedSampleSet>& sets,
+                                     const SteadyStateOptions& steady) {
   std::vector<int> cps;
   for (const auto& name : reduced.control_points) cps.push_back(full.landmark_index(name));
   FaceData d = make_face_data(full);
@@ -90,7 +91,9 @@ std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceMod
     double sum = 0;
     for (std::size_t k = 0; k < set.samples.size(); ++k) {
       const ReducedSample& s = set.samples[k];
-      const std::vector<double> truth = full_model_response(full, d, cps, s, frames);
+      SteadyStateResult settled;
+      const std::vector<double> truth = full_model_response(full, d, cps, s, steady, &settled);
+      e.unsettled += !settled.converged;
       evaluate(reduced, w, s.contractions, s.jaw.pitch_rad, s.jaw.yaw_rad, s.jaw.protrusion_m,
                predicted);
       for (std::size_t p = 0; p < cps.size(); ++p) {
@@ -126,9 +129,9 @@ std::string set_errors_json(const std::vector<SetError>& errors) {
     const SetError& e = errors[k];
     std::snprintf(buf, sizeof buf,
                   "%s\n  \"%s\": {\"samples\": %d, \"rms_mm\": %.4f, \"p99_mm\": %.4f, "
-                  "\"max_mm\": %.4f, \"worst\": \"%s\"}",
+                  "\"max_mm\": %.4f, \"worst\": \"%s\", \"unsettled\": %d}",
                   k ? "," : "", e.name.c_str(), e.samples, e.rms_mm, e.p99_mm, e.max_mm,
-                  e.worst.c_str());
+                  e.worst.c_str(), e.unsettled);
     s += buf;
   }
   return s + "\n}\n";

@@ -1,8 +1,10 @@
-// Development aid (not a test): prints the acceptance measures of every expression.
+// Development aid (not a test): prints the acceptance measures of every expression at its
+// steady state (as expression_test.cpp), or after FRAMES frames if given.
 #include <cstdio>
 
 #include "expression_metrics.hpp"
 #include "facectl/face/expression_library.hpp"
+#include "facectl/face/steady_state.hpp"
 
 using namespace facectl::face;
 
@@ -12,13 +14,18 @@ int main(int argc, char** argv) {
   const ExpressionLibrary lib =
       load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
   FaceData d = make_face_data(m);
-  const int frames = argc > 1 ? std::atoi(argv[1]) : 300;
+  const int frames = argc > 1 ? std::atoi(argv[1]) : 0;
   std::printf(
       "%-17s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s %5s\n",
       "expr", "crL", "crR", "coL", "coR", "cbL", "cbR", "mw", "gap", "ulip", "prot", "ibr", "obr",
       "br", "ibg", "chin", "chx", "lidL", "lidR", "ulsL", "ulsR");
   for (const Expression& e : lib.expressions) {
-    simulate_expression(m, d, e, frames);
+    if (frames > 0) {
+      simulate_expression(m, d, e, frames);
+    } else {
+      reset_face_data(m, d);
+      run_to_steady_state(m, d, face_input(e), SteadyStateOptions{});
+    }
     auto r = testing::measure(m, d.skin_x);
     std::printf(
         "%-17s %5.1f %5.1f %5.1f %5.1f %5.1f %5.1f %5.1f %5.1f %5.1f %5.1f %5.1f %5.1f %5.1f %5.1f "

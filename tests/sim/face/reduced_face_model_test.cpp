@@ -20,14 +20,15 @@ namespace {
 const ReducedFaceModel& small_fit(ReduceReport* report = nullptr) {
   static ReduceReport rep;
   static const ReducedFaceModel r = [] {
-    // Under the sanitizers a quarter of the samples and half the frames: the
-    // fit then runs every path of the full model and the regression, but
-    // is too small to meet the accuracy bound below.
+    // Each sample runs to steady state but for at most 300 frames (100 under the
+    // sanitizers, with a quarter of the samples: the fit then runs every path of the full
+    // model and the regression, but is too small to meet the accuracy bound below). Not
+    // every input of the distribution settles (docs/FACE_MODEL.md, "Known issues").
     using facectl::testing::kSanitized;
     ReduceOptions o;
     o.train_samples = kSanitized ? 40 : 160;
     o.test_samples = kSanitized ? 10 : 40;
-    o.frames = kSanitized ? 100 : 200;
+    o.steady.max_frames = kSanitized ? 100 : 300;
     return build_reduced_model(testing::default_model(), o, &rep);
   }();
   if (report) *report = rep;
@@ -45,6 +46,8 @@ TEST(ReducedFaceModel, FitTracksTheFullModelOnHeldOutInputs) {
   }
   EXPECT_TRUE(std::isfinite(rep.test_max_mm));
   EXPECT_GT(rep.test_rms_mm, 0.0);
+  EXPECT_LE(rep.unsettled_runs, rep.train_samples + rep.test_samples + 29);  // + the probes
+  RecordProperty("unsettled_runs", rep.unsettled_runs);
 }
 
 const ReducedFaceModel& shipped() {
@@ -99,7 +102,7 @@ TEST(ReducedFaceModel, ShippedCacheTracksTheFullModelOnAnExpression) {
   s.jaw.pitch_rad = 0.05;
   std::vector<int> cps;
   for (const auto& n : shipped().control_points) cps.push_back(m.landmark_index(n));
-  const std::vector<double> full = full_model_response(m, d, cps, s, 250);
+  const std::vector<double> full = full_model_response(m, d, cps, s, SteadyStateOptions{});
   ReducedFaceWorkspace w = make_reduced_workspace(shipped());
   std::vector<double> out(full.size());
   evaluate(shipped(), w, s.contractions, s.jaw.pitch_rad, 0, 0, out);

@@ -96,12 +96,6 @@ double volume_of(const VolumeConstraint& v, const Points& p);
 void project(const DistanceConstraints& s, Points& p, const std::vector<double>& w);
 void project(const BendingConstraints& s, Points& p, const std::vector<double>& w);
 void project(const AreaConstraints& s, Points& p, const std::vector<double>& w);
-// Signed variant: the area counts negative when the triangle's normal opposes
-// ref_normal[a] (a per-vertex outward direction) differently than at rest, so an inverted triangle
-// is driven back through zero instead of being content at |area| = rest. rest_sign[i] is the sign
-// the constraint had at rest (+1 or −1).
-void project_signed(const AreaConstraints& s, Points& p, const std::vector<double>& w,
-                    const Points& ref_normal, const std::vector<double>& rest_sign);
 void project(const OrientationConstraints& s, Points& p, const std::vector<double>& w);
 // Projects constraint i alone if it is violated with its bound scaled by floor_scale, onto
 // its bound scaled by target_scale ≥ floor_scale (a margin, so that a neighbour's later

@@ -31,7 +31,6 @@ struct FaceModel {
   BendingConstraints skin_bending;
   PairStretch skin_pair_stretch;  // stretch of skin_bending's shared edges, projected with it
   AreaConstraints skin_area;
-  std::vector<double> skin_area_sign;   // orientation vs. the anchor normal at rest
   OrientationConstraints skin_upright;  // no-inversion (SkinStiffness::min_projected_area)
   Adjacency upright_of_vertex;          // vertex → its skin_upright constraints (CSR)
   VolumeConstraint skin_volume;

@@ -9,12 +9,13 @@
 
 #include "control/face/reduced_face_model.hpp"
 #include "facectl/face/face_model.hpp"
+#include "facectl/face/steady_state.hpp"
 
 namespace facectl::face {
 
 struct ReduceOptions {
   int train_samples = 2000, test_samples = 200;
-  int frames = 250;  // full-model frames to steady state per sample
+  SteadyStateOptions steady;  // when a sample's full-model run counts as settled
   double active_probability = 0.35, max_contraction = 0.7;
   unsigned seed = 1;
   double ridge = 1e-6;
@@ -25,6 +26,10 @@ struct ReduceReport {
   double train_rms_mm = 0, test_rms_mm = 0, test_max_mm = 0;
   double test_median_mm = 0, test_p95_mm = 0;  // of the per-point 3-D errors
   int train_samples = 0, test_samples = 0;
+  // Full-model runs (probes, training and held-out samples) that reached
+  // steady.max_frames without settling, and the largest residual any run ended with.
+  int unsettled_runs = 0;
+  double worst_residual_mm = 0;
 };
 
 // One random input of the distribution used for fitting and testing.
@@ -38,10 +43,12 @@ struct ReducedSample {
 std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigned seed);
 std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOptions& o, int n,
                                           unsigned seed);
-// Full-model steady-state control-point displacements (m) for one sample.
+// Full-model steady-state control-point displacements (m) for one sample, run from rest
+// by run_to_steady_state(); `settled`, if given, receives how it ended.
 std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
                                         const std::vector<int>& control_landmarks,
-                                        const ReducedSample& s, int frames);
+                                        const ReducedSample& s, const SteadyStateOptions& steady,
+                                        SteadyStateResult* settled = nullptr);
 
 ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions& o,
                                      ReduceReport* report);

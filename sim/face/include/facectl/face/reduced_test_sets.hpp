@@ -33,11 +33,14 @@ struct SetError {
   int samples = 0;
   double rms_mm = 0, p99_mm = 0, max_mm = 0;  // of the per-point 3-D errors
   std::string worst;                          // "point in sample k" of the maximum
+  int unsettled = 0;  // full-model runs that did not reach the steady state
 };
 
-// The reduced model against the full model's steady state on each set.
+// The reduced model against the full model's steady state on each set; each set
+// reports how many full-model runs did not settle.
 std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceModel& reduced,
-                                     const std::vector<NamedSampleSet>& sets, int frames);
+                                     const std::vector<NamedSampleSet>& sets,
+                                     const SteadyStateOptions& steady);
 
 // The sets' errors as a JSON object keyed by set name.
 std::string set_errors_json(const std::vector<SetError>& errors);

@@ -1,0 +1,75 @@
+// run_to_steady_state: the library's expressions settle, and a run cut short says so.
+#include "facectl/face/steady_state.hpp"
+
+#include <gtest/gtest.h>
+
+#include "default_head.hpp"
+#include "facectl/face/expression_library.hpp"
+
+namespace facectl::face {
+namespace {
+
+const ExpressionLibrary& library() {
+  static const ExpressionLibrary lib = load_expression_library(
+      FACECTL_CONFIG_DIR "/expressions/library.yaml", testing::default_spec());
+  return lib;
+}
+
+TEST(SteadyState, EveryLibraryExpressionSettles) {
+  const FaceModel& m = testing::default_model();
+  FaceData d = make_face_data(m);
+  const SteadyStateOptions o;
+  for (const Expression& e : library().expressions) {
+    reset_face_data(m, d);
+    const FaceInput in = face_input(e);
+    const SteadyStateResult r = run_to_steady_state(m, d, in, o);
+    EXPECT_TRUE(r.converged) << e.name << ": residual " << r.residual_mm << " mm after " << r.frames
+                             << " frames";
+    EXPECT_LT(r.residual_mm, o.tolerance_mm) << e.name;
+    EXPECT_GE(r.frames, o.min_frames) << e.name;
+    // The residual is honest: another window changes no vertex by more than it allows.
+    const Points settled = d.skin_x;
+    for (int f = 0; f < o.window; ++f) step_face(m, d, in);
+    double worst = 0;
+    for (std::size_t i = 0; i < settled.size(); ++i)
+      worst = std::max(worst, (d.skin_x.get(i) - settled.get(i)).norm());
+    EXPECT_LT(1e3 * worst, 2 * o.tolerance_mm) << e.name;
+  }
+}
+
+TEST(SteadyState, ReportsAnUnsettledRunWhenFramesRunOut) {
+  const FaceModel& m = testing::default_model();
+  FaceData d = make_face_data(m);
+  const Expression* joy = library().find("joy");
+  ASSERT_NE(joy, nullptr);
+  SteadyStateOptions o;
+  o.max_frames = 30;  // joy's lip corners are still moving by millimetres
+  const SteadyStateResult r = run_to_steady_state(m, d, face_input(*joy), o);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.frames, 30);
+  EXPECT_GT(r.residual_mm, 10 * o.tolerance_mm);
+  EXPECT_EQ(d.frame, 30);
+}
+
+TEST(SteadyState, RestIsSettledAfterMinFrames) {
+  const FaceModel& m = testing::default_model();
+  FaceData d = make_face_data(m);
+  reset_face_data(m, d);
+  const std::vector<double> c(m.spec.commanded.size(), 0.0);
+  FaceInput in;
+  in.contractions = c;
+  const SteadyStateResult r = run_to_steady_state(m, d, in, SteadyStateOptions{});
+  EXPECT_TRUE(r.converged);
+  EXPECT_EQ(r.frames, SteadyStateOptions{}.min_frames);
+}
+
+TEST(SteadyState, RefusesAnEmptyWindow) {
+  const FaceModel& m = testing::default_model();
+  FaceData d = make_face_data(m);
+  SteadyStateOptions o;
+  o.window = 0;
+  EXPECT_THROW(run_to_steady_state(m, d, FaceInput{}, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace facectl::face
