@@ -175,6 +175,7 @@ std::vector<double> cavity_darkening(const Points& v, const std::vector<Tri>& tr
     }
     mean /= b - a;
     e2 /= b - a;
+    if (!(e2 > 0)) continue;  // all neighbours on the vertex: no curvature to shade
     const double curvature = 2 * (mean - v.get(i)).dot(n.get(i)) / e2;  // 1/m, + in valleys
     out[i] = 1 - std::clamp(kCavityDepth * curvature, 0.0, 0.4);
   }

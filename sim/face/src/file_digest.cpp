@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <string_view>
 
 #include "facectl/face/input_error.hpp"
 
@@ -18,12 +19,13 @@ std::string sha256_file_hex(const std::string& path) {
     throw InputError(path + ": cannot start a SHA-256 digest");
   unsigned char buf[1 << 16];
   std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) EVP_DigestUpdate(ctx.get(), buf, n);
+  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0)
+    if (EVP_DigestUpdate(ctx.get(), buf, n) != 1) throw InputError(path + ": SHA-256 failed");
   if (std::ferror(f.get())) throw InputError(path + ": read failed");
   unsigned char md[EVP_MAX_MD_SIZE];
   unsigned int len = 0;
-  EVP_DigestFinal_ex(ctx.get(), md, &len);
-  static const char* hex = "0123456789abcdef";
+  if (EVP_DigestFinal_ex(ctx.get(), md, &len) != 1) throw InputError(path + ": SHA-256 failed");
+  constexpr std::string_view hex = "0123456789abcdef";
   std::string out;
   for (unsigned int i = 0; i < len; ++i) {
     out += hex[md[i] >> 4];

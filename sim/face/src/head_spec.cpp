@@ -251,7 +251,6 @@ HeadSpec load_head_spec(const std::string& dir) {
   }
 
   Doc hd = load(dir + "/head.yaml");
-  h.files.push_back("head.yaml");
   YAML::Node head = need(hd, hd.root, "head");
   for (const auto& e : need(hd, head, "muscles"))
     h.commanded.push_back(as<std::string>(hd, need(hd, e, "name"), "name", "a muscle name"));

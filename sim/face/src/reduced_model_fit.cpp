@@ -8,6 +8,7 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -61,7 +62,8 @@ std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
   return out;
 }
 
-std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigned seed) {
+std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigned seed,
+                                            bool single_muscle_sweeps) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   // Each jaw DOF at its lower or upper limit 15% of the time each, so the envelope's faces
@@ -89,7 +91,7 @@ std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigne
     out.push_back(std::move(s));
   }
   // Each muscle alone over its range, half of them with the jaw at rest.
-  for (std::size_t i = 0; i < M; ++i)
+  for (std::size_t i = 0; i < (single_muscle_sweeps ? M : 0); ++i)
     for (double c : {0.25, 0.5, 0.75, 1.0}) {
       ReducedSample s;
       s.contractions.assign(M, 0.0);
@@ -148,7 +150,7 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   auto response = [&](const ReducedSample& s) {
     SteadyStateResult settled;
     std::vector<double> y = full_model_response(full, d, cps, s, o.steady, &settled);
-    counts.unsettled_runs += !settled.converged;
+    counts.unsettled_runs += settled.converged ? 0 : 1;
     counts.worst_residual_mm = std::max(counts.worst_residual_mm, settled.residual_mm);
     return y;
   };
@@ -190,7 +192,7 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
     }
   };
   Eigen::MatrixXd Xtr, Ytr, Xte, Yte;
-  collect(training_samples(full.spec, o.train_samples, o.seed), Xtr, Ytr);
+  collect(training_samples(full.spec, o.train_samples, o.seed, true), Xtr, Ytr);
   r.coefficients.setZero(3 * P, F);
   for (int p = 0; p < P; ++p) {
     // Ridge-regularised normal equations on this point's columns, solved by LDLT.
@@ -211,7 +213,8 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
     report->train_rms_mm =
         1e3 * std::sqrt(Etr.squaredNorm() / (static_cast<double>(Etr.rows() * Etr.cols()) / 3.0));
     if (o.test_samples > 0) {
-      collect(training_samples(full.spec, o.test_samples, o.seed + 7919), Xte, Yte);
+      // Mixes only: the single-muscle sweeps would repeat training inputs.
+      collect(training_samples(full.spec, o.test_samples, o.seed + 7919, false), Xte, Yte);
       report->test_samples = static_cast<int>(Xte.rows());
       const Eigen::MatrixXd E = Xte * r.coefficients.transpose() - Yte;
       double sum = 0, worst = 0;
@@ -238,6 +241,15 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
 }
 
 void save_reduced_model(const ReducedFaceModel& m, const std::string& path) {
+  // The format separates tokens by spaces: a name with one could not be read back.
+  auto check = [&](const std::string& name) {
+    if (name.empty() || name.find_first_of(" \t\r\n") != std::string::npos)
+      throw InputError(path + ": cannot write the name '" + name +
+                       "': names in the reduced model may not be empty or hold whitespace");
+  };
+  for (const auto& [file, digest] : m.fitted_to) check(file);
+  for (const auto& n : m.muscles) check(n);
+  for (const auto& n : m.control_points) check(n);
   std::ofstream out(path);
   if (!out) throw InputError(path + ": cannot open file for writing");
   out << "facectl-reduced-face 2\n";
@@ -277,10 +289,11 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
     std::string tag;
     int v = 0;
     if (!(s >> tag) || tag != "facectl-reduced-face")
-      throw InputError(path, ln, 0, "expected 'facectl-reduced-face 2', found '" + line + "'");
+      throw InputError(path, ln, 0,
+                       "expected 'facectl-reduced-face 2', found '" + line.substr(0, 80) + "'");
     if (!(s >> v) || v != 2)
       throw InputError(path, ln, 0,
-                       "expected format 2, found '" + line +
+                       "expected format 2, found '" + line.substr(0, 80) +
                            "': an older model has another form and no record of its head" +
                            kRebuild);
   }
@@ -340,15 +353,31 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
         std::string("expected the muscles of head.yaml in order, found a different list") +
             kRebuild);
   names("control_points", m.control_points);
+  if (m.control_points != head.control_points)
+    throw InputError(path, ln, 0,
+                     std::string("expected the control points of face.yaml in order, found a "
+                                 "different list") +
+                         kRebuild);
   {
     auto [s, n] = counted("features", 3, "factor triples");
     const int last = constant_variable(m.muscles.size());
+    // Distinct ascending triples over the last + 1 variables: C(last + 3, 3).
+    const std::size_t v = static_cast<std::size_t>(last) + 1;
+    const std::size_t most = v * (v + 1) * (v + 2) / 6;
+    if (n > most)
+      throw InputError(path, ln, 0,
+                       "'features " + std::to_string(n) + "': expected at most " +
+                           std::to_string(most) + ", the distinct products of up to three of " +
+                           std::to_string(v - 1) + " variables");
     m.features.resize(n);
+    std::set<std::array<int, 3>> seen;
     for (auto& t : m.features)
-      if (!(s >> t[0] >> t[1] >> t[2]) || t[0] < 0 || t[2] > last || t[0] > t[1] || t[1] > t[2])
+      if (!(s >> t[0] >> t[1] >> t[2]) || t[0] < 0 || t[2] > last || t[0] > t[1] || t[1] > t[2] ||
+          !seen.insert(t).second)
         throw InputError(path, ln, 0,
                          "expected " + std::to_string(n) +
-                             " ascending factor triples of variables 0.." + std::to_string(last));
+                             " distinct ascending factor triples of variables 0.." +
+                             std::to_string(last));
   }
   auto s = next("'coefficients ROWS COLS'");
   std::string tag;

@@ -93,7 +93,7 @@ std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceMod
       const ReducedSample& s = set.samples[k];
       SteadyStateResult settled;
       const std::vector<double> truth = full_model_response(full, d, cps, s, steady, &settled);
-      e.unsettled += !settled.converged;
+      e.unsettled += settled.converged ? 0 : 1;
       evaluate(reduced, w, s.contractions, s.jaw.pitch_rad, s.jaw.yaw_rad, s.jaw.protrusion_m,
                predicted);
       for (std::size_t p = 0; p < cps.size(); ++p) {
@@ -123,16 +123,20 @@ std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceMod
 }
 
 std::string set_errors_json(const std::vector<SetError>& errors) {
+  auto number = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4f", v);
+    return std::string(buf);
+  };
   std::string s = "{";
-  char buf[256];
   for (std::size_t k = 0; k < errors.size(); ++k) {
     const SetError& e = errors[k];
-    std::snprintf(buf, sizeof buf,
-                  "%s\n  \"%s\": {\"samples\": %d, \"rms_mm\": %.4f, \"p99_mm\": %.4f, "
-                  "\"max_mm\": %.4f, \"worst\": \"%s\", \"unsettled\": %d}",
-                  k ? "," : "", e.name.c_str(), e.samples, e.rms_mm, e.p99_mm, e.max_mm,
-                  e.worst.c_str(), e.unsettled);
-    s += buf;
+    // Names and `worst` are landmark names and digits: nothing to escape.
+    s += std::string(k ? "," : "") + "\n  \"" + e.name +
+         "\": {\"samples\": " + std::to_string(e.samples) +
+         ", \"unsettled\": " + std::to_string(e.unsettled) + ", \"rms_mm\": " + number(e.rms_mm) +
+         ", \"p99_mm\": " + number(e.p99_mm) + ", \"max_mm\": " + number(e.max_mm) +
+         ", \"worst\": \"" + e.worst + "\"}";
   }
   return s + "\n}\n";
 }

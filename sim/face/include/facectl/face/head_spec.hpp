@@ -46,7 +46,10 @@ struct SkinStiffness {
 
 struct HeadSpec {
   std::string dir;
-  std::vector<std::string> files;  // every file read, relative to dir, in reading order
+  // The face's own files, relative to dir, in reading order: face.yaml, the skin, landmarks,
+  // muscles. head.yaml (the control core's) is not among them; only its muscle order
+  // shapes the face model.
+  std::vector<std::string> files;
   std::string skin_file;
   double skin_scale = 0.01;
   std::vector<std::pair<std::string, std::vector<int>>> openings;

@@ -38,9 +38,11 @@ struct ReducedSample {
   MandiblePose jaw;
   double eyelid_closure[2] = {0, 0};  // left, right; the reduced model does not take them
 };
-// The fit's inputs: mixes from sparse to dense with c ~ U(0, 1), the jaw over its envelope
-// with its limits weighted, then each muscle alone at 0.25, 0.5, 0.75 and 1 (n + 4·muscles).
-std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigned seed);
+// The fit's inputs: n mixes from sparse to dense with c ~ U(0, 1), the jaw over its envelope
+// with its limits weighted, then (single_muscle_sweeps) each muscle alone at 0.25, 0.5,
+// 0.75 and 1.
+std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigned seed,
+                                           bool single_muscle_sweeps);
 std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOptions& o, int n,
                                           unsigned seed);
 // Full-model steady-state control-point displacements (m) for one sample, run from rest
