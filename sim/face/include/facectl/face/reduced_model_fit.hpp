@@ -42,7 +42,7 @@ struct ReducedSample {
 // with its limits weighted, then (single_muscle_sweeps) each muscle alone at 0.25, 0.5,
 // 0.75 and 1.
 std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigned seed,
-                                           bool single_muscle_sweeps);
+                                            bool single_muscle_sweeps);
 std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOptions& o, int n,
                                           unsigned seed);
 // Full-model steady-state control-point displacements (m) for one sample, run from rest

@@ -33,7 +33,7 @@ struct SetError {
   int samples = 0;
   double rms_mm = 0, p99_mm = 0, max_mm = 0;  // of the per-point 3-D errors
   std::string worst;                          // "point in sample k" of the maximum
-  int unsettled = 0;  // full-model runs that did not reach the steady state
+  int unsettled = 0;                          // full-model runs that did not reach the steady state
 };
 
 // The reduced model against the full model's steady state on each set; each set
