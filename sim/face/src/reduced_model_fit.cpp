@@ -330,7 +330,10 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
                          "expected " + std::to_string(n) + " pairs of a file and its SHA-256");
     // Refused when the head's files are not the ones it was fitted to, naming the first.
     const auto now = head_file_digests(head);
-    for (const auto& [file, digest] : now) {
+    for (const auto& entry : now) {
+      // References, not a structured binding: clang 14 cannot capture one in a lambda.
+      const std::string& file = entry[0];
+      const std::string& digest = entry[1];
       const auto it = std::find_if(m.fitted_to.begin(), m.fitted_to.end(),
                                    [&](const auto& r) { return r[0] == file; });
       if (it == m.fitted_to.end())
