@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
 # `facectl face check-reduced`: the six named sets in its table and its JSON, exit 1 over a
 # target, and exit 2 naming the file when the head changed since the model was fitted.
-# Usage: face_check_reduced_test.sh FACECTL SOURCE_DIR RMS_BOUND_MM P99_BOUND_MM
+# Usage: face_check_reduced_test.sh FACECTL SOURCE_DIR RMS_BOUND_MM P99_BOUND_MM SAMPLES FRAMES
 set -euo pipefail
-facectl=$1 src=$2 rms=$3 p99=$4
+facectl=$1 src=$2 rms=$3 p99=$4 samples=$5 frames=$6
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 # A regression bound on the shipped model (its measured errors are in docs/FACE_MODEL.md),
-# on few inputs capped at 600 frames so that the sanitizer trees can afford it.
-"$facectl" face check-reduced --samples 10 --frames 600 --json "$tmp/errors.json" --rms-mm "$rms" \
+# on few inputs with capped frames so that the sanitizer trees can afford it.
+"$facectl" face check-reduced --samples "$samples" --frames "$frames" --json "$tmp/errors.json" --rms-mm "$rms" \
   --p99-mm "$p99" > "$tmp/table.txt"
 python3 - "$tmp/errors.json" <<'PY'
 import json, math, sys
