@@ -421,7 +421,6 @@ FaceData make_face_data(const FaceModel& m) {
   FaceData d;
   const std::size_t ns = m.skin.v.size();
   d.anchor_targets.resize(ns);
-  d.anchor_normals.resize(ns);
   reset_face_data(m, d);
   d.grad.resize(std::max(ns, m.muscle_rest.size()));
   std::size_t max_line = 0, max_grid = 0;

@@ -51,7 +51,6 @@ inline void anchor_target(const FaceModel& m, FaceData& d, const Points& src, in
   if (!ok) {  // rare: SurfacePoint's fallbacks
     const Mat3 F = Bone ? sp.frame(src) : sp.smooth_frame(src, vn);
     d.anchor_targets.set(i, o + F * m.anchor_local.get(i));
-    d.anchor_normals.set(i, F.col(2));
     return;
   }
   // Columns (ê, n̂ × ê, n̂).
@@ -60,7 +59,6 @@ inline void anchor_target(const FaceModel& m, FaceData& d, const Points& src, in
   d.anchor_targets.x[i] = o.x() + (ex * lx + bx * ly + nx * lz);
   d.anchor_targets.y[i] = o.y() + (ey * lx + by * ly + ny * lz);
   d.anchor_targets.z[i] = o.z() + (ez * lx + bz * ly + nz * lz);
-  d.anchor_normals.x[i] = nx, d.anchor_normals.y[i] = ny, d.anchor_normals.z[i] = nz;
 }
 
 }  // namespace

@@ -94,7 +94,7 @@ struct FaceData {
   Points skin_x, skin_prev, skin_p;
   Points skull;
   Points muscles, muscle_normals;
-  Points anchor_targets, anchor_normals, lid_targets;
+  Points anchor_targets, lid_targets;
   Points grad;  // volume-gradient scratch, sized to the largest particle array
   MuscleScratch scratch;
   std::vector<double> contraction;  // per model muscle
