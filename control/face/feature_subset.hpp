@@ -1,7 +1,7 @@
 // Some columns of the reduced face model's features, worked out without the rest. A
 // caller that needs only a few combinations of the outputs uses only the columns they
 // weigh, since each control point was fitted only on the muscles that move it (the
-// default rig's two lip-corner rows weigh a fraction of the head's features).
+// default rig's eight point-following servos weigh a fraction of the head's features).
 #pragma once
 
 #include <Eigen/Core>

@@ -14,7 +14,7 @@ namespace facectl {
 // row of feature coefficients per actuator that reads points, the sum over its
 // point terms of gain · (axis · the point's x, y, z coefficient rows). The tick
 // then takes one short dot product per such actuator instead of evaluating the
-// displacement of every control point the head has (the default rig reads 2 of
+// displacement of every control point the head has (the default rig reads 8 of
 // its head's 19 points), over the few features those rows weigh.
 struct PointProjection {
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

@@ -25,6 +25,8 @@ namespace facectl {
 // λ picks, among faces that reproduce the positions, the one nearest neutral.
 // With a mandible mechanism the jaw pose is its forward kinematics of the
 // strut positions instead. Signals no actuator observes stay neutral.
+// Solved by projected Levenberg–Marquardt from neutral, and once more from the
+// middle of the box when that leaves a misfit (a local minimum at a bound).
 struct MappingInverse {
   static constexpr int kMaxIterations = 50;
 
@@ -51,11 +53,11 @@ struct MappingInverseWorkspace {
   using Residual = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, A, 1>;
 
   MappingWorkspace mapping;
-  std::array<double, kMaxFaceSignals> face{}, trial{};
+  std::array<double, kMaxFaceSignals> face{}, trial{}, best{};
   std::array<double, kMaxActuators> target{};   // effector values the positions need
   std::array<int, kMaxFaceSignals> variable{};  // signal index of each free variable
   Matrix jacobian;
-  Normal normal;
+  Normal normal, damped;  // JᵀJ + λI, and with the Levenberg–Marquardt damping added
   Vector gradient, step;
   Residual residual, residual_trial;
 };

@@ -79,11 +79,11 @@ TEST_P(MappingInverseTest, ReproducesThePositionsOfRandomFaces) {
     for (std::size_t a = 0; a < m.actuators.size(); ++a) {
       const double error = std::fabs(again[a] - p[a]) / span(m.actuators[a]);
       worst = std::max(worst, error);
-      // Below a servo's resolution (one step of a 4096-step turn is 2.4e-4 of a 360°
-      // range). With the reduced face model refitted over [0, 1] (cubic jaw terms), the
-      // regularised Gauss–Newton stops in 1 face of these 100 at 4.3e-4 of the range
-      // (0.04°) from a lip-corner position; 200 iterations instead of 50 do not move it.
-      EXPECT_LT(error, 1e-3) << "sample " << sample << ", " << m.actuators[a].name;
+      // Well below a servo's resolution (one step of a 4096-step turn is 2.4e-4 of a
+      // 360° range). With eight servos following brow, cheek and lip points, a single
+      // descent from neutral stopped in a local minimum in 5 of these 100 faces (up to
+      // 8% of a range); the second start from the box's middle brings the worst to 1e-5.
+      EXPECT_LT(error, 1e-4) << "sample " << sample << ", " << m.actuators[a].name;
     }
   }
   RecordProperty("worst_relative_error", std::to_string(worst));
