@@ -15,6 +15,7 @@
 #include "facectl/face/reduced_model_fit.hpp"
 #include "facectl/face/reduced_test_sets.hpp"
 #include "firmware-host/config/config_location.hpp"
+#include "fit_head_command.hpp"
 
 namespace {
 
@@ -148,6 +149,7 @@ void register_face_commands(CLI::App& app) {
   CLI::App* face =
       app.add_subcommand("face", "the anatomical face model: pictures, OBJ, reduced model");
   face->require_subcommand(1);
+  add_fit_head_command(face);
   static FaceArgs args;  // CLI11 binds options to storage that must outlive parsing
 
   static FaceArgs picture_args{.resolution = kLargestVariant};

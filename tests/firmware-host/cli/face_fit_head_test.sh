@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# `facectl face fit-head`: a test head (tests/data/heads/) becomes a head folder that
+# `face render --head` accepts, with a JSON report and a picture; unusable meshes exit 2
+# naming the file and what is wrong.
+# Usage: face_fit_head_test.sh FACECTL SOURCE_DIR FRAMES
+set -euo pipefail
+facectl=$1 src=$2 frames=$3
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+"$facectl" face fit-head --obj "$src/tests/data/heads/broad_short/skin.obj" --units mm \
+  --out "$tmp/head" --report "$tmp/report.json" --picture "$tmp/landmarks.png" > "$tmp/out.txt"
+for f in skin.obj face.yaml landmarks.yaml muscles.yaml head.yaml NOTICE.md; do
+  [ -s "$tmp/head/$f" ] || { echo "missing $f"; ls "$tmp/head"; exit 1; }
+done
+[ ! -e "$tmp/head/reduced_face.txt" ] || { echo "reduced_face.txt should not be written"; exit 1; }
+grep -q "face reduce --head $tmp/head" "$tmp/out.txt" || { cat "$tmp/out.txt"; exit 1; }
+python3 - "$tmp/report.json" "$tmp/landmarks.png" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["problems"] == [], r["problems"]
+names = [l["name"] for l in r["landmarks"]]
+assert "fdp_2_13" in names and "fdp_8_3" in names, names
+assert all(l["snap_mm"] >= 0 for l in r["landmarks"])
+assert open(sys.argv[2], "rb").read(8) == b"\x89PNG\r\n\x1a\n"
+PY
+"$facectl" face render --head "$tmp/head" --expression joy --resolution 0 --frames "$frames" \
+  --out "$tmp/joy.png" > /dev/null
+
+expect_2() {  # expect_2 NAME PATTERN ARGS...: exit 2 and PATTERN on stderr
+  local name=$1 pattern=$2 status=0
+  shift 2
+  "$facectl" face fit-head --out "$tmp/bad" "$@" > "$tmp/$name.out" 2> "$tmp/$name.err" || status=$?
+  [ "$status" = 2 ] || { echo "$name: expected exit 2, got $status"; cat "$tmp/$name.err"; exit 1; }
+  grep -q -- "$pattern" "$tmp/$name.err" || { echo "$name:"; cat "$tmp/$name.err"; exit 1; }
+}
+expect_2 missing "$tmp/nope.obj: cannot open file" --obj "$tmp/nope.obj"
+sed '5s/^v .*/v 1.0 nan 2.0/' "$src/tests/data/heads/long_wide_jaw/skin.obj" > "$tmp/nan.obj"
+expect_2 nonfinite "$tmp/nan.obj:5: expected a finite number, found 'nan'" --obj "$tmp/nan.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n' > "$tmp/tiny.obj"
+expect_2 tiny "$tmp/tiny.obj: expected a face mesh of at least 100 vertices, found 4" --obj "$tmp/tiny.obj"
+echo "fit-head: folder, report, picture, render and refusals as expected"
