@@ -1,5 +1,6 @@
 #include "facectl/face/head_writer.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -25,7 +26,9 @@ std::string mm(double metres) {
 
 std::string vec_mm(const Vec3& v) {
   char buf[96];
-  std::snprintf(buf, sizeof buf, "[%.2f, %.2f, %.2f]", v.x() * 1e3, v.y() * 1e3, v.z() * 1e3);
+  // Values that round to zero print as 0.00, not -0.00.
+  auto c = [](double m) { return std::abs(m * 1e3) < 0.005 ? 0.0 : m * 1e3; };
+  std::snprintf(buf, sizeof buf, "[%.2f, %.2f, %.2f]", c(v.x()), c(v.y()), c(v.z()));
   return buf;
 }
 

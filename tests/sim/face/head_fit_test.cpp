@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 
@@ -116,6 +117,30 @@ TEST_P(HeadFitOnTestHead, WrittenFolderBuildsAndMovesAsExpected) {
 INSTANTIATE_TEST_SUITE_P(TestHeads, HeadFitOnTestHead, ::testing::Values(0, 1), [](const auto& p) {
   return testing::test_head_warps()[static_cast<std::size_t>(p.param)].name;
 });
+
+// The default skin onto itself (closed over the mouth and eyes, so the openings are
+// joined along edges): every landmark and opening comes back, muscle corners stay put.
+TEST(HeadFit, DefaultOntoItselfIsTheIdentity) {
+  const HeadFit f = fit_head(default_spec(), source_skin(), source_skin(), HeadFitOptions{});
+  EXPECT_TRUE(f.problems.empty());
+  for (std::size_t i = 0; i < default_spec().landmarks.size(); ++i) {
+    EXPECT_EQ(f.spec.landmarks[i].vertices, default_spec().landmarks[i].vertices)
+        << default_spec().landmarks[i].name;
+    EXPECT_LT((f.spec.landmarks[i].offset - default_spec().landmarks[i].offset).norm(), 1e-6);
+  }
+  for (std::size_t i = 0; i < default_spec().openings.size(); ++i) {
+    auto a = f.spec.openings[i].second, b = default_spec().openings[i].second;
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b) << default_spec().openings[i].first;
+  }
+  for (std::size_t m = 0; m < default_spec().muscles.size(); ++m)
+    for (std::size_t k = 0; k < 2 && k < default_spec().muscles[m].origin.size(); ++k)
+      EXPECT_LT(
+          (f.spec.muscles[m].origin[k].offset - default_spec().muscles[m].origin[k].offset).norm(),
+          1e-6);
+  EXPECT_NEAR(f.size_ratio, 1.0, 1e-12);
+}
 
 TEST(HeadFitInput, RefusesMeshesThatCannotBeAFace) {
   TriMesh few;
