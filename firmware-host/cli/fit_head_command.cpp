@@ -80,10 +80,11 @@ int run(const FitHeadArgs& a) {
   const HeadFit f = fit_head(source, source_skin, target, HeadFitOptions{});
 
   std::printf(
-      "fit %s (%zu vertices, %zu triangles) to %s: %d iterations, last move %.3f mm, "
+      "fit %s (%zu vertices, %zu triangles) to %s: %d iterations, %d refinement pairs, last move "
+      "%.3f mm, "
       "size ratio %.3f\n",
       a.obj.c_str(), target.v.size(), target.tris.size(), a.from.c_str(), f.iterations,
-      f.last_change_mm, f.size_ratio);
+      f.refined_pairs, f.last_change_mm, f.size_ratio);
   for (const std::string& n : f.opening_notes) std::printf("opening %s\n", n.c_str());
   std::printf("%-10s %5s %7s %10s %8s\n", "landmark", "bone", "vertex", "initial_mm", "snap_mm");
   for (const PlacedLandmark& l : f.landmarks)

@@ -328,13 +328,31 @@ HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMe
       for (std::size_t i = 0; i < h.source.size(); ++i) to[corr_index[h.source[i]]] = on_rim[i];
     }
     double change = 0;
-    for (std::size_t k = 0; k < corr.size(); ++k)
+    for (std::size_t k = 0; k < prev.size(); ++k)
       change = std::max(change, (to[k] - prev[k]).norm());
     fit.morph = fit_rbf(from, to);
     prev = to;
     fit.iterations = it + 1;
     fit.last_change_mm = change * 1e3;
-    if (it > 0 && fit.last_change_mm < o.converged_mm) break;
+    // Refinement (thesis ch. 6): the source vertices the morph leaves farthest from the
+    // target surface become correspondences too.
+    std::vector<std::pair<double, int>> gap;
+    for (int v = 0; v < static_cast<int>(S.size()); ++v) {
+      if (corr_index.count(v) || near_rim(v)) continue;
+      const Vec3 p = fit.morph.apply(S.get(v));
+      const double d = (closest_on_mesh(target, p) - p).norm();
+      if (d * 1e3 > o.refine_above_mm) gap.push_back({d, v});
+    }
+    std::sort(gap.rbegin(), gap.rend());
+    gap.resize(std::min<std::size_t>(gap.size(), static_cast<std::size_t>(o.worst_pairs)));
+    for (const auto& g : gap) {
+      corr_index[g.second] = corr.size();
+      corr.push_back(g.second);
+      from.push_back(S.get(g.second));
+      to.push_back(Vec3::Zero());
+    }
+    fit.refined_pairs += static_cast<int>(gap.size());
+    if (it > 0 && gap.empty() && fit.last_change_mm < o.converged_mm) break;
   }
   const RbfMorph& G = fit.morph;
 

@@ -23,6 +23,10 @@ struct HeadFitOptions {
   // Source points closer than this to the rim of an opening the target has as a hole ride
   // with the rim (through G) instead of being projected (metres, source head).
   double rim_reach = 0.012;
+  // Refinement: each round adds up to this many source vertices that G leaves farther than
+  // refine_above_mm from the target surface.
+  int worst_pairs = 25;
+  double refine_above_mm = 0.5;
   // A skin landmark whose fitted point is farther than this many median target edge
   // lengths from the vertex it snapped to is reported as not placed.
   double max_snap_edges = 2.0;
@@ -41,6 +45,7 @@ struct PlacedLandmark {
 struct HeadFit {
   RbfMorph morph;  // source rest positions → target, metres
   int iterations = 0;
+  int refined_pairs = 0;  // correspondences the refinement added
   double last_change_mm = 0;
   double size_ratio = 1;  // target / source face size (√ of width ratio × height ratio)
   std::vector<PlacedLandmark> landmarks;
