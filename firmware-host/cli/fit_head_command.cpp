@@ -25,9 +25,27 @@ double units_scale(const std::string& u) {
   return u == "m" ? 1.0 : u == "mm" ? 1e-3 : 1e-2;
 }
 
+// A JSON string literal: quotes, backslashes and control characters escaped.
+std::string quoted(const std::string& text) {
+  std::string q = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      q += '\\';
+      q += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
+      q += buf;
+    } else {
+      q += c;
+    }
+  }
+  return q + "\"";
+}
+
 std::string json_report(const HeadFit& f, const FitHeadArgs& a) {
   std::string s =
-      "{\n  \"obj\": \"" + a.obj + "\",\n  \"iterations\": " + std::to_string(f.iterations) +
+      "{\n  \"obj\": " + quoted(a.obj) + ",\n  \"iterations\": " + std::to_string(f.iterations) +
       ",\n  \"size_ratio\": " + std::to_string(f.size_ratio) + ",\n  \"landmarks\": [\n";
   for (std::size_t i = 0; i < f.landmarks.size(); ++i) {
     const PlacedLandmark& l = f.landmarks[i];
@@ -40,8 +58,7 @@ std::string json_report(const HeadFit& f, const FitHeadArgs& a) {
     s += buf;
   }
   s += "  ],\n  \"problems\": [";
-  for (std::size_t i = 0; i < f.problems.size(); ++i)
-    s += (i ? ", \"" : "\"") + f.problems[i] + "\"";
+  for (std::size_t i = 0; i < f.problems.size(); ++i) s += (i ? ", " : "") + quoted(f.problems[i]);
   return s + "]\n}\n";
 }
 

@@ -140,7 +140,9 @@ std::vector<double> arc_shares(const Points& v, const std::vector<int>& loop) {
   std::vector<double> s(loop.size() + 1, 0.0);
   for (std::size_t i = 0; i < loop.size(); ++i)
     s[i + 1] = s[i] + (v.get(loop[(i + 1) % loop.size()]) - v.get(loop[i])).norm();
-  for (double& x : s) x /= s.back();
+  const double total = s.back();
+  for (std::size_t i = 0; i < s.size(); ++i)  // a loop of coincident points: evenly spaced
+    s[i] = total > 0 ? s[i] / total : static_cast<double>(i) / static_cast<double>(loop.size());
   return s;
 }
 
