@@ -63,9 +63,7 @@ std::string json_report(const HeadFit& f, const FitHeadArgs& a) {
 }
 
 // The new head from the front, neutral, with every landmark marked and labelled.
-void write_picture(const std::string& path, const std::string& dir) {
-  const HeadSpec spec = load_head_spec(dir);
-  const FaceModel m = build_face_model(spec);
+void write_picture(const std::string& path, const FaceModel& m) {
   const FaceData d = make_face_data(m);
   const RenderOptions ro{View::kFront, 720, 900, false, Lighting::kFrontal};
   Image img = render_face(m, d, ro);
@@ -126,8 +124,26 @@ int run(const FitHeadArgs& a) {
       std::fprintf(stderr, "facectl face fit-head: %s: %s\n", a.obj.c_str(), p.c_str());
     return 2;
   }
+  // The folder must build as it will for render and reduce (e.g. an eye contour that
+  // encloses vertices of a closed mesh leaves no eye opening).
+  FaceModel m;
+  try {
+    m = build_face_model(load_head_spec(a.out));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "facectl face fit-head: %s: the written head does not build: %s\n",
+                 a.out.c_str(), e.what());
+    for (const std::string& n : f.opening_notes)
+      if (n.find("joined along edges") != std::string::npos)
+        std::fprintf(stderr,
+                     "facectl face fit-head: %s: opening %s; the model opens it only when no "
+                     "vertex lies inside the contour: cut the mouth and eye holes in the mesh\n",
+                     a.obj.c_str(), n.c_str());
+    return 2;
+  }
+  std::printf("%s builds: %zu skin vertices, %zu muscles\n", a.out.c_str(), m.skin.v.size(),
+              m.muscles.size());
   if (!a.picture.empty()) {
-    write_picture(a.picture, a.out);
+    write_picture(a.picture, m);
     std::printf("wrote %s (landmarks: red on the skin, blue bone points)\n", a.picture.c_str());
   }
   return 0;

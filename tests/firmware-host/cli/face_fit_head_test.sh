@@ -39,4 +39,28 @@ sed '5s/^v .*/v 1.0 nan 2.0/' "$src/tests/data/heads/long_wide_jaw/skin.obj" > "
 expect_2 nonfinite "$tmp/nan.obj:5: expected a finite number, found 'nan'" --obj "$tmp/nan.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n' > "$tmp/tiny.obj"
 expect_2 tiny "$tmp/tiny.obj: expected a face mesh of at least 100 vertices, found 4" --obj "$tmp/tiny.obj"
+# Closed over the eyes with a vertex inside each eye contour: no eye opening can be cut.
+python3 - "$src/config/heads/default/skin.obj" "$tmp/closed.obj" <<'PY'
+import sys
+eye = {263, 249, 390, 373, 374, 380, 381, 382, 362, 466, 388, 387, 386, 385, 384, 398,
+       33, 7, 163, 144, 145, 153, 154, 155, 133, 246, 161, 160, 159, 158, 157, 173}
+v, f = [], []
+for line in open(sys.argv[1]):
+    p = line.split()
+    if p and p[0] == "v": v.append([float(x) for x in p[1:4]])
+    if p and p[0] == "f": f.append([int(x.split("/")[0]) - 1 for x in p[1:]])
+out = []
+for t in f:
+    if all(i in eye for i in t):  # split at the centroid: a vertex inside the contour
+        v.append([sum(v[i][k] for i in t) / 3 for k in range(3)])
+        c = len(v) - 1
+        out += [[t[0], t[1], c], [t[1], t[2], c], [t[2], t[0], c]]
+    else:
+        out.append(t)
+with open(sys.argv[2], "w") as o:
+    o.writelines("v %.6f %.6f %.6f\n" % tuple(p) for p in v)
+    o.writelines("f %d %d %d\n" % tuple(i + 1 for i in t) for t in out)
+PY
+expect_2 closed "does not build: .*no eye opening contains landmark fdp_3_1" --obj "$tmp/closed.obj"
+grep -q "cut the mouth and eye holes in the mesh" "$tmp/closed.err" || { cat "$tmp/closed.err"; exit 1; }
 echo "fit-head: folder, report, picture, render and refusals as expected"
