@@ -9,6 +9,7 @@
 #include "facectl/face/expression_sheet.hpp"
 #include "facectl/face/face_renderer.hpp"
 #include "facectl/face/obj_io.hpp"
+#include "fit_head_command.hpp"
 #include "reduce_command.hpp"
 
 namespace {
@@ -68,6 +69,7 @@ void register_face_commands(CLI::App& app) {
   CLI::App* face =
       app.add_subcommand("face", "the anatomical face model: pictures, OBJ, reduced model");
   face->require_subcommand(1);
+  add_fit_head_command(face);
   // CLI11 binds options to storage that must outlive parsing.
   static FaceArgs args = default_face_args();
   static FaceArgs picture_args = [] {

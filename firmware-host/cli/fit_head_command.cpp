@@ -1,0 +1,178 @@
+#include "fit_head_command.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "facectl/face/bitmap_font.hpp"
+#include "facectl/face/face_renderer.hpp"
+#include "facectl/face/head_fit.hpp"
+#include "facectl/face/head_writer.hpp"
+#include "facectl/face/input_error.hpp"
+#include "facectl/face/obj_io.hpp"
+#include "firmware-host/config/config_location.hpp"
+
+namespace {
+
+using namespace facectl::face;
+
+struct FitHeadArgs {
+  std::string obj, out, report, picture, units = "cm";
+  std::string from = facectl::shipped_dirs().config + "/heads/default";
+};
+
+double units_scale(const std::string& u) {
+  return u == "m" ? 1.0 : u == "mm" ? 1e-3 : 1e-2;
+}
+
+// A JSON string literal: quotes, backslashes and control characters escaped.
+std::string quoted(const std::string& text) {
+  std::string q = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      q += '\\';
+      q += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
+      q += buf;
+    } else {
+      q += c;
+    }
+  }
+  return q + "\"";
+}
+
+std::string json_report(const HeadFit& f, const FitHeadArgs& a) {
+  std::string s =
+      "{\n  \"obj\": " + quoted(a.obj) + ",\n  \"iterations\": " + std::to_string(f.iterations) +
+      ",\n  \"size_ratio\": " + std::to_string(f.size_ratio) + ",\n  \"landmarks\": [\n";
+  for (std::size_t i = 0; i < f.landmarks.size(); ++i) {
+    const PlacedLandmark& l = f.landmarks[i];
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "    {\"name\": \"%s\", \"bone\": %s, \"vertex\": %d, \"initial_mm\": %.3f, "
+                  "\"snap_mm\": %.3f}%s\n",
+                  l.name.c_str(), l.bone ? "true" : "false", l.vertices[0], l.initial_mm, l.snap_mm,
+                  i + 1 < f.landmarks.size() ? "," : "");
+    s += buf;
+  }
+  s += "  ],\n  \"problems\": [";
+  for (std::size_t i = 0; i < f.problems.size(); ++i) s += (i ? ", " : "") + quoted(f.problems[i]);
+  return s + "]\n}\n";
+}
+
+// The new head from the front, neutral, with every landmark marked and labelled.
+void write_picture(const std::string& path, const FaceModel& m) {
+  const FaceData d = make_face_data(m);
+  const RenderOptions ro{View::kFront, 720, 900, false, Lighting::kFrontal};
+  Image img = render_face(m, d, ro);
+  for (std::size_t l = 0; l < m.landmark_names.size(); ++l) {
+    const Eigen::Vector2d p =
+        project_to_image(m, ro, landmark_position(m, d.skin_x, static_cast<int>(l)));
+    const bool bone = m.landmark_offset[l].norm() > 0;
+    const std::array<std::uint8_t, 3> c =
+        bone ? std::array<std::uint8_t, 3>{30, 60, 220} : std::array<std::uint8_t, 3>{220, 20, 20};
+    const int x = static_cast<int>(p.x()), y = static_cast<int>(p.y());
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) {
+        const int px = x + dx, py = y + dy;
+        if (px < 0 || py < 0 || px >= img.width || py >= img.height) continue;
+        for (int k = 0; k < 3; ++k) img.rgb[3 * (py * img.width + px) + k] = c[k];
+      }
+    std::string name = m.landmark_names[l];
+    if (name.starts_with("fdp_")) name = name.substr(4);
+    draw_text(img, x + 4, y - 3, name, 1, c);
+  }
+  write_png(path, img);
+}
+
+int run(const FitHeadArgs& a) {
+  const HeadSpec source = load_head_spec(a.from);
+  const TriMesh source_skin = read_obj(source.skin_file, source.skin_scale);
+  const TriMesh target = read_obj(a.obj, units_scale(a.units));
+  check_head_mesh(target, a.obj);
+  const HeadFit f = fit_head(source, source_skin, target, HeadFitOptions{});
+
+  std::printf(
+      "fit %s (%zu vertices, %zu triangles) to %s: %d iterations, %d refinement pairs, last move "
+      "%.3f mm, "
+      "size ratio %.3f\n",
+      a.obj.c_str(), target.v.size(), target.tris.size(), a.from.c_str(), f.iterations,
+      f.refined_pairs, f.last_change_mm, f.size_ratio);
+  for (const std::string& n : f.opening_notes) std::printf("opening %s\n", n.c_str());
+  std::printf("%-10s %5s %7s %10s %8s\n", "landmark", "bone", "vertex", "initial_mm", "snap_mm");
+  for (const PlacedLandmark& l : f.landmarks)
+    std::printf("%-10s %5s %7d %10.2f %8.2f\n", l.name.c_str(), l.bone ? "yes" : "", l.vertices[0],
+                l.initial_mm, l.snap_mm);
+
+  write_head_folder(
+      a.out, f.spec,
+      {a.obj, a.units, a.from,
+       "Head fitted by `facectl face fit-head --obj " + a.obj + " --from " + a.from + "`"});
+  std::printf(
+      "wrote %s (skin.obj, face.yaml, landmarks.yaml, muscles.yaml, head.yaml); "
+      "`facectl face reduce --head %s` fits its reduced model\n",
+      a.out.c_str(), a.out.c_str());
+  if (!a.report.empty()) {
+    std::ofstream r(a.report);
+    r << json_report(f, a);
+    if (!r.flush()) throw InputError(a.report + ": cannot write the report");
+  }
+  if (!f.problems.empty()) {
+    for (const std::string& p : f.problems)
+      std::fprintf(stderr, "facectl face fit-head: %s: %s\n", a.obj.c_str(), p.c_str());
+    return 2;
+  }
+  // The folder must build as it will for render and reduce (e.g. an eye contour that
+  // encloses vertices of a closed mesh leaves no eye opening).
+  FaceModel m;
+  try {
+    m = build_face_model(load_head_spec(a.out));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "facectl face fit-head: %s: the written head does not build: %s\n",
+                 a.out.c_str(), e.what());
+    for (const std::string& n : f.opening_notes)
+      if (n.find("joined along edges") != std::string::npos)
+        std::fprintf(stderr,
+                     "facectl face fit-head: %s: opening %s; the model opens it only when no "
+                     "vertex lies inside the contour: cut the mouth and eye holes in the mesh\n",
+                     a.obj.c_str(), n.c_str());
+    return 2;
+  }
+  std::printf("%s builds: %zu skin vertices, %zu muscles\n", a.out.c_str(), m.skin.v.size(),
+              m.muscles.size());
+  if (!a.picture.empty()) {
+    write_picture(a.picture, m);
+    std::printf("wrote %s (landmarks: red on the skin, blue bone points)\n", a.picture.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_fit_head_command(CLI::App* face) {
+  static FitHeadArgs a;
+  CLI::App* c = face->add_subcommand(
+      "fit-head", "place the landmarks and muscle map on a new head mesh; write a head folder");
+  c->add_option("--obj", a.obj, "the new skin: OBJ, facing +z, y up, neutral face")->required();
+  c->add_option("--out", a.out, "head folder to write")->required();
+  c->add_option("--from", a.from, "head folder whose landmarks and muscles are carried over")
+      ->capture_default_str();
+  c->add_option("--units", a.units, "the OBJ's length unit")
+      ->check(CLI::IsMember({"m", "cm", "mm"}))
+      ->capture_default_str();
+  c->add_option("--report", a.report, "also write the per-landmark report as JSON");
+  c->add_option("--picture", a.picture, "PNG of the new head with the landmarks marked");
+  c->callback([] {
+    int rc = 2;
+    try {
+      rc = run(a);
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "facectl face fit-head: %s\n", e.what());
+    } catch (const std::invalid_argument& e) {
+      std::fprintf(stderr, "facectl face fit-head: %s\n", e.what());
+    }
+    if (rc != 0) throw CLI::RuntimeError(rc);
+  });
+}

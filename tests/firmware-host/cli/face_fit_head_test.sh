@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# `facectl face fit-head`: a test head (tests/data/heads/) becomes a head folder that
+# `face render --head` accepts, with a JSON report and a picture; unusable meshes exit 2
+# naming the file and what is wrong.
+# Usage: face_fit_head_test.sh FACECTL SOURCE_DIR FRAMES
+set -euo pipefail
+facectl=$1 src=$2 frames=$3
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+"$facectl" face fit-head --obj "$src/tests/data/heads/broad_short/skin.obj" --units mm \
+  --out "$tmp/head" --report "$tmp/report.json" --picture "$tmp/landmarks.png" > "$tmp/out.txt"
+for f in skin.obj face.yaml landmarks.yaml muscles.yaml head.yaml NOTICE.md; do
+  [ -s "$tmp/head/$f" ] || { echo "missing $f"; ls "$tmp/head"; exit 1; }
+done
+[ ! -e "$tmp/head/reduced_face.txt" ] || { echo "reduced_face.txt should not be written"; exit 1; }
+grep -q "face reduce --head $tmp/head" "$tmp/out.txt" || { cat "$tmp/out.txt"; exit 1; }
+python3 - "$tmp/report.json" "$tmp/landmarks.png" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["problems"] == [], r["problems"]
+names = [l["name"] for l in r["landmarks"]]
+assert "fdp_2_13" in names and "fdp_8_3" in names, names
+assert all(l["snap_mm"] >= 0 for l in r["landmarks"])
+assert open(sys.argv[2], "rb").read(8) == b"\x89PNG\r\n\x1a\n"
+PY
+"$facectl" face render --head "$tmp/head" --expression joy --resolution 0 --frames "$frames" \
+  --out "$tmp/joy.png" > /dev/null
+
+expect_2() {  # expect_2 NAME PATTERN ARGS...: exit 2 and PATTERN on stderr
+  local name=$1 pattern=$2 status=0
+  shift 2
+  "$facectl" face fit-head --out "$tmp/bad" "$@" > "$tmp/$name.out" 2> "$tmp/$name.err" || status=$?
+  [ "$status" = 2 ] || { echo "$name: expected exit 2, got $status"; cat "$tmp/$name.err"; exit 1; }
+  grep -q -- "$pattern" "$tmp/$name.err" || { echo "$name:"; cat "$tmp/$name.err"; exit 1; }
+}
+expect_2 missing "$tmp/nope.obj: cannot open file" --obj "$tmp/nope.obj"
+sed '5s/^v .*/v 1.0 nan 2.0/' "$src/tests/data/heads/long_wide_jaw/skin.obj" > "$tmp/nan.obj"
+expect_2 nonfinite "$tmp/nan.obj:5: expected a finite number, found 'nan'" --obj "$tmp/nan.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n' > "$tmp/tiny.obj"
+expect_2 tiny "$tmp/tiny.obj: expected a face mesh of at least 100 vertices, found 4" --obj "$tmp/tiny.obj"
+# Closed over the eyes with a vertex inside each eye contour: no eye opening can be cut.
+python3 - "$src/config/heads/default/skin.obj" "$tmp/closed.obj" <<'PY'
+import sys
+eye = {263, 249, 390, 373, 374, 380, 381, 382, 362, 466, 388, 387, 386, 385, 384, 398,
+       33, 7, 163, 144, 145, 153, 154, 155, 133, 246, 161, 160, 159, 158, 157, 173}
+v, f = [], []
+for line in open(sys.argv[1]):
+    p = line.split()
+    if p and p[0] == "v": v.append([float(x) for x in p[1:4]])
+    if p and p[0] == "f": f.append([int(x.split("/")[0]) - 1 for x in p[1:]])
+out = []
+for t in f:
+    if all(i in eye for i in t):  # split at the centroid: a vertex inside the contour
+        v.append([sum(v[i][k] for i in t) / 3 for k in range(3)])
+        c = len(v) - 1
+        out += [[t[0], t[1], c], [t[1], t[2], c], [t[2], t[0], c]]
+    else:
+        out.append(t)
+with open(sys.argv[2], "w") as o:
+    o.writelines("v %.6f %.6f %.6f\n" % tuple(p) for p in v)
+    o.writelines("f %d %d %d\n" % tuple(i + 1 for i in t) for t in out)
+PY
+expect_2 closed "does not build: .*no eye opening contains landmark fdp_3_1" --obj "$tmp/closed.obj"
+grep -q "cut the mouth and eye holes in the mesh" "$tmp/closed.err" || { cat "$tmp/closed.err"; exit 1; }
+echo "fit-head: folder, report, picture, render and refusals as expected"
