@@ -14,6 +14,7 @@
 #include "facectl/face/obj_io.hpp"
 #include "facectl/face/reduced_model_fit.hpp"
 #include "facectl/face/reduced_test_sets.hpp"
+#include "firmware-host/cli/clone_command.hpp"
 #include "firmware-host/config/config_location.hpp"
 
 namespace {
@@ -148,6 +149,7 @@ void register_face_commands(CLI::App& app) {
   CLI::App* face =
       app.add_subcommand("face", "the anatomical face model: pictures, OBJ, reduced model");
   face->require_subcommand(1);
+  add_clone_command(face);
   static FaceArgs args;  // CLI11 binds options to storage that must outlive parsing
 
   static FaceArgs picture_args{.resolution = kLargestVariant};
