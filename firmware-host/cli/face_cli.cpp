@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "clone_command.hpp"
 #include "face_command_support.hpp"
 #include "facectl/face/expression_library.hpp"
 #include "facectl/face/expression_sheet.hpp"
@@ -69,6 +70,7 @@ void register_face_commands(CLI::App& app) {
   CLI::App* face =
       app.add_subcommand("face", "the anatomical face model: pictures, OBJ, reduced model");
   face->require_subcommand(1);
+  add_clone_command(face);
   add_fit_head_command(face);
   // CLI11 binds options to storage that must outlive parsing.
   static FaceArgs args = default_face_args();
