@@ -3,13 +3,13 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "facectl/face/expression_library.hpp"
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/motion_clone.hpp"
 #include "firmware-host/cli/clone_files.hpp"
+#include "firmware-host/cli/face_command_support.hpp"
 #include "firmware-host/config/config_location.hpp"
 #include "firmware-host/config/config_node.hpp"
 
@@ -17,6 +17,7 @@ namespace {
 
 using namespace facectl::face;
 using facectl::CloneReportRow;
+using facectl::face_cli::write_text_file;
 
 struct CloneArgs {
   std::string from, to, out, report;
@@ -24,12 +25,6 @@ struct CloneArgs {
   std::string visemes = facectl::shipped_dirs().config + "/fap/visemes.yaml";
   MotionCloneOptions options;
 };
-
-void write_file(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  if (!f.flush()) throw InputError(path + ": cannot write");
-}
 
 void print_row(const char* kind, const ClonedPose& c) {
   std::printf("%-10s %-16s %5d %4d %6d %8.3f %8.3f %8.2f %8.3f %8.3f %8.2f%s\n", kind,
@@ -71,13 +66,13 @@ void run_clone(const CloneArgs& a) {
   std::filesystem::create_directories(a.out);
   const std::string header = "# Cloned by `facectl face clone` from " + a.from + " onto " + a.to +
                              " (docs/FACE_MODEL.md, \"Motion cloning\").\n";
-  write_file(a.out + "/library.yaml",
-             facectl::library_yaml(expressions, to, lib.sequences,
-                                   header + "# Source: " + a.library + "\n"));
-  write_file(
+  write_text_file(a.out + "/library.yaml",
+                  facectl::library_yaml(expressions, to, lib.sequences,
+                                        header + "# Source: " + a.library + "\n"));
+  write_text_file(
       a.out + "/visemes.yaml",
       facectl::visemes_yaml(visemes, viseme_poses, to, header + "# Source: " + a.visemes + "\n"));
-  if (!a.report.empty()) write_file(a.report, facectl::clone_report_json(rows));
+  if (!a.report.empty()) write_text_file(a.report, facectl::clone_report_json(rows));
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("%zu poses, %d full-model runs of %d frames, %.1f s\n", rows.size(), runs, o.frames,
               s);
@@ -102,21 +97,5 @@ void add_clone_command(CLI::App* face) {
                 "Levenberg-Marquardt iterations per pose (0: plain copy)")
       ->capture_default_str()
       ->check(CLI::Range(0, 50));
-  c->callback([] {
-    try {
-      run_clone(args);
-    } catch (const InputError& e) {
-      std::fprintf(stderr, "facectl face clone: %s\n", e.what());
-      throw CLI::RuntimeError(2);
-    } catch (const facectl::ConfigError& e) {
-      std::fprintf(stderr, "facectl face clone: %s\n", e.what());
-      throw CLI::RuntimeError(2);
-    } catch (const std::invalid_argument& e) {
-      std::fprintf(stderr, "facectl face clone: %s\n", e.what());
-      throw CLI::RuntimeError(2);
-    } catch (const std::filesystem::filesystem_error& e) {
-      std::fprintf(stderr, "facectl face clone: %s\n", e.what());
-      throw CLI::RuntimeError(2);
-    }
-  });
+  c->callback([] { facectl::face_cli::guarded("clone", [] { run_clone(args); }); });
 }

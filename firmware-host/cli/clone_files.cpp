@@ -1,7 +1,10 @@
 #include "firmware-host/cli/clone_files.hpp"
 
+#include <yaml-cpp/yaml.h>
+
 #include <algorithm>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "control/units.hpp"
 #include "firmware-host/config/config_node.hpp"
@@ -15,6 +18,13 @@ std::string num(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.6g", std::abs(v) < 1e-12 ? 0.0 : v);
   return b;
+}
+
+// A YAML double-quoted scalar, escaped by yaml-cpp.
+std::string yaml_quoted(const std::string& text) {
+  YAML::Emitter e;
+  e << YAML::DoubleQuoted << text;
+  return e.c_str();
 }
 
 bool has(const std::vector<std::string>& keys, const std::string& k) {
@@ -48,17 +58,6 @@ std::string pose_flow(const face::Expression& e, const face::HeadSpec& head,
   std::string out;
   for (const std::string& p : parts) out += (out.empty() ? "" : ", ") + p;
   return out;
-}
-
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) out += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-  return out + "\"";
-}
-
-std::string error_json(const face::CloneError& e) {
-  return "{\"rms_mm\": " + num(e.rms_mm) + ", \"max_mm\": " + num(e.max_mm) +
-         ", \"percent\": " + num(e.percent) + "}";
 }
 
 }  // namespace
@@ -142,7 +141,7 @@ std::string visemes_yaml(const std::vector<VisemePose>& visemes,
   for (std::size_t i = 0; i < visemes.size(); ++i) {
     const VisemePose& v = visemes[i];
     std::string line = "  " + v.pose.name + ": { index: " + std::to_string(v.index);
-    if (!v.phonemes.empty()) line += ", phonemes: " + quoted(v.phonemes);
+    if (!v.phonemes.empty()) line += ", phonemes: " + yaml_quoted(v.phonemes);
     const std::string pose = pose_flow(cloned[i], head, v.set_keys);
     if (!pose.empty()) line += ", " + pose;
     out += line + " }\n";
@@ -151,24 +150,22 @@ std::string visemes_yaml(const std::vector<VisemePose>& visemes,
 }
 
 std::string clone_report_json(const std::vector<CloneReportRow>& rows) {
-  std::string out = "{";
-  for (const char* kind : {"expressions", "visemes"}) {
-    out += std::string(out.size() > 1 ? ",\n " : "\n ") + "\"" + kind + "\": {";
-    bool first = true;
-    for (const CloneReportRow& r : rows) {
-      if (r.kind != kind) continue;
-      const face::ClonedPose& c = r.result;
-      out += std::string(first ? "\n" : ",\n") + "  " + quoted(c.pose.name) +
-             ": {\"copy\": " + error_json(c.copy) + ", \"refined\": " + error_json(c.refined) +
-             ", \"free_parameters\": " + std::to_string(c.free_parameters) +
-             ", \"iterations\": " + std::to_string(c.iterations) +
-             ", \"evaluations\": " + std::to_string(c.evaluations) +
-             ", \"settled\": " + (c.settled ? "true" : "false") + "}";
-      first = false;
-    }
-    out += first ? "}" : "\n }";
+  auto error = [](const face::CloneError& e) {
+    return nlohmann::ordered_json{
+        {"rms_mm", e.rms_mm}, {"max_mm", e.max_mm}, {"percent", e.percent}};
+  };
+  nlohmann::ordered_json j = {{"expressions", nlohmann::ordered_json::object()},
+                              {"visemes", nlohmann::ordered_json::object()}};
+  for (const CloneReportRow& r : rows) {
+    const face::ClonedPose& c = r.result;
+    j[r.kind][c.pose.name] = {{"copy", error(c.copy)},
+                              {"refined", error(c.refined)},
+                              {"free_parameters", c.free_parameters},
+                              {"iterations", c.iterations},
+                              {"evaluations", c.evaluations},
+                              {"settled", c.settled}};
   }
-  return out + "\n}\n";
+  return j.dump(2) + "\n";
 }
 
 }  // namespace facectl

@@ -96,7 +96,7 @@ void register_face_commands(CLI::App& app) {
   render->add_option("--width", width)->capture_default_str()->check(CLI::Range(16, 4096));
   render->add_option("--height", height)->capture_default_str()->check(CLI::Range(16, 4096));
   render->callback([] {
-    guarded([] {
+    guarded("render", [] {
       auto p = pose(picture_args, expression);
       const Lighting light = lighting == "frontal" ? Lighting::kFrontal : Lighting::kRaking;
       if (heat_map) {
@@ -137,7 +137,7 @@ void register_face_commands(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(120, 4096));
   sheet->callback([] {
-    guarded([] {
+    guarded("contact-sheet", [] {
       const HeadSpec spec = load_head_spec(picture_args.head);
       const ExpressionLibrary lib = load_expression_library(picture_args.library, spec);
       const FaceModel m = build_model(spec, picture_args.resolution);
@@ -160,7 +160,7 @@ void register_face_commands(CLI::App& app) {
   obj->add_option("--expression", obj_expression, "expression name")->capture_default_str();
   obj->add_option("--out", obj_out, "output OBJ file")->required();
   obj->callback([] {
-    guarded([] {
+    guarded("export-obj", [] {
       auto p = pose(args, obj_expression);
       TriMesh skin{p->data.skin_x, p->model.skin.tris};
       write_obj(obj_out, skin, 1.0);

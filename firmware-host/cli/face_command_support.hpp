@@ -5,12 +5,15 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <exception>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
 #include "facectl/face/face_model.hpp"
 #include "facectl/face/head_spec.hpp"
 #include "facectl/face/input_error.hpp"
+#include "firmware-host/config/config_node.hpp"
 
 namespace facectl::face_cli {
 
@@ -38,17 +41,24 @@ face::FaceModel build_model(const face::HeadSpec& spec, int resolution);
 // Writes `text` to `path`; InputError when it cannot.
 void write_text_file(const std::string& path, const std::string& text);
 
-// Runs `body`; unusable input becomes exit code 2 with the InputError's file:line message.
+// Runs `body`; unusable input (a head, library or mesh file that cannot be read or is
+// malformed) becomes exit code 2 with its file:line message, prefixed by the subcommand.
 template <class F>
-void guarded(F&& body) {
+void guarded(const char* command, F&& body) {
+  auto fail = [command](const std::exception& e) {
+    std::fprintf(stderr, "facectl face %s: %s\n", command, e.what());
+    throw CLI::RuntimeError(2);
+  };
   try {
     body();
   } catch (const face::InputError& e) {
-    std::fprintf(stderr, "facectl face: %s\n", e.what());
-    throw CLI::RuntimeError(2);
+    fail(e);
+  } catch (const ConfigError& e) {
+    fail(e);
   } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "facectl face: %s\n", e.what());
-    throw CLI::RuntimeError(2);
+    fail(e);
+  } catch (const std::filesystem::filesystem_error& e) {
+    fail(e);
   }
 }
 

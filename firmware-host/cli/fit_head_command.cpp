@@ -1,9 +1,10 @@
 #include "fit_head_command.hpp"
 
 #include <cstdio>
-#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "face_command_support.hpp"
 #include "facectl/face/bitmap_font.hpp"
 #include "facectl/face/face_renderer.hpp"
 #include "facectl/face/head_fit.hpp"
@@ -15,6 +16,7 @@
 namespace {
 
 using namespace facectl::face;
+using facectl::face_cli::write_text_file;
 
 struct FitHeadArgs {
   std::string obj, out, report, picture, units = "cm";
@@ -25,41 +27,19 @@ double units_scale(const std::string& u) {
   return u == "m" ? 1.0 : u == "mm" ? 1e-3 : 1e-2;
 }
 
-// A JSON string literal: quotes, backslashes and control characters escaped.
-std::string quoted(const std::string& text) {
-  std::string q = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') {
-      q += '\\';
-      q += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
-      q += buf;
-    } else {
-      q += c;
-    }
-  }
-  return q + "\"";
-}
-
-std::string json_report(const HeadFit& f, const FitHeadArgs& a) {
-  std::string s =
-      "{\n  \"obj\": " + quoted(a.obj) + ",\n  \"iterations\": " + std::to_string(f.iterations) +
-      ",\n  \"size_ratio\": " + std::to_string(f.size_ratio) + ",\n  \"landmarks\": [\n";
-  for (std::size_t i = 0; i < f.landmarks.size(); ++i) {
-    const PlacedLandmark& l = f.landmarks[i];
-    char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "    {\"name\": \"%s\", \"bone\": %s, \"vertex\": %d, \"initial_mm\": %.3f, "
-                  "\"snap_mm\": %.3f}%s\n",
-                  l.name.c_str(), l.bone ? "true" : "false", l.vertices[0], l.initial_mm, l.snap_mm,
-                  i + 1 < f.landmarks.size() ? "," : "");
-    s += buf;
-  }
-  s += "  ],\n  \"problems\": [";
-  for (std::size_t i = 0; i < f.problems.size(); ++i) s += (i ? ", " : "") + quoted(f.problems[i]);
-  return s + "]\n}\n";
+nlohmann::ordered_json json_report(const HeadFit& f, const FitHeadArgs& a) {
+  nlohmann::ordered_json landmarks = nlohmann::ordered_json::array();
+  for (const PlacedLandmark& l : f.landmarks)
+    landmarks.push_back({{"name", l.name},
+                         {"bone", l.bone},
+                         {"vertex", l.vertices[0]},
+                         {"initial_mm", l.initial_mm},
+                         {"snap_mm", l.snap_mm}});
+  return {{"obj", a.obj},
+          {"iterations", f.iterations},
+          {"size_ratio", f.size_ratio},
+          {"landmarks", landmarks},
+          {"problems", f.problems}};
 }
 
 // The new head from the front, neutral, with every landmark marked and labelled.
@@ -114,11 +94,7 @@ int run(const FitHeadArgs& a) {
       "wrote %s (skin.obj, face.yaml, landmarks.yaml, muscles.yaml, head.yaml); "
       "`facectl face reduce --head %s` fits its reduced model\n",
       a.out.c_str(), a.out.c_str());
-  if (!a.report.empty()) {
-    std::ofstream r(a.report);
-    r << json_report(f, a);
-    if (!r.flush()) throw InputError(a.report + ": cannot write the report");
-  }
+  if (!a.report.empty()) write_text_file(a.report, json_report(f, a).dump(2) + "\n");
   if (!f.problems.empty()) {
     for (const std::string& p : f.problems)
       std::fprintf(stderr, "facectl face fit-head: %s: %s\n", a.obj.c_str(), p.c_str());
@@ -165,14 +141,8 @@ void add_fit_head_command(CLI::App* face) {
   c->add_option("--report", a.report, "also write the per-landmark report as JSON");
   c->add_option("--picture", a.picture, "PNG of the new head with the landmarks marked");
   c->callback([] {
-    int rc = 2;
-    try {
-      rc = run(a);
-    } catch (const InputError& e) {
-      std::fprintf(stderr, "facectl face fit-head: %s\n", e.what());
-    } catch (const std::invalid_argument& e) {
-      std::fprintf(stderr, "facectl face fit-head: %s\n", e.what());
-    }
-    if (rc != 0) throw CLI::RuntimeError(rc);
+    facectl::face_cli::guarded("fit-head", [] {
+      if (const int rc = run(a); rc != 0) throw CLI::RuntimeError(rc);
+    });
   });
 }

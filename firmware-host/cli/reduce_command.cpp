@@ -51,7 +51,7 @@ void add_reduce_commands(CLI::App* face) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   reduce->callback([reduce] {
-    guarded([reduce] {
+    guarded("reduce", [reduce] {
       const HeadSpec spec = load_head_spec(args.head);
       // The file does not record a resolution, and none has converged (docs/FACE_MODEL.md,
       // "Known issues"): the model is fitted on the base mesh, which is also the fastest.
@@ -105,7 +105,7 @@ void add_reduce_commands(CLI::App* face) {
   check->add_option("--p99-mm", target_p99_mm, "exit 1 if a set's 99th percentile exceeds this")
       ->capture_default_str();
   check->callback([check] {
-    guarded([check] {
+    guarded("check-reduced", [check] {
       const HeadSpec spec = load_head_spec(args.head);
       const ReducedFaceModel red = load_reduced_model(args.head + "/reduced_face.txt", spec);
       const FaceModel m =

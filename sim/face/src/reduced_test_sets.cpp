@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <nlohmann/json.hpp>
 #include <utility>
 
 #include "control/envelope/mandible_envelope.hpp"
@@ -123,22 +123,11 @@ std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceMod
 }
 
 std::string set_errors_json(const std::vector<SetError>& errors) {
-  auto number = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4f", v);
-    return std::string(buf);
-  };
-  std::string s = "{";
-  for (std::size_t k = 0; k < errors.size(); ++k) {
-    const SetError& e = errors[k];
-    // Names and `worst` are landmark names and digits: nothing to escape.
-    s += std::string(k ? "," : "") + "\n  \"" + e.name +
-         "\": {\"samples\": " + std::to_string(e.samples) +
-         ", \"unsettled\": " + std::to_string(e.unsettled) + ", \"rms_mm\": " + number(e.rms_mm) +
-         ", \"p99_mm\": " + number(e.p99_mm) + ", \"max_mm\": " + number(e.max_mm) +
-         ", \"worst\": \"" + e.worst + "\"}";
-  }
-  return s + "\n}\n";
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const SetError& e : errors)
+    j[e.name] = {{"samples", e.samples}, {"unsettled", e.unsettled}, {"rms_mm", e.rms_mm},
+                 {"p99_mm", e.p99_mm},   {"max_mm", e.max_mm},       {"worst", e.worst}};
+  return j.dump(2) + "\n";
 }
 
 }  // namespace facectl::face
