@@ -66,7 +66,8 @@ std::string placement_json(const PlaceArgs& a, const PlacementProblem& pr, const
   std::ostringstream j;
   j << "{\"budget\": " << a.budget << ", \"seconds\": " << num(seconds, 1)
     << ", \"moving_vertices\": " << pr.moving.size()
-    << ", \"candidates\": " << pr.candidate_vertex.size() << ", \"runs\": " << pr.runs
+    << ", \"candidates\": " << pr.candidate_vertex.size()
+    << ", \"runs\": " << pr.runs + static_cast<int>(p.actuators.size() + p.fits.size())
     << ", \"unsettled_runs\": " << pr.unsettled + p.unsettled << ",\n \"actuators\": [";
   for (std::size_t k = 0; k < p.actuators.size(); ++k) {
     const PlacedActuator& x = p.actuators[k];
