@@ -83,6 +83,7 @@ std::string placement_json(const PlaceArgs& a, const PlacementProblem& pr, const
     j << (e ? ",\n  " : "\n  ") << "\"" << f.name << "\": {\"rms_mm\": " << num(f.rms_mm, 4)
       << ", \"max_mm\": " << num(f.max_mm, 4) << ", \"rms_mm_no_actuators\": " << num(f.rms0_mm, 4)
       << ", \"max_mm_no_actuators\": " << num(f.max0_mm, 4)
+      << ", \"worst_vertex\": " << f.worst_vertex
       << ", \"settled\": " << (f.settled ? "true" : "false") << "}";
   }
   j << "}}\n";

@@ -114,17 +114,23 @@ void set_pins(FaceData& d, const std::vector<int>& vertex, const std::vector<Vec
   for (std::size_t k = 0; k < vertex.size(); ++k) add_skin_pin(d.pins, vertex[k], target[k]);
 }
 
-void errors_mm(const PlacementProblem& p, const Points& x, const Points& goal, double& rms,
-               double& max) {
+// Returns the vertex of the max.
+int errors_mm(const PlacementProblem& p, const Points& x, const Points& goal, double& rms,
+              double& max) {
   double sum = 0;
   max = 0;
+  int worst = -1;
   for (int v : p.moving) {
     const auto j = static_cast<std::size_t>(v);
     const double e = (x.get(j) - goal.get(j)).norm() * kMm;
     sum += e * e;
-    max = std::max(max, e);
+    if (e > max) {
+      max = e;
+      worst = v;
+    }
   }
   rms = p.moving.empty() ? 0 : std::sqrt(sum / static_cast<double>(p.moving.size()));
+  return worst;
 }
 
 }  // namespace
@@ -268,7 +274,7 @@ Placement place_actuators(const FaceModel& m, const PlacementProblem& p, int bud
     report(progress, "validate " + p.expressions[e].name);
     ExpressionFit f;
     f.name = p.expressions[e].name;
-    errors_mm(p, p.jaw_only[e], p.full[e], f.rms0_mm, f.max0_mm);
+    f.worst_vertex = errors_mm(p, p.jaw_only[e], p.full[e], f.rms0_mm, f.max0_mm);
     for (std::size_t k = 0; k < n; ++k) {
       const double s = steps(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(e));
       f.travel_mm.push_back(s * p.step_m * kMm);
@@ -284,7 +290,7 @@ Placement place_actuators(const FaceModel& m, const PlacementProblem& p, int bud
       f.settled =
           run_to_steady_state(m, d, jaw_and_lids_input(m, p.expressions[e]), p.steady).converged;
       out.unsettled += !f.settled;
-      errors_mm(p, d.skin_x, p.full[e], f.rms_mm, f.max_mm);
+      f.worst_vertex = errors_mm(p, d.skin_x, p.full[e], f.rms_mm, f.max_mm);
     }
     out.fits.push_back(f);
   }

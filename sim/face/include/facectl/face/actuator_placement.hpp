@@ -56,6 +56,7 @@ struct ExpressionFit {
   std::string name;
   double rms_mm = 0, max_mm = 0;    // pinned full model vs the expression, moving vertices
   double rms0_mm = 0, max0_mm = 0;  // with no actuators (jaw and lids alone)
+  int worst_vertex = -1;            // where max_mm is
   std::vector<double> travel_mm;    // per actuator
   bool settled = true;
 };
