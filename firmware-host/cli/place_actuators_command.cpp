@@ -6,18 +6,20 @@
 #include <stdexcept>
 #include <string>
 
+#include "face_command_support.hpp"
 #include "facectl/face/actuator_placement.hpp"
 #include "facectl/face/input_error.hpp"
-#include "firmware-host/config/config_location.hpp"
 
 namespace {
 
 using namespace facectl::face;
+using facectl::face_cli::guarded;
+using facectl::face_cli::write_text_file;
 
 struct PlaceArgs {
   int budget = 0;
-  std::string head = facectl::shipped_dirs().config + "/heads/default";
-  std::string library = facectl::shipped_dirs().config + "/expressions/library.yaml";
+  std::string head = facectl::face_cli::default_face_args().head;
+  std::string library = facectl::face_cli::default_face_args().library;
   std::string out, report;
   std::vector<std::string> expressions;
   PlacementOptions o;
@@ -90,13 +92,6 @@ std::string placement_json(const PlaceArgs& a, const PlacementProblem& pr, const
   return j.str();
 }
 
-void write_file(const std::string& path, const std::string& text) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw InputError(path + ": cannot open file for writing");
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok) throw InputError(path + ": write failed");
-}
-
 void run(PlaceArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const HeadSpec spec = load_head_spec(a.head);
@@ -114,8 +109,8 @@ void run(PlaceArgs& a) {
   if (a.out.empty())
     std::fputs(yaml.c_str(), stdout);
   else
-    write_file(a.out, yaml);
-  if (!a.report.empty()) write_file(a.report, placement_json(a, pr, p, secs));
+    write_text_file(a.out, yaml);
+  if (!a.report.empty()) write_text_file(a.report, placement_json(a, pr, p, secs));
   std::printf(
       "%zu actuators (budget %d) from %zu candidates on %zu moving vertices; %d full-model runs, "
       "%d unsettled; %.1f s\n",
@@ -166,15 +161,5 @@ void add_place_actuators_command(CLI::App* face) {
   c->add_option("--tolerance-mm", a.o.steady.tolerance_mm, "steady-state tolerance")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  c->callback([] {
-    try {
-      run(a);
-    } catch (const InputError& e) {
-      std::fprintf(stderr, "facectl face place-actuators: %s\n", e.what());
-      throw CLI::RuntimeError(2);
-    } catch (const std::invalid_argument& e) {
-      std::fprintf(stderr, "facectl face place-actuators: %s\n", e.what());
-      throw CLI::RuntimeError(2);
-    }
-  });
+  c->callback([] { guarded([] { run(a); }); });
 }
