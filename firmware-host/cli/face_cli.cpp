@@ -11,6 +11,7 @@
 #include "facectl/face/face_renderer.hpp"
 #include "facectl/face/obj_io.hpp"
 #include "fit_head_command.hpp"
+#include "place_actuators_command.hpp"
 #include "reduce_command.hpp"
 
 namespace {
@@ -72,6 +73,7 @@ void register_face_commands(CLI::App& app) {
   face->require_subcommand(1);
   add_clone_command(face);
   add_fit_head_command(face);
+  add_place_actuators_command(face);
   // CLI11 binds options to storage that must outlive parsing.
   static FaceArgs args = default_face_args();
   static FaceArgs picture_args = [] {

@@ -130,6 +130,7 @@ void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
     project(m.skin_upright, p, m.skin_w);  // after the anchors, which fold the surface
     project(m.lids, p, m.skin_w, d.lid_targets);
     project_contacts(d, p);
+    apply_skin_pins(d.pins, p);
   }
 }
 
@@ -186,6 +187,7 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
   }
   for (std::size_t j = 0; j < m.lids.size(); ++j) p.set(m.lids.particle[j], d.lid_targets.get(j));
   untangle(m, d, p);
+  apply_skin_pins(d.pins, p);  // the weighting and untangling moved them off
   // The weighting can move a contact back inside; re-detect so no vertex ends inside.
   if (in.teeth_collision) {
     detect_teeth(m, d, p);

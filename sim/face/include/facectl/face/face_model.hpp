@@ -13,6 +13,7 @@
 #include "facectl/face/convex_hull.hpp"
 #include "facectl/face/head_spec.hpp"
 #include "facectl/face/muscle.hpp"
+#include "facectl/face/skin_pins.hpp"
 
 namespace facectl::face {
 
@@ -107,6 +108,7 @@ struct FaceData {
   Points hit_target;
   int hits = 0;
   long frame = 0;
+  SkinPins pins;  // none unless set (skin_pins.hpp): vertices held like actuated points
 };
 
 // Builds the head from its spec. `skin_vertices` > base count selects a refined variant.

@@ -1,0 +1,165 @@
+#include "place_actuators_command.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "face_command_support.hpp"
+#include "facectl/face/actuator_placement.hpp"
+#include "facectl/face/input_error.hpp"
+
+namespace {
+
+using namespace facectl::face;
+using facectl::face_cli::guarded;
+using facectl::face_cli::write_text_file;
+
+struct PlaceArgs {
+  int budget = 0;
+  std::string head = facectl::face_cli::default_face_args().head;
+  std::string library = facectl::face_cli::default_face_args().library;
+  std::string out, report;
+  std::vector<std::string> expressions;
+  PlacementOptions o;
+};
+
+std::string vec(const Vec3& v, int digits) {
+  char b[128];
+  std::snprintf(b, sizeof b, "[%.*f, %.*f, %.*f]", digits, v.x(), digits, v.y(), digits, v.z());
+  return b;
+}
+
+std::string num(double x, int digits = 3) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*f", digits, x);
+  return b;
+}
+
+// Rig points name the head's control points (docs/CONFIG.md), so each entry names the
+// nearest one as `point`, and the vertex itself beside it.
+std::string placement_yaml(const PlaceArgs& a, const Placement& p) {
+  std::ostringstream y;
+  y << "# facectl face place-actuators --budget " << a.budget << " --head " << a.head
+    << "\n# --library " << a.library << "\n"
+    << "# Each actuator moves its skin point along `axis` (head frame) by travel_mm. `point`\n"
+    << "# is the control point nearest the vertex (rig maps can name only those), at\n"
+    << "# control_point_distance_mm; `landmark` when the vertex is one.\n"
+    << "actuators:\n";
+  for (const PlacedActuator& x : p.actuators) {
+    y << "  - { point: " << x.nearest_control_point << ", vertex: " << x.vertex;
+    if (!x.landmark.empty()) y << ", landmark: " << x.landmark;
+    y << ", control_point_distance_mm: " << num(x.control_point_distance_mm, 1)
+      << ", position_mm: " << vec(x.position_mm, 1) << ", axis: " << vec(x.axis, 3)
+      << ", travel_mm: [" << num(x.travel_min_mm, 2) << ", " << num(x.travel_max_mm, 2) << "] }\n";
+  }
+  y << "# Skin error left (mm) over the moving vertices, and with no actuators.\n"
+    << "errors:\n";
+  for (const ExpressionFit& f : p.fits)
+    y << "  " << f.name << ": { rms_mm: " << num(f.rms_mm) << ", max_mm: " << num(f.max_mm)
+      << ", rms_mm_no_actuators: " << num(f.rms0_mm) << ", max_mm_no_actuators: " << num(f.max0_mm)
+      << (f.settled ? "" : ", unsettled: true") << " }\n";
+  return y.str();
+}
+
+std::string placement_json(const PlaceArgs& a, const PlacementProblem& pr, const Placement& p,
+                           double seconds) {
+  std::ostringstream j;
+  j << "{\"budget\": " << a.budget << ", \"seconds\": " << num(seconds, 1)
+    << ", \"moving_vertices\": " << pr.moving.size()
+    << ", \"candidates\": " << pr.candidate_vertex.size()
+    << ", \"runs\": " << pr.runs + static_cast<int>(p.actuators.size() + p.fits.size())
+    << ", \"unsettled_runs\": " << pr.unsettled + p.unsettled << ",\n \"actuators\": [";
+  for (std::size_t k = 0; k < p.actuators.size(); ++k) {
+    const PlacedActuator& x = p.actuators[k];
+    j << (k ? ",\n  " : "\n  ") << "{\"vertex\": " << x.vertex << ", \"landmark\": \"" << x.landmark
+      << "\", \"nearest_control_point\": \"" << x.nearest_control_point
+      << "\", \"control_point_distance_mm\": " << num(x.control_point_distance_mm)
+      << ", \"position_mm\": " << vec(x.position_mm, 3) << ", \"axis\": " << vec(x.axis, 4)
+      << ", \"travel_mm\": [" << num(x.travel_min_mm) << ", " << num(x.travel_max_mm) << "]}";
+  }
+  j << "],\n \"expressions\": {";
+  for (std::size_t e = 0; e < p.fits.size(); ++e) {
+    const ExpressionFit& f = p.fits[e];
+    j << (e ? ",\n  " : "\n  ") << "\"" << f.name << "\": {\"rms_mm\": " << num(f.rms_mm, 4)
+      << ", \"max_mm\": " << num(f.max_mm, 4) << ", \"rms_mm_no_actuators\": " << num(f.rms0_mm, 4)
+      << ", \"max_mm_no_actuators\": " << num(f.max0_mm, 4)
+      << ", \"worst_vertex\": " << f.worst_vertex
+      << ", \"settled\": " << (f.settled ? "true" : "false") << "}";
+  }
+  j << "}}\n";
+  return j.str();
+}
+
+void run(PlaceArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const HeadSpec spec = load_head_spec(a.head);
+  const ExpressionLibrary lib = load_expression_library(a.library, spec);
+  const FaceModel m = build_face_model(spec);  // the base mesh: fit-sized, fastest
+  a.o.expressions = a.expressions;
+  const auto say = [](const std::string& s) { std::fprintf(stderr, "  %s\n", s.c_str()); };
+  const PlacementProblem pr = build_placement_problem(m, lib, a.o, say);
+  if (pr.candidate_vertex.empty())
+    throw std::invalid_argument("no skin vertex moves more than --threshold-mm " +
+                                num(a.o.moving_threshold_mm, 2) + " in the expressions");
+  const Placement p = place_actuators(m, pr, a.budget, say);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::string yaml = placement_yaml(a, p);
+  if (a.out.empty())
+    std::fputs(yaml.c_str(), stdout);
+  else
+    write_text_file(a.out, yaml);
+  if (!a.report.empty()) write_text_file(a.report, placement_json(a, pr, p, secs));
+  std::printf(
+      "%zu actuators (budget %d) from %zu candidates on %zu moving vertices; %d full-model runs, "
+      "%d unsettled; %.1f s\n",
+      p.actuators.size(), a.budget, pr.candidate_vertex.size(), pr.moving.size(),
+      pr.runs + static_cast<int>(p.actuators.size() + p.fits.size()), pr.unsettled + p.unsettled,
+      secs);
+  std::printf("%-16s %8s %8s %12s %12s\n", "expression", "rms_mm", "max_mm", "rms_mm_none",
+              "max_mm_none");
+  for (const ExpressionFit& f : p.fits)
+    std::printf("%-16s %8.3f %8.3f %12.3f %12.3f%s\n", f.name.c_str(), f.rms_mm, f.max_mm,
+                f.rms0_mm, f.max0_mm, f.settled ? "" : "  (unsettled)");
+}
+
+}  // namespace
+
+void add_place_actuators_command(CLI::App* face) {
+  static PlaceArgs a;  // CLI11 binds options to storage that must outlive parsing
+  CLI::App* c = face->add_subcommand(
+      "place-actuators",
+      "propose N skin points and directions whose actuators best reproduce the library");
+  c->add_option("--budget", a.budget, "number of actuators (1-DOF skin points)")
+      ->required()
+      ->check(CLI::Range(1, 1000));
+  c->add_option("--head", a.head, "head folder (face.yaml, landmarks, muscles)")
+      ->capture_default_str()
+      ->check(CLI::ExistingDirectory);
+  c->add_option("--library", a.library, "expression library YAML")->capture_default_str();
+  c->add_option("--out", a.out, "write the actuators and errors here as YAML (default: stdout)");
+  c->add_option("--report", a.report, "also write the result as JSON");
+  c->add_option("--expressions", a.expressions, "only these expressions (default: all)")
+      ->delimiter(',');
+  c->add_option("--candidates", a.o.max_candidate_vertices, "candidate skin vertices")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  c->add_option("--directions", a.o.directions, "principal directions tried per candidate")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 3));
+  c->add_option("--step-mm", a.o.step_mm, "pin displacement of a response run")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 20.0));
+  c->add_option("--threshold-mm", a.o.moving_threshold_mm,
+                "a vertex counts as moving above this displacement")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
+  c->add_option("--frames", a.o.steady.max_frames, "frame cap of each steady-state run")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  c->add_option("--tolerance-mm", a.o.steady.tolerance_mm, "steady-state tolerance")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  c->callback([] { guarded([] { run(a); }); });
+}
