@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -65,31 +66,34 @@ std::string placement_yaml(const PlaceArgs& a, const Placement& p) {
 
 std::string placement_json(const PlaceArgs& a, const PlacementProblem& pr, const Placement& p,
                            double seconds) {
-  std::ostringstream j;
-  j << "{\"budget\": " << a.budget << ", \"seconds\": " << num(seconds, 1)
-    << ", \"moving_vertices\": " << pr.moving.size()
-    << ", \"candidates\": " << pr.candidate_vertex.size()
-    << ", \"runs\": " << pr.runs + static_cast<int>(p.actuators.size() + p.fits.size())
-    << ", \"unsettled_runs\": " << pr.unsettled + p.unsettled << ",\n \"actuators\": [";
-  for (std::size_t k = 0; k < p.actuators.size(); ++k) {
-    const PlacedActuator& x = p.actuators[k];
-    j << (k ? ",\n  " : "\n  ") << "{\"vertex\": " << x.vertex << ", \"landmark\": \"" << x.landmark
-      << "\", \"nearest_control_point\": \"" << x.nearest_control_point
-      << "\", \"control_point_distance_mm\": " << num(x.control_point_distance_mm)
-      << ", \"position_mm\": " << vec(x.position_mm, 3) << ", \"axis\": " << vec(x.axis, 4)
-      << ", \"travel_mm\": [" << num(x.travel_min_mm) << ", " << num(x.travel_max_mm) << "]}";
-  }
-  j << "],\n \"expressions\": {";
-  for (std::size_t e = 0; e < p.fits.size(); ++e) {
-    const ExpressionFit& f = p.fits[e];
-    j << (e ? ",\n  " : "\n  ") << "\"" << f.name << "\": {\"rms_mm\": " << num(f.rms_mm, 4)
-      << ", \"max_mm\": " << num(f.max_mm, 4) << ", \"rms_mm_no_actuators\": " << num(f.rms0_mm, 4)
-      << ", \"max_mm_no_actuators\": " << num(f.max0_mm, 4)
-      << ", \"worst_vertex\": " << f.worst_vertex
-      << ", \"settled\": " << (f.settled ? "true" : "false") << "}";
-  }
-  j << "}}\n";
-  return j.str();
+  using json = nlohmann::ordered_json;
+  auto xyz = [](const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); };
+  json actuators = json::array();
+  for (const PlacedActuator& x : p.actuators)
+    actuators.push_back({{"vertex", x.vertex},
+                         {"landmark", x.landmark},
+                         {"nearest_control_point", x.nearest_control_point},
+                         {"control_point_distance_mm", x.control_point_distance_mm},
+                         {"position_mm", xyz(x.position_mm)},
+                         {"axis", xyz(x.axis)},
+                         {"travel_mm", {x.travel_min_mm, x.travel_max_mm}}});
+  json expressions = json::object();
+  for (const ExpressionFit& f : p.fits)
+    expressions[f.name] = {{"rms_mm", f.rms_mm},
+                           {"max_mm", f.max_mm},
+                           {"rms_mm_no_actuators", f.rms0_mm},
+                           {"max_mm_no_actuators", f.max0_mm},
+                           {"worst_vertex", f.worst_vertex},
+                           {"settled", f.settled}};
+  const json j = {{"budget", a.budget},
+                  {"seconds", seconds},
+                  {"moving_vertices", pr.moving.size()},
+                  {"candidates", pr.candidate_vertex.size()},
+                  {"runs", pr.runs + static_cast<int>(p.actuators.size() + p.fits.size())},
+                  {"unsettled_runs", pr.unsettled + p.unsettled},
+                  {"actuators", actuators},
+                  {"expressions", expressions}};
+  return j.dump(2) + "\n";
 }
 
 void run(PlaceArgs& a) {
@@ -161,5 +165,5 @@ void add_place_actuators_command(CLI::App* face) {
   c->add_option("--tolerance-mm", a.o.steady.tolerance_mm, "steady-state tolerance")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  c->callback([] { guarded([] { run(a); }); });
+  c->callback([] { guarded("place-actuators", [] { run(a); }); });
 }
