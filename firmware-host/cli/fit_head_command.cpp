@@ -1,8 +1,11 @@
 #include "fit_head_command.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
+#include <system_error>
 
 #include "face_command_support.hpp"
 #include "facectl/face/bitmap_font.hpp"
@@ -68,11 +71,23 @@ void write_picture(const std::string& path, const FaceModel& m) {
 }
 
 int run(const FitHeadArgs& a) {
+  // The folder is written before it is checked: never over the head it is fitted from.
+  std::error_code ec;
+  if (std::filesystem::equivalent(a.out, a.from, ec))
+    throw std::invalid_argument("--out " + a.out +
+                                " is the --from head folder; refusing to "
+                                "overwrite its skin, landmarks and muscles");
   const HeadSpec source = load_head_spec(a.from);
   const TriMesh source_skin = read_obj(source.skin_file, source.skin_scale);
   const TriMesh target = read_obj(a.obj, units_scale(a.units));
   check_head_mesh(target, a.obj);
-  const HeadFit f = fit_head(source, source_skin, target, HeadFitOptions{});
+  HeadFit f = fit_head(source, source_skin, target, HeadFitOptions{});
+  // The alignment is scale-free, so a mesh read in the wrong unit still fits; only the
+  // size says so (and every size in face.yaml would be scaled with it).
+  if (f.size_ratio < 0.5 || f.size_ratio > 2.0)
+    f.problems.push_back("the head is " + std::to_string(f.size_ratio) +
+                         " times the size of the --from head: is --units " + a.units +
+                         " the unit of its vertices?");
 
   std::printf(
       "fit %s (%zu vertices, %zu triangles) to %s: %d iterations, %d refinement pairs, last move "

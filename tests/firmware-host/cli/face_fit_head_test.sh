@@ -63,4 +63,17 @@ with open(sys.argv[2], "w") as o:
 PY
 expect_2 closed "does not build: .*no eye opening contains landmark fdp_3_1" --obj "$tmp/closed.obj"
 grep -q "cut the mouth and eye holes in the mesh" "$tmp/closed.err" || { cat "$tmp/closed.err"; exit 1; }
+# A mesh in mm read as cm is ten times the default head's size.
+expect_2 units "times the size of the --from head: is --units cm" \
+  --obj "$src/tests/data/heads/broad_short/skin.obj"
+# Never over the head it is fitted from.
+cp -r "$src/config/heads/default" "$tmp/from"
+before=$(cat "$tmp/from"/*.yaml "$tmp/from/skin.obj" | sha256sum)
+status=0
+"$facectl" face fit-head --obj "$src/tests/data/heads/long_wide_jaw/skin.obj" --from "$tmp/from" \
+  --out "$tmp/from/" 2> "$tmp/same.err" > /dev/null || status=$?
+[ "$status" = 2 ] && grep -q "is the --from head folder" "$tmp/same.err" \
+  || { echo "same folder: exit $status"; cat "$tmp/same.err"; exit 1; }
+[ "$before" = "$(cat "$tmp/from"/*.yaml "$tmp/from/skin.obj" | sha256sum)" ] \
+  || { echo "the --from head was changed"; exit 1; }
 echo "fit-head: folder, report, picture, render and refusals as expected"
