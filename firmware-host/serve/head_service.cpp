@@ -30,18 +30,23 @@ HeadService::Result refuse(int status, std::string why) {
 
 HeadService::HeadService(HeadRuntime& head, FaceDirector& director, const ShowCatalog& shows,
                          EventLog& log)
-    : head_(head), director_(director), shows_(shows), log_(log), start_ns_(monotonic_ns()) {
-  // The static proof's ranges are in file order of the rig's actuators, by name.
-  const verify::StaticProof proof = verify::prove(*head_.cfg);
-  const ControllerModel& m = head_.model();
-  for (const ActuatorModel& a : m.actuators) {
-    const double k = yaml_per_si(a.kind);
-    JogRange r{a.limits.soft_min * k, a.limits.soft_max * k};
-    for (const verify::ActuatorRange& p : proof.actuators) {
-      if (p.name == a.name) r = {std::max(r.lo, p.lo), std::min(r.hi, p.hi)};
+    : head_(head), director_(director), shows_(shows), log_(log), start_ns_(monotonic_ns()) {}
+
+const std::vector<HeadService::JogRange>& HeadService::jog_ranges() const {
+  std::call_once(jog_proven_, [this] {
+    // The static proof's ranges are in file order of the rig's actuators, by name.
+    const verify::StaticProof proof = verify::prove(*head_.cfg);
+    const ControllerModel& m = head_.model();
+    for (const ActuatorModel& a : m.actuators) {
+      const double k = yaml_per_si(a.kind);
+      JogRange r{a.limits.soft_min * k, a.limits.soft_max * k};
+      for (const verify::ActuatorRange& p : proof.actuators) {
+        if (p.name == a.name) r = {std::max(r.lo, p.lo), std::min(r.hi, p.hi)};
+      }
+      jog_ranges_.push_back(r);
     }
-    jog_ranges_.push_back(r);
-  }
+  });
+  return jog_ranges_;
 }
 
 HeadService::~HeadService() {
@@ -196,6 +201,7 @@ HeadService::Result HeadService::jog_start(const std::string& who) {
   if (s != SafetyState::kRunning) {
     return refuse(409, "JOG starts from RUNNING; the head is " + state_name(s));
   }
+  jog_ranges();  // proven before the state changes, so no jog waits for it
   log_.add("command", who, "jog start");
   head_.controller->request_jog(true);
   // Answer once the tick took it, so a jog right after is not refused.
@@ -230,7 +236,7 @@ HeadService::Result HeadService::jog(const std::string& who, const std::string& 
                            "others, by the jaw's pose");
   }
   const ActuatorModel& a = m.actuators[i];
-  const JogRange& r = jog_ranges_[i];
+  const JogRange& r = jog_ranges()[i];
   constexpr double kSlack = 1e-9;  // the YAML value back from SI
   if (!std::isfinite(position) || position < r.lo - kSlack || position > r.hi + kSlack) {
     std::ostringstream e;

@@ -71,7 +71,9 @@ class HeadService {
   struct JogRange {
     double lo = 0.0, hi = 0.0;
   };
-  const std::vector<JogRange>& jog_ranges() const { return jog_ranges_; }
+  // Proven on first use, not at start-up: the proof takes most of a second on
+  // the default rig, and only jogging and the rig's description need it.
+  const std::vector<JogRange>& jog_ranges() const;
 
   SafetyState state() const { return head_.controller->state(); }
   std::optional<ActiveFault> active_fault() const;
@@ -98,7 +100,8 @@ class HeadService {
   EventLog& log_;
   std::int64_t start_ns_;
   std::uint64_t events_lost_said_ = 0;
-  std::vector<JogRange> jog_ranges_;  // by actuator index
+  mutable std::once_flag jog_proven_;
+  mutable std::vector<JogRange> jog_ranges_;  // by actuator index, once proven
   std::atomic<bool> stopping_{false};
 
   mutable std::mutex mutex_;  // latest_, fault_: between the monitor and the API's threads
