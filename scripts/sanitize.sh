@@ -64,6 +64,14 @@ run_asan() {
   # Nor the FACS action units on the full face model: 30 runs of the face
   # model code that face_tests run instrumented, about 80 s of test time.
   repeats+='|ActionUnitGeometry\.'
+  # Nor the shipped model's channel proofs, 8 channels at a million boxes
+  # (125 s): the bound's code runs instrumented in ChannelBound.* and, on the
+  # shipped rig, in Verify.*. Nor the library run to steady state once more
+  # (40 s; the expression tests do it), nor place-actuators at three budgets
+  # (24 s; ChoosesLipCornersAndBrows runs the same code).
+  repeats+='|ChannelBoundShippedModel\.(SoundAndTight|CoupledLimitsOnlyNarrow)'
+  repeats+='|SteadyState\.EveryLibraryExpressionSettles'
+  repeats+='|ActuatorPlacement\.ErrorFallsAsTheBudgetGrows'
   # The long randomised tests stay in, with a tenth of their samples
   # (tests/support/sample_count.hpp): each is the only instrumented run of
   # its code (the mechanism range proof, the actuator coupled limits through
