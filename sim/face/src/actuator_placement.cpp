@@ -133,46 +133,24 @@ int errors_mm(const PlacementProblem& p, const Points& x, const Points& goal, do
   return worst;
 }
 
-}  // namespace
-
-FaceInput jaw_and_lids_input(const FaceModel& m, const Expression& e) {
-  FaceInput in;
-  in.jaw = e.jaw;
-  for (int s = 0; s < 2; ++s) {
-    double oculi = 0;
-    for (std::size_t k = 0; k < m.muscles.size(); ++k) {
-      const int slot = m.command_slot[k];
-      if (m.is_oculi[k] == s && slot >= 0 && static_cast<std::size_t>(slot) < e.contractions.size())
-        oculi = std::clamp(e.contractions[static_cast<std::size_t>(slot)], 0.0, 1.0);
-    }
-    in.eyelid_closure[s] =
-        std::clamp(e.eyelid_closure[s] + m.spec.oculi_lid_coupling * oculi, 0.0, 1.0);
+// The library's expressions to reproduce: all, or those named, each once.
+std::vector<Expression> chosen_expressions(const ExpressionLibrary& lib,
+                                           const std::vector<std::string>& names) {
+  if (names.empty()) return lib.expressions;
+  std::vector<Expression> out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const Expression* e = lib.find(names[i]);
+    if (!e) throw InputError("expected an expression of the library, found '" + names[i] + "'");
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) !=
+        names.begin() + static_cast<std::ptrdiff_t>(i))
+      throw InputError("expression '" + names[i] + "' is named twice");
+    out.push_back(*e);
   }
-  return in;
+  return out;
 }
 
-PlacementProblem build_placement_problem(const FaceModel& m, const ExpressionLibrary& lib,
-                                         const PlacementOptions& o,
-                                         const PlacementProgress& progress) {
-  PlacementProblem p;
-  p.step_m = o.step_mm / kMm;
-  p.steady = o.steady;
-  if (o.expressions.empty()) {
-    p.expressions = lib.expressions;
-  } else {
-    for (const std::string& name : o.expressions) {
-      const Expression* e = lib.find(name);
-      if (!e) throw InputError("expected an expression of the library, found '" + name + "'");
-      p.expressions.push_back(*e);
-    }
-  }
-  p.settled = make_face_data(m);
-  reset_face_data(m, p.settled);
-  run_to_steady_state(m, p.settled, FaceInput{}, p.steady);
-  reserve_skin_pins(p.settled.pins, m.skin.v.size());
-  p.rest = p.settled.skin_x;
-
-  // 1. Targets: each expression, and its jaw and lids alone.
+// 1. Targets: each expression at steady state, and its jaw and lids alone.
+void settle_targets(const FaceModel& m, PlacementProblem& p, const PlacementProgress& progress) {
   FaceData d = p.settled;
   bool ok = true;
   for (const Expression& e : p.expressions) {
@@ -183,46 +161,63 @@ PlacementProblem build_placement_problem(const FaceModel& m, const ExpressionLib
     p.unsettled += !ok;
     p.runs += 2;
   }
+}
+
+// How far each vertex moves over the library: in all (moved) and in its soft tissue alone
+// (soft, the part the jaw and lids do not carry); row_of[v]: v's row block, or −1.
+struct Motion {
+  std::vector<double> moved, soft;
+  std::vector<int> row_of;
+};
+
+// The vertices that move more than `threshold_mm` in some expression, and the targets on them.
+Motion choose_moving_vertices(PlacementProblem& p, double threshold_mm) {
   const std::size_t nv = p.rest.size();
-  std::vector<double> moved(nv, 0), soft(nv, 0);
+  Motion mo{std::vector<double>(nv, 0), std::vector<double>(nv, 0), std::vector<int>(nv, -1)};
   for (std::size_t e = 0; e < p.expressions.size(); ++e)
     for (std::size_t i = 0; i < nv; ++i) {
-      moved[i] = std::max(moved[i], (p.full[e].get(i) - p.rest.get(i)).norm() * kMm);
-      soft[i] = std::max(soft[i], (p.full[e].get(i) - p.jaw_only[e].get(i)).norm() * kMm);
+      mo.moved[i] = std::max(mo.moved[i], (p.full[e].get(i) - p.rest.get(i)).norm() * kMm);
+      mo.soft[i] = std::max(mo.soft[i], (p.full[e].get(i) - p.jaw_only[e].get(i)).norm() * kMm);
     }
-  std::vector<int> row_of(nv, -1);
   for (std::size_t i = 0; i < nv; ++i)
-    if (moved[i] > o.moving_threshold_mm) {
-      row_of[i] = static_cast<int>(p.moving.size());
+    if (mo.moved[i] > threshold_mm) {
+      mo.row_of[i] = static_cast<int>(p.moving.size());
       p.moving.push_back(static_cast<int>(i));
     }
   p.target.resize(3 * static_cast<Eigen::Index>(p.moving.size()),
                   static_cast<Eigen::Index>(p.expressions.size()));
   for (std::size_t e = 0; e < p.expressions.size(); ++e)
     p.target.col(static_cast<Eigen::Index>(e)) = stacked(p, p.full[e]) - stacked(p, p.jaw_only[e]);
+  return mo;
+}
 
-  // 2. Candidates: spread-out vertices whose soft tissue moves, along their principal
-  // directions.
+// 2. Candidates: spread-out vertices whose soft tissue moves, along their principal
+// directions.
+void choose_candidates(PlacementProblem& p, const PlacementOptions& o, const Motion& mo) {
   std::vector<int> pool;
   int seed = -1;
-  for (int v : p.moving)
-    if (soft[static_cast<std::size_t>(v)] > o.moving_threshold_mm) {
-      pool.push_back(v);
-      if (seed < 0 || soft[static_cast<std::size_t>(v)] > soft[static_cast<std::size_t>(seed)])
-        seed = v;
-    }
-  if (pool.empty()) return p;
+  for (int v : p.moving) {
+    const double soft = mo.soft[static_cast<std::size_t>(v)];
+    if (soft <= o.moving_threshold_mm) continue;
+    pool.push_back(v);
+    if (seed < 0 || soft > mo.soft[static_cast<std::size_t>(seed)]) seed = v;
+  }
+  if (pool.empty()) return;
   const std::vector<int> picked = farthest_points(
       p.rest, pool, seed, static_cast<std::size_t>(std::max(1, o.max_candidate_vertices)));
   for (int v : picked)
-    for (const Vec3& a :
-         principal_directions(p.target, static_cast<std::size_t>(row_of[v]), o.directions)) {
+    for (const Vec3& a : principal_directions(
+             p.target, static_cast<std::size_t>(mo.row_of[static_cast<std::size_t>(v)]),
+             o.directions)) {
       p.candidate_vertex.push_back(v);
       p.candidate_axis.push_back(a);
     }
+}
 
-  // 3. Responses: each candidate alone pinned one step along its axis, muscles relaxed.
+// 3. Responses: each candidate alone pinned one step along its axis, muscles relaxed.
+void measure_responses(const FaceModel& m, PlacementProblem& p, const PlacementProgress& progress) {
   p.response.resize(p.target.rows(), static_cast<Eigen::Index>(p.candidate_vertex.size()));
+  FaceData d = p.settled;
   for (std::size_t k = 0; k < p.candidate_vertex.size(); ++k) {
     if (k % 50 == 0)
       report(progress,
@@ -230,11 +225,122 @@ PlacementProblem build_placement_problem(const FaceModel& m, const ExpressionLib
     const auto v = static_cast<std::size_t>(p.candidate_vertex[k]);
     d = p.settled;
     set_pins(d, {p.candidate_vertex[k]}, {p.rest.get(v) + p.step_m * p.candidate_axis[k]});
-    ok = run_to_steady_state(m, d, FaceInput{}, p.steady).converged;
-    p.unsettled += !ok;
+    p.unsettled += !run_to_steady_state(m, d, FaceInput{}, p.steady).converged;
     ++p.runs;
     p.response.col(static_cast<Eigen::Index>(k)) = stacked(p, d.skin_x);
   }
+}
+
+// The chosen actuators: each one's vertex and axis.
+struct Chosen {
+  std::vector<int> vertex;
+  std::vector<Vec3> axis;
+};
+
+// Joint responses: actuator k one step along its axis with the others held at rest. The
+// single-point responses guided the choice, but with every point held the field is a
+// combination of these, which the travels are fitted in.
+Eigen::MatrixXd joint_responses(const FaceModel& m, const PlacementProblem& p, const Chosen& c,
+                                const PlacementProgress& progress, int& unsettled) {
+  const std::size_t n = c.vertex.size();
+  Eigen::MatrixXd joint(p.target.rows(), static_cast<Eigen::Index>(n));
+  FaceData d = p.settled;
+  std::vector<Vec3> pin(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    report(progress, "joint response " + std::to_string(k + 1) + "/" + std::to_string(n));
+    for (std::size_t j = 0; j < n; ++j)
+      pin[j] =
+          p.rest.get(static_cast<std::size_t>(c.vertex[j])) + (j == k ? p.step_m : 0) * c.axis[j];
+    d = p.settled;
+    set_pins(d, c.vertex, pin);
+    unsettled += !run_to_steady_state(m, d, FaceInput{}, p.steady).converged;
+    joint.col(static_cast<Eigen::Index>(k)) = stacked(p, d.skin_x);
+  }
+  return joint;
+}
+
+// Validation of expression e on the full model: the jaw and lids as the expression has
+// them, each point where the jaw alone carries it plus its actuator's travel (`steps`).
+ExpressionFit validate(const FaceModel& m, const PlacementProblem& p, const Chosen& c,
+                       std::size_t e, const Eigen::VectorXd& steps) {
+  const std::size_t n = c.vertex.size();
+  ExpressionFit f;
+  f.name = p.expressions[e].name;
+  f.worst_vertex = errors_mm(p, p.jaw_only[e], p.full[e], f.rms0_mm, f.max0_mm);
+  std::vector<Vec3> pin(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double s = steps(static_cast<Eigen::Index>(k));
+    f.travel_mm.push_back(s * p.step_m * kMm);
+    pin[k] = p.jaw_only[e].get(static_cast<std::size_t>(c.vertex[k])) + s * p.step_m * c.axis[k];
+  }
+  if (n == 0) {
+    f.rms_mm = f.rms0_mm;
+    f.max_mm = f.max0_mm;
+    return f;
+  }
+  FaceData d = p.settled;
+  set_pins(d, c.vertex, pin);
+  f.settled =
+      run_to_steady_state(m, d, jaw_and_lids_input(m, p.expressions[e]), p.steady).converged;
+  f.worst_vertex = errors_mm(p, d.skin_x, p.full[e], f.rms_mm, f.max_mm);
+  return f;
+}
+
+// Actuator k as a rig would take it: where it is, its nearest control point, its travels.
+PlacedActuator describe(const FaceModel& m, const PlacementProblem& p, const Chosen& c,
+                        const std::vector<ExpressionFit>& fits, std::size_t k) {
+  PlacedActuator a;
+  a.vertex = c.vertex[k];
+  a.axis = c.axis[k];
+  const auto v = static_cast<std::size_t>(a.vertex);
+  a.position_mm = p.rest.get(v) * kMm;
+  for (const LandmarkSpec& l : m.spec.landmarks)
+    if (l.vertices.size() == 1 && l.vertices[0] == a.vertex && l.offset.isZero())
+      a.landmark = l.name;
+  a.control_point_distance_mm = std::numeric_limits<double>::infinity();
+  for (const std::string& name : m.spec.control_points) {
+    const int li = m.landmark_index(name);
+    if (li < 0) continue;
+    const double dist = (landmark_position(m, p.rest, li) - p.rest.get(v)).norm() * kMm;
+    if (dist < a.control_point_distance_mm) {
+      a.control_point_distance_mm = dist;
+      a.nearest_control_point = name;
+    }
+  }
+  if (a.nearest_control_point.empty()) a.control_point_distance_mm = 0;
+  for (const ExpressionFit& f : fits) {
+    a.travel_min_mm = std::min(a.travel_min_mm, f.travel_mm[k]);
+    a.travel_max_mm = std::max(a.travel_max_mm, f.travel_mm[k]);
+  }
+  return a;
+}
+
+}  // namespace
+
+FaceInput jaw_and_lids_input(const FaceModel& m, const Expression& e) {
+  const FaceInput full = face_input(e);
+  FaceInput in;
+  in.jaw = e.jaw;
+  for (int s = 0; s < 2; ++s) in.eyelid_closure[s] = lid_closure(m, full, s);
+  return in;
+}
+
+PlacementProblem build_placement_problem(const FaceModel& m, const ExpressionLibrary& lib,
+                                         const PlacementOptions& o,
+                                         const PlacementProgress& progress) {
+  PlacementProblem p;
+  p.step_m = o.step_mm / kMm;
+  p.steady = o.steady;
+  p.expressions = chosen_expressions(lib, o.expressions);
+  p.settled = make_face_data(m);
+  reset_face_data(m, p.settled);
+  run_to_steady_state(m, p.settled, FaceInput{}, p.steady);
+  reserve_skin_pins(p.settled.pins, m.skin.v.size(), m.skin.v.size());
+  p.rest = p.settled.skin_x;
+  settle_targets(m, p, progress);
+  const Motion motion = choose_moving_vertices(p, o.moving_threshold_mm);
+  choose_candidates(p, o, motion);
+  measure_responses(m, p, progress);
   return p;
 }
 
@@ -242,85 +348,22 @@ Placement place_actuators(const FaceModel& m, const PlacementProblem& p, int bud
                           const PlacementProgress& progress) {
   Placement out;
   const std::vector<int> chosen = greedy_select(p, std::max(0, budget));
+  Chosen c;
+  for (int k : chosen) {
+    c.vertex.push_back(p.candidate_vertex[static_cast<std::size_t>(k)]);
+    c.axis.push_back(p.candidate_axis[static_cast<std::size_t>(k)]);
+  }
   const std::size_t n = chosen.size();
-  std::vector<int> vertex(n);
-  std::vector<Vec3> axis(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    vertex[k] = p.candidate_vertex[static_cast<std::size_t>(chosen[k])];
-    axis[k] = p.candidate_axis[static_cast<std::size_t>(chosen[k])];
-  }
-
-  // Joint responses: actuator k one step along its axis with the others held at rest. The
-  // single-point responses guided the choice, but with every point held the field is a
-  // combination of these, which the travels are fitted in.
-  Eigen::MatrixXd joint(p.target.rows(), static_cast<Eigen::Index>(n));
-  FaceData d = p.settled;
-  std::vector<Vec3> pin(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    report(progress, "joint response " + std::to_string(k + 1) + "/" + std::to_string(n));
-    for (std::size_t j = 0; j < n; ++j)
-      pin[j] = p.rest.get(static_cast<std::size_t>(vertex[j])) + (j == k ? p.step_m : 0) * axis[j];
-    d = p.settled;
-    set_pins(d, vertex, pin);
-    out.unsettled += !run_to_steady_state(m, d, FaceInput{}, p.steady).converged;
-    joint.col(static_cast<Eigen::Index>(k)) = stacked(p, d.skin_x);
-  }
+  const Eigen::MatrixXd joint = joint_responses(m, p, c, progress, out.unsettled);
+  // Steps of each actuator per expression, least squares in the joint responses.
   const Eigen::MatrixXd steps = n > 0 ? Eigen::MatrixXd(joint.colPivHouseholderQr().solve(p.target))
                                       : Eigen::MatrixXd(0, p.target.cols());
-
-  // Validation on the full model: the jaw and lids as the expression has them, each point
-  // where the jaw alone carries it plus its actuator's travel.
   for (std::size_t e = 0; e < p.expressions.size(); ++e) {
     report(progress, "validate " + p.expressions[e].name);
-    ExpressionFit f;
-    f.name = p.expressions[e].name;
-    f.worst_vertex = errors_mm(p, p.jaw_only[e], p.full[e], f.rms0_mm, f.max0_mm);
-    for (std::size_t k = 0; k < n; ++k) {
-      const double s = steps(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(e));
-      f.travel_mm.push_back(s * p.step_m * kMm);
-      const auto v = static_cast<std::size_t>(vertex[k]);
-      pin[k] = p.jaw_only[e].get(v) + s * p.step_m * axis[k];
-    }
-    if (n == 0) {
-      f.rms_mm = f.rms0_mm;
-      f.max_mm = f.max0_mm;
-    } else {
-      d = p.settled;
-      set_pins(d, vertex, pin);
-      f.settled =
-          run_to_steady_state(m, d, jaw_and_lids_input(m, p.expressions[e]), p.steady).converged;
-      out.unsettled += !f.settled;
-      f.worst_vertex = errors_mm(p, d.skin_x, p.full[e], f.rms_mm, f.max_mm);
-    }
-    out.fits.push_back(f);
+    out.fits.push_back(validate(m, p, c, e, steps.col(static_cast<Eigen::Index>(e))));
+    out.unsettled += !out.fits.back().settled;
   }
-
-  for (std::size_t k = 0; k < n; ++k) {
-    PlacedActuator a;
-    a.vertex = vertex[k];
-    a.axis = axis[k];
-    const auto v = static_cast<std::size_t>(vertex[k]);
-    a.position_mm = p.rest.get(v) * kMm;
-    for (const LandmarkSpec& l : m.spec.landmarks)
-      if (l.vertices.size() == 1 && l.vertices[0] == vertex[k] && l.offset.isZero())
-        a.landmark = l.name;
-    a.control_point_distance_mm = std::numeric_limits<double>::infinity();
-    for (const std::string& name : m.spec.control_points) {
-      const int li = m.landmark_index(name);
-      if (li < 0) continue;
-      const double dist = (landmark_position(m, p.rest, li) - p.rest.get(v)).norm() * kMm;
-      if (dist < a.control_point_distance_mm) {
-        a.control_point_distance_mm = dist;
-        a.nearest_control_point = name;
-      }
-    }
-    if (a.nearest_control_point.empty()) a.control_point_distance_mm = 0;
-    for (const ExpressionFit& f : out.fits) {
-      a.travel_min_mm = std::min(a.travel_min_mm, f.travel_mm[k]);
-      a.travel_max_mm = std::max(a.travel_max_mm, f.travel_mm[k]);
-    }
-    out.actuators.push_back(a);
-  }
+  for (std::size_t k = 0; k < n; ++k) out.actuators.push_back(describe(m, p, c, out.fits, k));
   return out;
 }
 

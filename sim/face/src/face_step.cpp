@@ -136,6 +136,18 @@ void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
 
 }  // namespace
 
+double lid_closure(const FaceModel& m, const FaceInput& in, int side) {
+  // The palpebral part of the orbicularis oculi narrows the eye (AU 7).
+  double oculi = 0;
+  for (std::size_t k = 0; k < m.muscles.size(); ++k) {
+    const int slot = m.command_slot[k];
+    if (m.is_oculi[k] == side && slot >= 0 &&
+        static_cast<std::size_t>(slot) < in.contractions.size())
+      oculi = std::clamp(in.contractions[static_cast<std::size_t>(slot)], 0.0, 1.0);
+  }
+  return std::clamp(in.eyelid_closure[side] + m.spec.oculi_lid_coupling * oculi, 0.0, 1.0);
+}
+
 void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in) {
   // (2)–(7) inputs and rigid parts.
   for (std::size_t k = 0; k < m.muscles.size(); ++k) {
@@ -144,14 +156,7 @@ void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in
                            ? std::clamp(in.contractions[slot], 0.0, 1.0)
                            : 0.0;
   }
-  double closure[2];
-  for (int s = 0; s < 2; ++s) {
-    // The palpebral part of the orbicularis oculi narrows the eye (AU 7).
-    double oculi = 0;
-    for (std::size_t k = 0; k < m.muscles.size(); ++k)
-      if (m.is_oculi[k] == s) oculi = d.contraction[k];
-    closure[s] = std::clamp(in.eyelid_closure[s] + m.spec.oculi_lid_coupling * oculi, 0.0, 1.0);
-  }
+  const double closure[2] = {lid_closure(m, in, 0), lid_closure(m, in, 1)};
   update_bones(m, d, in.jaw);
   update_lid_drivers(m, d, closure);
   // (8)–(11) muscles, deepest first.

@@ -41,4 +41,5 @@ expect_2 "no-such-head" --budget 2 --head "$tmp/no-such-head"
 mkdir "$tmp/empty-head"
 expect_2 "empty-head" --budget 2 --head "$tmp/empty-head"
 expect_2 "nothing" --budget 2 --expressions nothing --frames 5
+expect_2 "named twice" --budget 2 --expressions joy,surprise,joy --frames 5
 echo ok

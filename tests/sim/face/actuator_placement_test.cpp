@@ -29,7 +29,7 @@ TEST(SkinPins, HoldVertexAtTargetWithoutAllocating) {
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
   reset_face_data(m, d);
-  reserve_skin_pins(d.pins, 4);
+  reserve_skin_pins(d.pins, 4, m.skin.v.size());
   const int v = vertex_of("fdp_8_3");
   const Vec3 rest = d.skin_x.get(static_cast<std::size_t>(v));
   const Vec3 target = rest + Vec3(0, 0.004, 0.002);
@@ -45,6 +45,14 @@ TEST(SkinPins, HoldVertexAtTargetWithoutAllocating) {
   for (int k = 0; k < 3; ++k) add_skin_pin(d.pins, k, d.skin_x.get(static_cast<std::size_t>(k)));
   EXPECT_THROW(add_skin_pin(d.pins, 4, rest), std::length_error);
   clear_skin_pins(d.pins);
+  // A vertex off the skin is refused before it is written anywhere.
+  const int vertices = static_cast<int>(m.skin.v.size());
+  EXPECT_THROW(add_skin_pin(d.pins, vertices, rest), std::out_of_range);
+  EXPECT_THROW(add_skin_pin(d.pins, -1, rest), std::out_of_range);
+  EXPECT_EQ(d.pins.count, 0);
+  add_skin_pin(d.pins, vertices - 1, rest);
+  EXPECT_EQ(d.pins.count, 1);
+  clear_skin_pins(d.pins);
   EXPECT_EQ(d.pins.count, 0);
 }
 
@@ -53,7 +61,7 @@ TEST(SkinPins, DragNeighbours) {
   FaceData free_skin = make_face_data(m), pinned = make_face_data(m);
   reset_face_data(m, free_skin);
   reset_face_data(m, pinned);
-  reserve_skin_pins(pinned.pins, 1);
+  reserve_skin_pins(pinned.pins, 1, m.skin.v.size());
   const int v = vertex_of("fdp_8_3");
   add_skin_pin(pinned.pins, v, pinned.skin_x.get(static_cast<std::size_t>(v)) + Vec3(0, 0.003, 0));
   for (int f = 0; f < 200; ++f) {

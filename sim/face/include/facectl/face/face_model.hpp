@@ -123,6 +123,10 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in);
 // muscles" row of Table 5.1). step_face() calls this first.
 void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in);
 
+// The closure the lids of `side` (0 left, 1 right) take under `in`: its eyelid closure
+// plus the palpebral orbicularis oculi's (AU 7) times the head's coupling, in [0, 1].
+double lid_closure(const FaceModel& m, const FaceInput& in, int side);
+
 Vec3 landmark_position(const FaceModel& m, const Points& skin, int landmark);
 // A landmark of the spec on `skin` (base vertex numbering) without building the model:
 // its vertices' mean plus its offset. Throws InputError for a vertex outside the skin.
