@@ -15,9 +15,8 @@ namespace {
 // Levenberg–Marquardt damping, in the scaled variables' units (the Jacobian's columns are
 // effector fractions per unit of a signal's span).
 constexpr double kStartDamping = 1e-3, kMinDamping = 1e-12;
-// RMS weighted residual (a fraction of the effector spans) above which a second start is
-// tried. The tests hold each position to 1e-4 of its range; an RMS criterion lets one
-// actuator of k sit up to sqrt(k) times further off without a restart.
+// Largest weighted residual of one actuator (a fraction of its effector span) above which
+// a second start is tried: each position is meant to come back within 1e-4 of its range.
 constexpr double kRestartResidual = 1e-4;
 
 bool is_strut(const RigMapping& m, std::size_t actuator) {
@@ -149,6 +148,8 @@ MappingInverseWorkspace make_mapping_inverse_workspace(const MappingInverse& inv
   return w;
 }
 
+namespace {
+
 // Levenberg–Marquardt from w.face over the n variables w.variable names; leaves the
 // result in w.face and returns {cost, iterations}.
 std::pair<double, int> descend(const MappingInverse& inv, MappingInverseWorkspace& w,
@@ -229,6 +230,8 @@ std::pair<double, int> descend(const MappingInverse& inv, MappingInverseWorkspac
   return {cost, iterations};
 }
 
+}  // namespace
+
 MappingInverseResult invert_mapping(const MappingInverse& inv, MappingInverseWorkspace& w,
                                     std::span<const double> positions,
                                     std::array<double, kMaxFaceSignals>& face) {
@@ -256,10 +259,9 @@ MappingInverseResult invert_mapping(const MappingInverse& inv, MappingInverseWor
   result.iterations = iterations;
   // A bound-constrained least squares over cubic features has local minima: where the
   // descent from neutral leaves a visible misfit, start again from the middle of the box.
-  const double fit_first = residual(inv, w, w.face, w.residual, weight);
-  int used_first = 0;
-  for (std::size_t a = 0; a < m.actuators(); ++a) used_first += weight[a] != 0.0;
-  if (used_first > 0 && std::sqrt(fit_first / used_first) > kRestartResidual) {
+  residual(inv, w, w.face, w.residual, weight);
+  const int rows = static_cast<int>(m.actuators());
+  if (rows > 0 && w.residual.head(rows).lpNorm<Eigen::Infinity>() > kRestartResidual) {
     w.best = w.face;
     for (int k = 0; k < n; ++k) {
       const std::size_t s = static_cast<std::size_t>(w.variable[static_cast<std::size_t>(k)]);
