@@ -199,6 +199,57 @@ TEST(HeadFitInput, RefusesMeshesThatCannotBeAFace) {
   }
 }
 
+// A fin: a third triangle on an edge of the default skin. Refused, naming the edge.
+TEST(HeadFitInput, RefusesANonManifoldEdge) {
+  TriMesh fin = source_skin();
+  const Tri t = fin.tris[10];
+  fin.v.push_back(fin.v.get(t[0]) + Vec3(0, 0, 0.01));
+  fin.tris.push_back({t[0], t[1], static_cast<int>(fin.v.size()) - 1});
+  const std::string edge = "the edge between vertices " + std::to_string(std::min(t[0], t[1]) + 1) +
+                           " and " + std::to_string(std::max(t[0], t[1]) + 1) +
+                           " is shared by 3 faces";
+  try {
+    check_head_mesh(fin, "fin.obj");
+    ADD_FAILURE() << "a non-manifold edge was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("fin.obj: non-manifold: " + edge), std::string::npos)
+        << e.what();
+  }
+  check_head_mesh(source_skin(), "default");  // open borders (the mask's edge) are fine
+}
+
+// Vertices no face uses (Blender leaves them behind) are left out: a loose vertex exactly
+// where a landmark would snap is not chosen, and is listed.
+TEST(HeadFitInput, LeavesLooseVerticesOut) {
+  const Fitted& f = fitted(1);
+  TriMesh target = f.target;
+  for (const PlacedLandmark& l : f.fit.landmarks)
+    if (l.name == "fdp_9_3" || l.name == "fdp_8_3") target.v.push_back(l.fitted);
+  ASSERT_EQ(target.v.size(), f.target.v.size() + 2);
+  check_head_mesh(target, "loose.obj");
+  const HeadFit fit = fit_head(default_spec(), source_skin(), target, HeadFitOptions{});
+  EXPECT_TRUE(fit.problems.empty());
+  const int n = static_cast<int>(f.target.v.size());
+  EXPECT_EQ(fit.loose_vertices, (std::vector<int>{n, n + 1}));
+  for (const LandmarkSpec& l : fit.spec.landmarks)
+    for (int v : l.vertices) EXPECT_LT(v, n) << l.name;
+  for (const auto& [name, contour] : fit.spec.openings)
+    for (int v : contour) EXPECT_LT(v, n) << name;
+  EXPECT_EQ(fit.spec.landmarks[0].vertices, f.fit.spec.landmarks[0].vertices);
+}
+
+// The refinement reports whether it stopped moving or ran into its round limit.
+TEST(HeadFit, ReportsWhetherTheRefinementConverged) {
+  const Fitted& f = fitted(0);
+  EXPECT_TRUE(f.fit.converged);
+  EXPECT_LT(f.fit.iterations, HeadFitOptions{}.max_iterations);
+  HeadFitOptions one;
+  one.max_iterations = 1;  // the first round always moves (from zero) and adds pairs
+  const HeadFit cut = fit_head(default_spec(), source_skin(), f.target, one);
+  EXPECT_FALSE(cut.converged);
+  EXPECT_EQ(cut.iterations, 1);
+}
+
 TEST(HeadFitInput, ReportsAFaceTheWrongWayRound) {
   // The default skin turned to face −z: fits, but the nose is behind the eyes.
   TriMesh back = source_skin();
