@@ -26,10 +26,6 @@ struct FitHeadArgs {
   std::string from = facectl::shipped_dirs().config + "/heads/default";
 };
 
-double units_scale(const std::string& u) {
-  return u == "m" ? 1.0 : u == "mm" ? 1e-3 : 1e-2;
-}
-
 nlohmann::ordered_json json_report(const HeadFit& f, const FitHeadArgs& a) {
   nlohmann::ordered_json landmarks = nlohmann::ordered_json::array();
   for (const PlacedLandmark& l : f.landmarks)
@@ -40,6 +36,9 @@ nlohmann::ordered_json json_report(const HeadFit& f, const FitHeadArgs& a) {
                          {"snap_mm", l.snap_mm}});
   return {{"obj", a.obj},
           {"iterations", f.iterations},
+          {"converged", f.converged},
+          {"last_change_mm", f.last_change_mm},
+          {"loose_vertices", f.loose_vertices},
           {"size_ratio", f.size_ratio},
           {"landmarks", landmarks},
           {"problems", f.problems}};
@@ -79,7 +78,7 @@ int run(const FitHeadArgs& a) {
                                 "overwrite its skin, landmarks and muscles");
   const HeadSpec source = load_head_spec(a.from);
   const TriMesh source_skin = read_obj(source.skin_file, source.skin_scale);
-  const TriMesh target = read_obj(a.obj, units_scale(a.units));
+  const TriMesh target = read_obj(a.obj, metres_per_unit(a.units));
   check_head_mesh(target, a.obj);
   HeadFit f = fit_head(source, source_skin, target, HeadFitOptions{});
   // The alignment is scale-free, so a mesh read in the wrong unit still fits; only the
@@ -91,10 +90,21 @@ int run(const FitHeadArgs& a) {
 
   std::printf(
       "fit %s (%zu vertices, %zu triangles) to %s: %d iterations, %d refinement pairs, last move "
-      "%.3f mm, "
-      "size ratio %.3f\n",
+      "%.3f mm, size ratio %.3f\n",
       a.obj.c_str(), target.v.size(), target.tris.size(), a.from.c_str(), f.iterations,
       f.refined_pairs, f.last_change_mm, f.size_ratio);
+  if (f.converged)
+    std::printf("converged: the correspondences stopped moving\n");
+  else
+    std::printf(
+        "not converged: stopped at the round limit (%d) with a last move of %.3f mm and %d pairs "
+        "added in the last round\n",
+        f.iterations, f.last_change_mm, f.last_added_pairs);
+  if (!f.loose_vertices.empty())
+    std::printf(
+        "note: %zu vertices used by no face (the first is vertex %d of the OBJ) are left out of "
+        "the fit; they stay in skin.obj\n",
+        f.loose_vertices.size(), f.loose_vertices.front() + 1);
   for (const std::string& n : f.opening_notes) std::printf("opening %s\n", n.c_str());
   std::printf("%-10s %5s %7s %10s %8s\n", "landmark", "bone", "vertex", "initial_mm", "snap_mm");
   for (const PlacedLandmark& l : f.landmarks)

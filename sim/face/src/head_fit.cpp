@@ -4,9 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
 #include <string>
 
+#include "facectl/face/edge_paths.hpp"
+#include "facectl/face/face_model.hpp"
 #include "facectl/face/input_error.hpp"
 
 namespace facectl::face {
@@ -45,20 +46,16 @@ Vec3 closest_on_mesh(const TriMesh& m, const Vec3& p) {
   return best;
 }
 
-int nearest_of(const Points& v, const std::vector<int>& allowed, const Vec3& p) {
+int nearest_of(const Points& v, const std::vector<int>& candidates, const Vec3& p) {
   int best = -1;
   double bd = kInf;
-  auto consider = [&](int i) {
+  for (int i : candidates) {
     const double d = (v.get(i) - p).squaredNorm();
     if (d < bd) {
       bd = d;
       best = i;
     }
-  };
-  if (allowed.empty())
-    for (int i = 0; i < static_cast<int>(v.size()); ++i) consider(i);
-  else
-    for (int i : allowed) consider(i);
+  }
   return best;
 }
 
@@ -79,28 +76,6 @@ std::vector<int> spread_samples(const Points& v, std::vector<int> seeds, int cou
     update(s);
   }
   return out;
-}
-
-// Vertices from a to b along mesh edges (a first, b excluded); empty when unreachable.
-std::vector<int> edge_path(const Points& v, const Adjacency& adj, int a, int b) {
-  const std::vector<double> d = edge_geodesic(v, adj, {b});
-  if (!std::isfinite(d[a])) return {};
-  std::vector<int> path;
-  for (int u = a; u != b;) {
-    path.push_back(u);
-    int next = -1;
-    double nd = kInf;
-    for (int k = adj.start[u]; k < adj.start[u + 1]; ++k) {
-      const int w = adj.nbr[k];
-      const double c = d[w] + (v.get(u) - v.get(w)).norm();
-      if (c < nd) {
-        nd = c;
-        next = w;
-      }
-    }
-    u = next;
-  }
-  return path;
 }
 
 double median_edge(const TriMesh& m) {
@@ -185,6 +160,29 @@ std::vector<Vec3> along_loop(const Points& S, const std::vector<int>& src, const
   return best_rim;
 }
 
+// An edge on more than two triangles (a fin, or two sheets joined along a line): the
+// boundary loops and edge paths assume a 2-manifold. Names the first such edge in OBJ
+// numbering (from 1).
+void check_manifold(const TriMesh& m, const std::string& what) {
+  std::map<std::pair<int, int>, int> faces;
+  for (const Tri& t : m.tris)
+    for (int k = 0; k < 3; ++k) ++faces[std::minmax(t[k], t[(k + 1) % 3])];
+  int bad = 0;
+  std::pair<int, int> first{0, 0};
+  int first_count = 0;
+  for (const auto& [e, n] : faces)
+    if (n > 2 && bad++ == 0) {
+      first = e;
+      first_count = n;
+    }
+  if (bad > 0)
+    throw InputError(what + ": non-manifold: the edge between vertices " +
+                     std::to_string(first.first + 1) + " and " + std::to_string(first.second + 1) +
+                     " is shared by " + std::to_string(first_count) + " faces" +
+                     (bad > 1 ? " (and " + std::to_string(bad - 1) + " more such edges)" : "") +
+                     "; fit-head needs each edge on one or two faces (open borders are fine)");
+}
+
 }  // namespace
 
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -228,6 +226,7 @@ void check_head_mesh(const TriMesh& m, const std::string& what) {
   if (used < kMinVertices)
     throw InputError(what + ": expected faces over at least " + std::to_string(kMinVertices) +
                      " vertices, found " + std::to_string(used));
+  check_manifold(m, what);
   if (good * 2 < m.tris.size())
     throw InputError(what + ": most triangles have zero area (degenerate mesh)");
   const Vec3 s = box_of(m.v).size();
@@ -240,33 +239,38 @@ void check_head_mesh(const TriMesh& m, const std::string& what) {
                        " of " + mm(big) + "): expected a face facing +z with y up");
 }
 
-HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMesh& target,
-                 const HeadFitOptions& o) {
-  HeadFit fit;
-  const Points& S = source_skin.v;
+namespace {
+
+// Step 1, initial alignment: per-axis scale and centre from the bounding boxes (both
+// meshes face +z).
+struct BoxAlignment {
+  Box source, target;
+  Vec3 scale;
+  Vec3 apply(const Vec3& p) const {
+    return target.centre() + scale.cwiseProduct(p - source.centre());
+  }
+};
+
+BoxAlignment align_boxes(const Points& S, const Points& T) {
+  BoxAlignment a{box_of(S), box_of(T), Vec3::Ones()};
+  a.scale = a.target.size().cwiseQuotient(a.source.size());
+  return a;
+}
+
+// Step 2, openings the target already has as holes: the boundary loop near each source
+// contour (after the initial alignment), ordered like the source's own loop.
+std::vector<OpeningLoops> find_holes(const HeadSpec& source, const TriMesh& source_skin,
+                                     const TriMesh& target, const BoxAlignment& al) {
   const Points& T = target.v;
-
-  // Initial alignment: per-axis scale and centre from the bounding boxes (both face +z).
-  const Box bs = box_of(S), bt = box_of(T);
-  const Vec3 scale = bt.size().cwiseQuotient(bs.size());
-  auto initial = [&](const Vec3& p) -> Vec3 {
-    return bt.centre() + scale.cwiseProduct(p - bs.centre());
-  };
-  fit.size_ratio = std::sqrt(scale.x() * scale.y());
-
-  // Openings the target already has as holes: the boundary loop near each source contour
-  // (after the initial alignment), ordered like the source's own loop.
   const auto loops = boundary_loops(target.tris);
   std::vector<OpeningLoops> holes(source.openings.size());
-  std::vector<int> on_contour(S.size(), -1);  // source vertex → index of its opening
   for (std::size_t oi = 0; oi < source.openings.size(); ++oi) {
     const auto& verts = source.openings[oi].second;
-    for (int v : verts) on_contour[v] = static_cast<int>(oi);
     holes[oi].source = source_loop(source_skin, verts);
     std::vector<Vec3> mapped;
     Box mb;
     for (int v : verts) {
-      mapped.push_back(closest_on_mesh(target, initial(S.get(v))));
+      mapped.push_back(closest_on_mesh(target, al.apply(source_skin.v.get(v))));
       mb.add(mapped.back());
     }
     const double span = mb.size().norm();
@@ -285,19 +289,56 @@ HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMe
     }
     if (best >= 0.25 * span || holes[oi].source.empty()) holes[oi].target.clear();
   }
+  return holes;
+}
 
-  // Correspondences: every skin landmark vertex and every contour vertex of an opening the
-  // target has as a hole, plus a spread sample of the skin.
-  // Surface points near such a rim are left to G: the rim carries them, where a closest
-  // point would slide across the curved lips (measured: outer lip corners 4.6 mm off).
+// Source points near the rim of an opening the target has as a hole: the rim carries
+// them, where a closest point would slide across the curved lips (measured: outer lip
+// corners 4.6 mm off).
+struct RimProximity {
+  const Points& S;
   std::vector<int> rim;
-  for (const OpeningLoops& h : holes)
-    if (!h.target.empty()) rim.insert(rim.end(), h.source.begin(), h.source.end());
-  auto near_rim = [&](int v) {
+  double reach;
+  bool operator()(int v) const {
     for (int r : rim)
-      if (r != v && (S.get(r) - S.get(v)).norm() < o.rim_reach) return true;
+      if (r != v && (S.get(r) - S.get(v)).norm() < reach) return true;
     return false;
-  };
+  }
+};
+
+RimProximity rim_proximity(const Points& S, const std::vector<OpeningLoops>& holes, double reach) {
+  RimProximity near{S, {}, reach};
+  for (const OpeningLoops& h : holes)
+    if (!h.target.empty()) near.rim.insert(near.rim.end(), h.source.begin(), h.source.end());
+  return near;
+}
+
+// Source vertex → index of the opening whose contour it is on, or −1.
+std::vector<int> contour_index(const HeadSpec& source, std::size_t n) {
+  std::vector<int> on_contour(n, -1);
+  for (std::size_t oi = 0; oi < source.openings.size(); ++oi)
+    for (int v : source.openings[oi].second) on_contour[v] = static_cast<int>(oi);
+  return on_contour;
+}
+
+// Source vertices G is fitted at (`vertex`), their source positions (`from`).
+struct Correspondences {
+  std::vector<int> vertex;
+  std::vector<Vec3> from;
+  std::map<int, std::size_t> index;  // vertex → position in the lists
+  void add(const Points& S, int v) {
+    index[v] = vertex.size();
+    vertex.push_back(v);
+    from.push_back(S.get(v));
+  }
+};
+
+// Step 3a: every skin landmark vertex and every contour vertex of an opening the target
+// has as a hole, plus a spread sample of the skin.
+Correspondences choose_correspondences(const HeadSpec& source, const Points& S,
+                                       const std::vector<OpeningLoops>& holes,
+                                       const std::vector<int>& on_contour,
+                                       const RimProximity& near_rim, int samples) {
   std::vector<int> corr;
   for (const LandmarkSpec& l : source.landmarks)
     for (int v : l.vertices)
@@ -306,33 +347,40 @@ HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMe
     if (!h.target.empty()) corr.insert(corr.end(), h.source.begin(), h.source.end());
   std::sort(corr.begin(), corr.end());
   corr.erase(std::unique(corr.begin(), corr.end()), corr.end());
-  for (int v : spread_samples(S, corr, o.surface_samples))
+  for (int v : spread_samples(S, corr, samples))
     if (!near_rim(v)) corr.push_back(v);
-  std::vector<Vec3> from(corr.size()), to(corr.size()), prev(corr.size(), Vec3::Zero());
-  std::map<int, std::size_t> corr_index;
-  for (std::size_t k = 0; k < corr.size(); ++k) {
-    from[k] = S.get(corr[k]);
-    corr_index[corr[k]] = k;
-  }
+  Correspondences c;
+  for (int v : corr) c.add(S, v);
+  return c;
+}
 
-  // Non-rigid fit. Surface points go to the closest target point; contour points of a hole
-  // to the same share of arc length along the target's loop (closest points would let
-  // them slide along the rim, and G interpolates them, so nothing would correct it).
-  // G changes the closest points, and the rim alignment; repeat until they stop moving.
-  auto morph = [&](const Vec3& p) { return fit.iterations == 0 ? initial(p) : fit.morph.apply(p); };
+// Step 3b, non-rigid fit. Surface points go to the closest target point; contour points
+// of a hole to the same share of arc length along the target's loop (closest points would
+// let them slide along the rim, and G interpolates them, so nothing would correct it).
+// G changes the closest points, and the rim alignment; repeat until they stop moving.
+// Writes fit.morph, iterations, refined_pairs, last_change_mm and converged.
+void fit_morph(const Points& S, const TriMesh& target, const std::vector<OpeningLoops>& holes,
+               const BoxAlignment& al, const RimProximity& near_rim, Correspondences c,
+               const HeadFitOptions& o, HeadFit& fit) {
+  auto morph = [&](const Vec3& p) {
+    return fit.iterations == 0 ? al.apply(p) : fit.morph.apply(p);
+  };
+  std::vector<Vec3> to(c.vertex.size()), prev(c.vertex.size(), Vec3::Zero());
+  fit.converged = false;
   for (int it = 0; it < o.max_iterations; ++it) {
-    for (std::size_t k = 0; k < corr.size(); ++k) to[k] = closest_on_mesh(target, morph(from[k]));
+    for (std::size_t k = 0; k < c.vertex.size(); ++k)
+      to[k] = closest_on_mesh(target, morph(c.from[k]));
     for (const OpeningLoops& h : holes) {
       if (h.target.empty()) continue;
       std::vector<Vec3> mapped;
       for (int v : h.source) mapped.push_back(morph(S.get(v)));
-      const std::vector<Vec3> on_rim = along_loop(S, h.source, T, h.target, mapped);
-      for (std::size_t i = 0; i < h.source.size(); ++i) to[corr_index[h.source[i]]] = on_rim[i];
+      const std::vector<Vec3> on_rim = along_loop(S, h.source, target.v, h.target, mapped);
+      for (std::size_t i = 0; i < h.source.size(); ++i) to[c.index.at(h.source[i])] = on_rim[i];
     }
     double change = 0;
     for (std::size_t k = 0; k < prev.size(); ++k)
       change = std::max(change, (to[k] - prev[k]).norm());
-    fit.morph = fit_rbf(from, to);
+    fit.morph = fit_rbf(c.from, to);
     prev = to;
     fit.iterations = it + 1;
     fit.last_change_mm = change * 1e3;
@@ -340,7 +388,7 @@ HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMe
     // target surface become correspondences too.
     std::vector<std::pair<double, int>> gap;
     for (int v = 0; v < static_cast<int>(S.size()); ++v) {
-      if (corr_index.count(v) || near_rim(v)) continue;
+      if (c.index.count(v) || near_rim(v)) continue;
       const Vec3 p = fit.morph.apply(S.get(v));
       const double d = (closest_on_mesh(target, p) - p).norm();
       if (d * 1e3 > o.refine_above_mm) gap.push_back({d, v});
@@ -348,81 +396,81 @@ HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMe
     std::sort(gap.rbegin(), gap.rend());
     gap.resize(std::min<std::size_t>(gap.size(), static_cast<std::size_t>(o.worst_pairs)));
     for (const auto& g : gap) {
-      corr_index[g.second] = corr.size();
-      corr.push_back(g.second);
-      from.push_back(S.get(g.second));
+      c.add(S, g.second);
       to.push_back(Vec3::Zero());
     }
     fit.refined_pairs += static_cast<int>(gap.size());
-    if (it > 0 && gap.empty() && fit.last_change_mm < o.converged_mm) break;
+    fit.last_added_pairs = static_cast<int>(gap.size());
+    if (it > 0 && gap.empty() && fit.last_change_mm < o.converged_mm) {
+      fit.converged = true;
+      break;
+    }
   }
-  const RbfMorph& G = fit.morph;
+}
 
-  // Openings: the hole found above, else the mapped contour snapped to target vertices and
-  // joined by shortest edge paths.
-  const Adjacency adj = vertex_adjacency(T.size(), target.tris);
-  std::map<std::string, std::vector<int>> opening_of;
-  fit.spec = source;
-  fit.spec.openings.clear();
+// Step 5: the hole found in step 2, else the mapped contour snapped to target vertices and
+// joined by shortest edge paths. Notes and problems go to `fit`.
+std::vector<std::pair<std::string, std::vector<int>>> place_openings(
+    const HeadSpec& source, const Points& S, const TriMesh& target, const std::vector<int>& surface,
+    const std::vector<OpeningLoops>& holes, HeadFit& fit) {
+  const Adjacency adj = path_adjacency(target.v, target.tris);
+  std::vector<std::pair<std::string, std::vector<int>>> openings;
   for (std::size_t oi = 0; oi < source.openings.size(); ++oi) {
     const auto& [name, verts] = source.openings[oi];
-    std::vector<Vec3> mapped;
-    for (int v : verts) mapped.push_back(closest_on_mesh(target, G.apply(S.get(v))));
-    const std::vector<int>& best_loop = holes[oi].target;
-    std::vector<int> contour;
-    if (!best_loop.empty()) {
-      contour = best_loop;
+    std::vector<int> contour = holes[oi].target;
+    if (!contour.empty()) {
       fit.opening_notes.push_back(name + ": the mesh's own hole (" +
                                   std::to_string(contour.size()) + " vertices)");
     } else {
       std::vector<int> snapped;
-      for (const Vec3& p : mapped) {
-        const int s = nearest_of(T, {}, p);
-        if (snapped.empty() || snapped.back() != s) snapped.push_back(s);
+      for (int v : verts) {
+        const Vec3 p = closest_on_mesh(target, fit.morph.apply(S.get(v)));
+        snapped.push_back(nearest_of(target.v, surface, p));
       }
-      bool closed = snapped.size() >= 3;
-      for (std::size_t k = 0; closed && k < snapped.size(); ++k) {
-        auto part = edge_path(T, adj, snapped[k], snapped[(k + 1) % snapped.size()]);
-        if (part.empty()) closed = false;
-        for (int v : part)
-          if (std::find(contour.begin(), contour.end(), v) == contour.end()) contour.push_back(v);
-      }
-      if (!closed) {
+      contour = join_contour(target.v, adj, snapped);
+      if (contour.empty())
         fit.problems.push_back("opening " + name + ": could not close a contour on the mesh");
-        contour.clear();
-      } else {
+      else
         fit.opening_notes.push_back(name + ": contour of " + std::to_string(contour.size()) +
                                     " vertices joined along edges (mesh closed there)");
-      }
     }
-    opening_of[name] = contour;
-    fit.spec.openings.push_back({name, contour});
+    openings.push_back({name, contour});
   }
+  return openings;
+}
 
-  // Landmarks: each source vertex mapped by G and snapped (contour vertices to the
-  // matching target contour); bone points keep G's position through a new offset.
+// Each landmark's point on the source head and where the fit placed it (vertices + offset).
+struct LandmarkPositions {
+  std::map<std::string, Vec3> source, placed;
+};
+
+// Step 4: each source vertex mapped by G and snapped (contour vertices to the matching
+// target contour); bone points keep G's position through a new offset. Writes
+// fit.landmarks, fit.spec.landmarks and problems.
+LandmarkPositions place_landmarks(const HeadSpec& source, const Points& S, const TriMesh& target,
+                                  const std::vector<int>& surface,
+                                  const std::vector<int>& on_contour, const BoxAlignment& al,
+                                  const HeadFitOptions& o, HeadFit& fit) {
+  const Points& T = target.v;
+  const RbfMorph& G = fit.morph;
   const double edge = median_edge(target);
-  std::map<std::string, Vec3> src_pos, new_pos;
+  LandmarkPositions pos;
   for (std::size_t li = 0; li < source.landmarks.size(); ++li) {
     const LandmarkSpec& l = source.landmarks[li];
     LandmarkSpec& nl = fit.spec.landmarks[li];
     PlacedLandmark p;
     p.name = l.name;
     p.bone = l.offset.norm() > 0;
-    Vec3 src = Vec3::Zero();
-    for (int v : l.vertices) src += S.get(v);
-    src = src / static_cast<double>(l.vertices.size()) + l.offset;
-    src_pos[l.name] = src;
+    const Vec3 src = landmark_position(l, S);
+    pos.source[l.name] = src;
     p.fitted = G.apply(src);
-    p.initial_mm = (closest_on_mesh(target, initial(src)) - initial(src)).norm() * 1e3;
+    p.initial_mm = (closest_on_mesh(target, al.apply(src)) - al.apply(src)).norm() * 1e3;
     nl.vertices.clear();
     Vec3 mean = Vec3::Zero();
     for (int v : l.vertices) {
-      const Vec3 q = G.apply(S.get(v));
       const int oi = on_contour[v];
-      const std::vector<int>* allowed = nullptr;
-      if (oi >= 0) allowed = &opening_of[source.openings[oi].first];
-      const int t = nearest_of(T, allowed && !allowed->empty() ? *allowed : std::vector<int>{}, q);
+      const std::vector<int>& contour = oi >= 0 ? fit.spec.openings[oi].second : surface;
+      const int t = nearest_of(T, contour.empty() ? surface : contour, G.apply(S.get(v)));
       nl.vertices.push_back(t);
       mean += T.get(t);
     }
@@ -431,42 +479,48 @@ HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMe
     p.offset = p.bone ? Vec3(p.fitted - mean) : Vec3::Zero();
     nl.offset = p.offset;
     p.snap_mm = (mean + p.offset - p.fitted).norm() * 1e3;
-    new_pos[l.name] = mean + p.offset;
+    pos.placed[l.name] = mean + p.offset;
     if (!p.bone && p.snap_mm > o.max_snap_edges * edge * 1e3 && l.vertices.size() == 1)
       fit.problems.push_back("landmark " + l.name + ": nearest vertex " + mm(p.snap_mm * 1e-3) +
                              " away (more than " + std::to_string(o.max_snap_edges) +
                              " median edges of " + mm(edge) + ")");
     fit.landmarks.push_back(p);
   }
+  return pos;
+}
 
-  // A face, the right way round: catches meshes with nothing face-like, or facing −z.
-  auto at = [&](const char* n) { return new_pos.count(n) ? new_pos[n] : Vec3(Vec3::Zero()); };
-  if (new_pos.count("fdp_3_7") && new_pos.count("fdp_3_8") && new_pos.count("fdp_9_3") &&
-      new_pos.count("fdp_2_2")) {
-    const Vec3 eyes = 0.5 * (at("fdp_3_7") + at("fdp_3_8"));
-    if (!(at("fdp_3_7").x() > at("fdp_3_8").x()))
-      fit.problems.push_back("the fitted left eye (fdp_3_7) is not at +x of the right (fdp_3_8)");
-    if (!(eyes.y() > at("fdp_2_2").y()))
-      fit.problems.push_back("the fitted eyes are not above the mouth (y up?)");
-    if (!(at("fdp_9_3").z() > eyes.z()))
-      fit.problems.push_back("the fitted nose tip (fdp_9_3) is not in front of the eyes (+z?)");
-  }
+// A face, the right way round: catches meshes with nothing face-like, or facing −z.
+void check_orientation(const LandmarkPositions& pos, std::vector<std::string>& problems) {
+  const auto& at = pos.placed;
+  if (!at.count("fdp_3_7") || !at.count("fdp_3_8") || !at.count("fdp_9_3") || !at.count("fdp_2_2"))
+    return;
+  const Vec3 eyes = 0.5 * (at.at("fdp_3_7") + at.at("fdp_3_8"));
+  if (!(at.at("fdp_3_7").x() > at.at("fdp_3_8").x()))
+    problems.push_back("the fitted left eye (fdp_3_7) is not at +x of the right (fdp_3_8)");
+  if (!(eyes.y() > at.at("fdp_2_2").y()))
+    problems.push_back("the fitted eyes are not above the mouth (y up?)");
+  if (!(at.at("fdp_9_3").z() > eyes.z()))
+    problems.push_back("the fitted nose tip (fdp_9_3) is not in front of the eyes (+z?)");
+}
 
-  // Muscle corners: source landmark + offset, carried by G, as new landmark + offset.
-  for (MuscleSpec& m : fit.spec.muscles)
+// Step 6: every muscle corner (source landmark + offset) carried by G, as new landmark +
+// offset.
+void carry_muscles(const LandmarkPositions& pos, const RbfMorph& G, HeadSpec& h) {
+  for (MuscleSpec& m : h.muscles)
     for (auto* refs : {&m.origin, &m.insertion, &m.inner, &m.outer})
       for (PointRef& r : *refs)
-        r.offset = G.apply(src_pos[r.landmark] + r.offset) - new_pos[r.landmark];
+        r.offset = G.apply(pos.source.at(r.landmark) + r.offset) - pos.placed.at(r.landmark);
+}
 
-  // Lengths that scale with the head; variants are for the user to choose.
-  HeadSpec& h = fit.spec;
-  const double s = fit.size_ratio;
+// Step 7: lengths that scale with the head; variants are for the user to choose.
+void scale_sizes(const LandmarkPositions& pos, double s, HeadSpec& h) {
   h.tissue_depth *= s;
   // The teeth and eyeballs follow the mouth's and the eyes' own widths: a jaw narrower
   // than the bounding box would otherwise push the lip corners onto too wide an arch.
   auto width_ratio = [&](const char* a, const char* b) {
-    if (!src_pos.count(a) || !src_pos.count(b)) return s;
-    return (new_pos[a] - new_pos[b]).norm() / (src_pos[a] - src_pos[b]).norm();
+    if (!pos.source.count(a) || !pos.source.count(b)) return s;
+    return (pos.placed.at(a) - pos.placed.at(b)).norm() /
+           (pos.source.at(a) - pos.source.at(b)).norm();
   };
   h.teeth_half_width *= width_ratio("fdp_8_3", "fdp_8_4");
   h.teeth_depth *= s;
@@ -478,6 +532,49 @@ HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMe
   h.influence_falloff *= s;
   for (MuscleSpec& m : h.muscles) m.thickness *= s;
   h.variants.clear();
+}
+
+}  // namespace
+
+std::vector<int> loose_vertices(const TriMesh& m) {
+  std::vector<char> used(m.v.size(), 0);
+  for (const Tri& t : m.tris)
+    for (int i : t) used[static_cast<std::size_t>(i)] = 1;
+  std::vector<int> loose;
+  for (std::size_t i = 0; i < used.size(); ++i)
+    if (!used[i]) loose.push_back(static_cast<int>(i));
+  return loose;
+}
+
+HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMesh& target,
+                 const HeadFitOptions& o) {
+  HeadFit fit;
+  const Points& S = source_skin.v;
+  // Vertices used by no face are left out: landmarks and contours snap to the surface.
+  fit.loose_vertices = loose_vertices(target);
+  std::vector<int> surface;
+  for (int i = 0, k = 0; i < static_cast<int>(target.v.size()); ++i) {
+    if (k < static_cast<int>(fit.loose_vertices.size()) && fit.loose_vertices[k] == i)
+      ++k;
+    else
+      surface.push_back(i);
+  }
+
+  const BoxAlignment al = align_boxes(S, target.v);
+  fit.size_ratio = std::sqrt(al.scale.x() * al.scale.y());
+  const std::vector<OpeningLoops> holes = find_holes(source, source_skin, target, al);
+  const std::vector<int> on_contour = contour_index(source, S.size());
+  const RimProximity near_rim = rim_proximity(S, holes, o.rim_reach);
+  fit_morph(S, target, holes, al, near_rim,
+            choose_correspondences(source, S, holes, on_contour, near_rim, o.surface_samples), o,
+            fit);
+
+  fit.spec = source;
+  fit.spec.openings = place_openings(source, S, target, surface, holes, fit);
+  const LandmarkPositions pos = place_landmarks(source, S, target, surface, on_contour, al, o, fit);
+  check_orientation(pos, fit.problems);
+  carry_muscles(pos, fit.morph, fit.spec);
+  scale_sizes(pos, fit.size_ratio, fit.spec);
   return fit;
 }
 

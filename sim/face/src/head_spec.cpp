@@ -117,6 +117,10 @@ void read_muscle_stiffness(const Doc& d, const YAML::Node& n, MuscleStiffness& k
 
 }  // namespace
 
+double metres_per_unit(const std::string& unit) {
+  return unit == "m" ? 1.0 : unit == "cm" ? 0.01 : unit == "mm" ? 0.001 : 0.0;
+}
+
 HeadSpec load_head_spec(const std::string& dir) {
   HeadSpec h;
   h.dir = dir;
@@ -127,14 +131,8 @@ HeadSpec load_head_spec(const std::string& dir) {
   h.files.push_back(as<std::string>(face, need(face, skin, "file"), "file", "a file name"));
   h.skin_file = dir + "/" + h.files.back();
   std::string units = as<std::string>(face, need(face, skin, "units"), "units", "m, cm or mm");
-  if (units == "m")
-    h.skin_scale = 1;
-  else if (units == "cm")
-    h.skin_scale = 0.01;
-  else if (units == "mm")
-    h.skin_scale = 0.001;
-  else
-    fail(face, skin["units"], "units", "m, cm or mm");
+  h.skin_scale = metres_per_unit(units);
+  if (h.skin_scale == 0) fail(face, skin["units"], "units", "m, cm or mm");
   if (f["openings"].IsDefined()) {
     if (!f["openings"].IsMap()) fail(face, f["openings"], "openings", "a mapping name -> vertices");
     for (const auto& kv : f["openings"])

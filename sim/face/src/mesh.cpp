@@ -89,7 +89,10 @@ void vertex_normals(const Points& v, const std::vector<Tri>& tris, Points& out) 
 }
 
 Adjacency vertex_adjacency(std::size_t n, const std::vector<Tri>& tris) {
-  std::vector<Edge> e = unique_edges(tris);
+  return adjacency_from_edges(n, unique_edges(tris));
+}
+
+Adjacency adjacency_from_edges(std::size_t n, const std::vector<Edge>& e) {
   Adjacency adj;
   adj.start.assign(n + 1, 0);
   for (Edge ed : e) {

@@ -15,10 +15,12 @@ for f in skin.obj face.yaml landmarks.yaml muscles.yaml head.yaml NOTICE.md; do
 done
 [ ! -e "$tmp/head/reduced_face.txt" ] || { echo "reduced_face.txt should not be written"; exit 1; }
 grep -q "face reduce --head $tmp/head" "$tmp/out.txt" || { cat "$tmp/out.txt"; exit 1; }
+grep -q "^converged" "$tmp/out.txt" || { cat "$tmp/out.txt"; exit 1; }
 python3 - "$tmp/report.json" "$tmp/landmarks.png" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
 assert r["problems"] == [], r["problems"]
+assert r["converged"] is True and r["loose_vertices"] == [], r
 names = [l["name"] for l in r["landmarks"]]
 assert "fdp_2_13" in names and "fdp_8_3" in names, names
 assert all(l["snap_mm"] >= 0 for l in r["landmarks"])
@@ -63,6 +65,22 @@ with open(sys.argv[2], "w") as o:
 PY
 expect_2 closed "does not build: .*no eye opening contains landmark fdp_3_1" --obj "$tmp/closed.obj"
 grep -q "cut the mouth and eye holes in the mesh" "$tmp/closed.err" || { cat "$tmp/closed.err"; exit 1; }
+# Fins: two more faces on the edge between the first face's first two vertices.
+bs="$src/tests/data/heads/broad_short/skin.obj"
+n=$(grep -c '^v ' "$bs")
+read -r _ a b _ < <(grep -m1 '^f ' "$bs")
+printf 'v 0 0 99\nv 0 9 99\nf %d %d %d\nf %d %d %d\n' "$a" "$b" $((n + 1)) "$a" "$b" $((n + 2)) \
+  | cat "$bs" - > "$tmp/fin.obj"
+expect_2 fin "$tmp/fin.obj: non-manifold: the edge between vertices .* is shared by [34] faces" \
+  --obj "$tmp/fin.obj" --units mm
+# Loose vertices (as Blender exports leave them) are left out with a note, not refused.
+{ cat "$bs"; echo "v 0 0 0"; } > "$tmp/loose.obj"
+"$facectl" face fit-head --obj "$tmp/loose.obj" --units mm --out "$tmp/loose" \
+  --report "$tmp/loose.json" > "$tmp/loose.out"
+grep -q "note: 1 vertices used by no face (the first is vertex $((n + 1)) of the OBJ)" \
+  "$tmp/loose.out" || { cat "$tmp/loose.out"; exit 1; }
+python3 -c 'import json, sys; r = json.load(open(sys.argv[1])); assert r["loose_vertices"] == [int(sys.argv[2])], r' \
+  "$tmp/loose.json" "$n"
 # A mesh in mm read as cm is ten times the default head's size.
 expect_2 units "times the size of the --from head: is --units cm" \
   --obj "$src/tests/data/heads/broad_short/skin.obj"

@@ -8,6 +8,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
 #include <map>
 
 #include "default_head.hpp"
@@ -47,37 +50,68 @@ const Fitted& fitted(int i) {
 }
 
 // Placement error per landmark: the placed point (mean of its vertices + offset) against
-// where the warp puts the default's landmark. Measured (docs/FACE_MODEL.md, "Bringing your
-// own head"): skin points 1.63 mm at worst (an outer lip corner, a quarter of the 6 mm
-// median edge), bone points 4.45 mm (7.1, 16 cm from the skin, where G extrapolates).
-// Bounds with about 50 % margin; a landmark one vertex off would be ~6 mm.
+// where the warp puts the default's landmark. On the split heads the truth of a skin
+// landmark is a vertex; on the resampled grid_narrow it is not, so its skin landmarks are
+// judged by the excess over the distance from the truth to the nearest target vertex
+// (what no placement on vertices can beat). Measured (docs/FACE_MODEL.md, "Bringing your
+// own head"): split heads 1.63 mm skin (an outer lip corner), 4.53 mm bone (7.1, 16 cm
+// from the skin, where G extrapolates), 4.90 mm muscle corner; grid_narrow 5.2 mm skin
+// excess (gonion_l, at the steep side of the mask), 16.6 mm bone (7.1), 8.4 mm muscle
+// corner. Bounds with about 50 % margin; a landmark one vertex off would be ~6 mm.
+struct Bounds {
+  double skin_excess, bone, muscle;
+};
+Bounds bounds(const testing::HeadWarp& w) {
+  return w.grid > 0 ? Bounds{7.5, 25.0, 12.5} : Bounds{2.5, 6.0, 7.5};
+}
+
 class HeadFitOnTestHead : public ::testing::TestWithParam<int> {};
 
 TEST_P(HeadFitOnTestHead, PlacesLandmarksNearTheWarpedTruth) {
   const Fitted& f = fitted(GetParam());
   EXPECT_TRUE(f.fit.problems.empty()) << f.fit.problems.front();
+  EXPECT_TRUE(f.fit.converged);
   ASSERT_EQ(f.target.v.size(), static_cast<std::size_t>(f.warp.vertices));
-  double worst_skin = 0, worst_bone = 0;
+  double worst_skin = 0, worst_excess = 0, worst_bone = 0;
+  std::vector<double> skin, floors;
   std::string worst_name, over;  // every landmark off by more than 1 mm, for failures
   for (std::size_t i = 0; i < default_spec().landmarks.size(); ++i) {
     const LandmarkSpec& src = default_spec().landmarks[i];
     const LandmarkSpec& placed = f.fit.spec.landmarks[i];
     const Vec3 truth = testing::true_landmark(default_spec(), source_skin(), src, f.warp);
     const double e = (landmark_position(placed, f.target.v) - truth).norm() * 1e3;
-    const bool bone = src.offset.norm() > 0;
     if (e > 1.0) over += " " + src.name + "=" + std::to_string(e);
-    double& worst = bone ? worst_bone : worst_skin;
-    if (e > worst) {
-      worst = e;
-      if (!bone) worst_name = src.name;
+    if (src.offset.norm() > 0) {
+      worst_bone = std::max(worst_bone, e);
+      continue;
+    }
+    double floor = 0;  // a one-vertex landmark: to the nearest target vertex
+    if (src.vertices.size() == 1) {
+      floor = std::numeric_limits<double>::infinity();
+      for (std::size_t v = 0; v < f.target.v.size(); ++v)
+        floor = std::min(floor, (f.target.v.get(v) - truth).norm() * 1e3);
+    }
+    skin.push_back(e);
+    floors.push_back(floor);
+    worst_skin = std::max(worst_skin, e);
+    if (e - floor > worst_excess) {
+      worst_excess = e - floor;
+      worst_name = src.name;
     }
   }
+  auto median = [](std::vector<double> x) {
+    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+    return x[x.size() / 2];
+  };
   RecordProperty("worst_skin_mm", std::to_string(worst_skin));
-  RecordProperty("worst_bone_mm", std::to_string(worst_bone));
+  RecordProperty("median_skin_mm", std::to_string(median(skin)));
+  RecordProperty("median_nearest_vertex_mm", std::to_string(median(floors)));
+  RecordProperty("worst_skin_excess_mm", std::to_string(worst_excess));
   RecordProperty("worst_skin_landmark", worst_name);
-  EXPECT_LT(worst_skin, 2.5) << f.warp.name << ": worst skin landmark " << worst_name
-                             << "; over 1 mm:" << over;
-  EXPECT_LT(worst_bone, 6.0) << f.warp.name;
+  RecordProperty("worst_bone_mm", std::to_string(worst_bone));
+  EXPECT_LT(worst_excess, bounds(f.warp).skin_excess)
+      << f.warp.name << ": worst skin landmark " << worst_name << "; over 1 mm:" << over;
+  EXPECT_LT(worst_bone, bounds(f.warp).bone) << f.warp.name;
   EXPECT_LT(f.fit.last_change_mm, 0.5);
 }
 
@@ -119,8 +153,7 @@ TEST_P(HeadFitOnTestHead, WrittenFolderBuildsAndMovesAsExpected) {
 }
 
 // Muscle corners (landmark + offset, up to 22 mm under the skin) carried by G against the
-// warp of the default's corners. Measured: 4.90 mm at worst (platysma, long_wide_jaw);
-// bound with 50 % margin.
+// warp of the default's corners; bounds above.
 TEST_P(HeadFitOnTestHead, CarriesMuscleCornersNearTheWarpedTruth) {
   const Fitted& f = fitted(GetParam());
   std::map<std::string, const LandmarkSpec*> by_name;
@@ -138,12 +171,33 @@ TEST_P(HeadFitOnTestHead, CarriesMuscleCornersNearTheWarpedTruth) {
         }
       }
   RecordProperty("worst_muscle_corner_mm", std::to_string(worst));
-  EXPECT_LT(worst, 7.5) << f.warp.name << ": " << worst_muscle;
+  EXPECT_LT(worst, bounds(f.warp).muscle) << f.warp.name << ": " << worst_muscle;
 }
 
-INSTANTIATE_TEST_SUITE_P(TestHeads, HeadFitOnTestHead, ::testing::Values(0, 1), [](const auto& p) {
-  return testing::test_head_warps()[static_cast<std::size_t>(p.param)].name;
-});
+INSTANTIATE_TEST_SUITE_P(
+    TestHeads, HeadFitOnTestHead, ::testing::Values(0, 1, 2), [](const auto& p) {
+      return testing::test_head_warps()[static_cast<std::size_t>(p.param)].name;
+    });
+
+// The committed test heads are what the generator (make_test_heads) writes today.
+TEST(TestHeads, CommittedMeshesMatchTheGenerator) {
+  const std::filesystem::path tmp = std::filesystem::path(::testing::TempDir()) / "test_heads";
+  std::filesystem::create_directories(tmp);
+  auto text = [](const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const testing::HeadWarp& w : testing::test_head_warps()) {
+    const TriMesh m = testing::make_test_head(default_spec(), w);
+    EXPECT_EQ(m.v.size(), static_cast<std::size_t>(w.vertices)) << w.name;
+    write_obj((tmp / (w.name + ".obj")).string(), m, w.units);
+    const std::string committed = text(std::filesystem::path(FACECTL_CONFIG_DIR) / ".." /
+                                       "tests/data/heads" / w.name / "skin.obj");
+    EXPECT_FALSE(committed.empty()) << w.name;
+    EXPECT_TRUE(text(tmp / (w.name + ".obj")) == committed)
+        << w.name << ": regenerate with make_test_heads config/heads/default tests/data/heads";
+  }
+}
 
 // The default skin onto itself (closed over the mouth and eyes, so the openings are
 // joined along edges): every landmark and opening comes back, muscle corners stay put.
@@ -197,6 +251,57 @@ TEST(HeadFitInput, RefusesMeshesThatCannotBeAFace) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("flat.obj: flat along z"), std::string::npos) << e.what();
   }
+}
+
+// A fin: a third triangle on an edge of the default skin. Refused, naming the edge.
+TEST(HeadFitInput, RefusesANonManifoldEdge) {
+  TriMesh fin = source_skin();
+  const Tri t = fin.tris[10];
+  fin.v.push_back(fin.v.get(t[0]) + Vec3(0, 0, 0.01));
+  fin.tris.push_back({t[0], t[1], static_cast<int>(fin.v.size()) - 1});
+  const std::string edge = "the edge between vertices " + std::to_string(std::min(t[0], t[1]) + 1) +
+                           " and " + std::to_string(std::max(t[0], t[1]) + 1) +
+                           " is shared by 3 faces";
+  try {
+    check_head_mesh(fin, "fin.obj");
+    ADD_FAILURE() << "a non-manifold edge was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("fin.obj: non-manifold: " + edge), std::string::npos)
+        << e.what();
+  }
+  check_head_mesh(source_skin(), "default");  // open borders (the mask's edge) are fine
+}
+
+// Vertices no face uses (Blender leaves them behind) are left out: a loose vertex exactly
+// where a landmark would snap is not chosen, and is listed.
+TEST(HeadFitInput, LeavesLooseVerticesOut) {
+  const Fitted& f = fitted(1);
+  TriMesh target = f.target;
+  for (const PlacedLandmark& l : f.fit.landmarks)
+    if (l.name == "fdp_9_3" || l.name == "fdp_8_3") target.v.push_back(l.fitted);
+  ASSERT_EQ(target.v.size(), f.target.v.size() + 2);
+  check_head_mesh(target, "loose.obj");
+  const HeadFit fit = fit_head(default_spec(), source_skin(), target, HeadFitOptions{});
+  EXPECT_TRUE(fit.problems.empty());
+  const int n = static_cast<int>(f.target.v.size());
+  EXPECT_EQ(fit.loose_vertices, (std::vector<int>{n, n + 1}));
+  for (const LandmarkSpec& l : fit.spec.landmarks)
+    for (int v : l.vertices) EXPECT_LT(v, n) << l.name;
+  for (const auto& [name, contour] : fit.spec.openings)
+    for (int v : contour) EXPECT_LT(v, n) << name;
+  EXPECT_EQ(fit.spec.landmarks[0].vertices, f.fit.spec.landmarks[0].vertices);
+}
+
+// The refinement reports whether it stopped moving or ran into its round limit.
+TEST(HeadFit, ReportsWhetherTheRefinementConverged) {
+  const Fitted& f = fitted(0);
+  EXPECT_TRUE(f.fit.converged);
+  EXPECT_LT(f.fit.iterations, HeadFitOptions{}.max_iterations);
+  HeadFitOptions one;
+  one.max_iterations = 1;  // the first round always moves (from zero) and adds pairs
+  const HeadFit cut = fit_head(default_spec(), source_skin(), f.target, one);
+  EXPECT_FALSE(cut.converged);
+  EXPECT_EQ(cut.iterations, 1);
 }
 
 TEST(HeadFitInput, ReportsAFaceTheWrongWayRound) {

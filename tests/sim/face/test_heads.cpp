@@ -1,6 +1,8 @@
 #include "test_heads.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -9,14 +11,68 @@
 
 namespace facectl::face::testing {
 
-TriMesh make_test_head(const HeadSpec& source, const HeadWarp& w) {
-  TriMesh m =
-      refine_to_vertex_count(read_base_skin(source), static_cast<std::size_t>(w.vertices)).mesh;
-  for (std::size_t i = 0; i < m.v.size(); ++i) m.v.set(i, w.apply(m.v.get(i)));
-  // Shuffle the vertex order (std::mt19937 is specified, so the order is reproducible).
+namespace {
+
+// The surface sampled on a regular grid in the front-view (x, y) plane: each grid point
+// cast along −z onto the surface, the frontmost hit kept (a height field: the overhang
+// under the nose is bridged). Each grid cell becomes two triangles where all three
+// corners hit; vertices left in no triangle are dropped.
+TriMesh resample_on_grid(const TriMesh& m, double h) {
+  Vec3 lo = m.v.get(0), hi = lo;
+  for (std::size_t i = 0; i < m.v.size(); ++i) {
+    lo = lo.cwiseMin(m.v.get(i));
+    hi = hi.cwiseMax(m.v.get(i));
+  }
+  const int nx = static_cast<int>((hi.x() - lo.x()) / h) + 1;
+  const int ny = static_cast<int>((hi.y() - lo.y()) / h) + 1;
+  std::vector<int> id(static_cast<std::size_t>(nx * ny), -1);
+  TriMesh grid;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double x = lo.x() + (i + 0.5) * h, y = lo.y() + (j + 0.5) * h;
+      double z = -std::numeric_limits<double>::infinity();
+      for (const Tri& t : m.tris) {
+        const Vec3 a = m.v.get(t[0]), b = m.v.get(t[1]), c = m.v.get(t[2]);
+        const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+        if (std::abs(det) < 1e-14) continue;  // seen edge-on
+        const double u = ((x - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (y - a.y())) / det;
+        const double v = ((b.x() - a.x()) * (y - a.y()) - (x - a.x()) * (b.y() - a.y())) / det;
+        if (u < 0 || v < 0 || u + v > 1) continue;
+        z = std::max(z, a.z() + u * (b.z() - a.z()) + v * (c.z() - a.z()));
+      }
+      if (std::isfinite(z)) {
+        id[static_cast<std::size_t>(j * nx + i)] = static_cast<int>(grid.v.size());
+        grid.v.push_back(Vec3(x, y, z));
+      }
+    }
+  auto at = [&](int i, int j) { return id[static_cast<std::size_t>(j * nx + i)]; };
+  auto keep = [](const Tri& t) { return t[0] >= 0 && t[1] >= 0 && t[2] >= 0; };
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      for (const Tri& t : {Tri{a, b, c}, Tri{a, c, d}})  // counter-clockwise seen from +z
+        if (keep(t)) grid.tris.push_back(t);
+    }
+  std::vector<int> index(grid.v.size(), -1);
+  TriMesh out;
+  for (Tri t : grid.tris) {
+    for (int& k : t) {
+      if (index[static_cast<std::size_t>(k)] < 0) {
+        index[static_cast<std::size_t>(k)] = static_cast<int>(out.v.size());
+        out.v.push_back(grid.v.get(static_cast<std::size_t>(k)));
+      }
+      k = index[static_cast<std::size_t>(k)];
+    }
+    out.tris.push_back(t);
+  }
+  return out;
+}
+
+// The vertices in a random order (std::mt19937 is specified, so the order is reproducible).
+TriMesh shuffled(const TriMesh& m, unsigned seed) {
   std::vector<int> order(m.v.size());
   std::iota(order.begin(), order.end(), 0);
-  std::mt19937 rng(w.shuffle_seed);
+  std::mt19937 rng(seed);
   for (std::size_t i = order.size() - 1; i > 0; --i)
     std::swap(order[i], order[std::uniform_int_distribution<std::size_t>(0, i)(rng)]);
   std::vector<int> new_index(order.size());
@@ -28,6 +84,16 @@ TriMesh make_test_head(const HeadSpec& source, const HeadWarp& w) {
   for (const Tri& t : m.tris)
     out.tris.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
   return out;
+}
+
+}  // namespace
+
+TriMesh make_test_head(const HeadSpec& source, const HeadWarp& w) {
+  TriMesh m = read_base_skin(source);
+  if (w.grid <= 0) m = refine_to_vertex_count(m, static_cast<std::size_t>(w.vertices)).mesh;
+  for (std::size_t i = 0; i < m.v.size(); ++i) m.v.set(i, w.apply(m.v.get(i)));
+  if (w.grid > 0) m = resample_on_grid(m, w.grid);
+  return shuffled(m, w.shuffle_seed);
 }
 
 Vec3 true_landmark(const HeadSpec&, const TriMesh& source_skin, const LandmarkSpec& l,

@@ -45,8 +45,13 @@ struct PlacedLandmark {
 struct HeadFit {
   RbfMorph morph;  // source rest positions → target, metres
   int iterations = 0;
-  int refined_pairs = 0;  // correspondences the refinement added
+  int refined_pairs = 0;     // correspondences the refinement added
+  int last_added_pairs = 0;  // of which in the last round
   double last_change_mm = 0;
+  // The correspondences stopped moving (by < converged_mm) and the refinement added none;
+  // false: stopped at max_iterations.
+  bool converged = false;
+  std::vector<int> loose_vertices;  // target vertices used by no face: left out of the fit
   double size_ratio = 1;  // target / source face size (√ of width ratio × height ratio)
   std::vector<PlacedLandmark> landmarks;
   std::vector<std::string> opening_notes;  // how each opening was found
@@ -56,8 +61,13 @@ struct HeadFit {
 
 // Throws InputError naming `what` when the mesh cannot be a face: too few vertices or
 // triangles, degenerate (zero-area) triangles everywhere, a flat or empty bounding box,
-// triangles referencing a vertex twice.
+// triangles referencing a vertex twice, an edge shared by more than two triangles
+// (non-manifold; open borders are fine).
 void check_head_mesh(const TriMesh& m, const std::string& what);
+
+// Vertices no triangle uses (ascending). fit_head leaves them out (never snaps to them);
+// they keep their indices, so the mesh file stays valid as it is.
+std::vector<int> loose_vertices(const TriMesh& m);
 
 // `source_skin` is the source head's skin as read (openings not cut). Never throws for a
 // fit that is poor: what it could not place goes to `problems`.

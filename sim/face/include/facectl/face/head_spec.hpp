@@ -75,4 +75,8 @@ struct HeadSpec {
 // naming file:line:column, the key, what was expected and what was found.
 HeadSpec load_head_spec(const std::string& dir);
 
+// Metres per unit of a skin length unit: "m", "cm" or "mm" (face.yaml's `units`, fit-head's
+// --units); 0 for any other name.
+double metres_per_unit(const std::string& unit);
+
 }  // namespace facectl::face

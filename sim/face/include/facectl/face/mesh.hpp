@@ -39,6 +39,8 @@ struct Adjacency {
   std::vector<int> nbr;
 };
 Adjacency vertex_adjacency(std::size_t n, const std::vector<Tri>& tris);
+// The same from an edge list (each edge once).
+Adjacency adjacency_from_edges(std::size_t n, const std::vector<Edge>& edges);
 // Geodesic distance along mesh edges from the seed set (Dijkstra); unreachable = +inf.
 std::vector<double> edge_geodesic(const Points& v, const Adjacency& adj,
                                   const std::vector<int>& seeds);
