@@ -8,8 +8,11 @@
 #include "facectl/face/expression_library.hpp"
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/motion_clone.hpp"
-#include "firmware-host/cli/clone_files.hpp"
+#include "firmware-host/cli/clone_head_ranges.hpp"
+#include "firmware-host/cli/clone_report.hpp"
+#include "firmware-host/cli/clone_yaml.hpp"
 #include "firmware-host/cli/face_command_support.hpp"
+#include "firmware-host/cli/viseme_poses.hpp"
 #include "firmware-host/config/config_location.hpp"
 #include "firmware-host/config/config_node.hpp"
 
@@ -21,7 +24,7 @@ using facectl::face_cli::write_text_file;
 
 struct CloneArgs {
   std::string from, to, out, report;
-  std::string library = facectl::shipped_dirs().config + "/expressions/library.yaml";
+  std::string library = facectl::face_cli::default_face_args().library;
   std::string visemes = facectl::shipped_dirs().config + "/fap/visemes.yaml";
   MotionCloneOptions options;
 };
@@ -42,7 +45,7 @@ void run_clone(const CloneArgs& a) {
   const ExpressionLibrary lib = load_expression_library(a.library, from);
   const std::vector<facectl::VisemePose> visemes = facectl::load_viseme_poses(a.visemes, from);
   MotionCloneOptions o = a.options;
-  o.jaw = facectl::head_jaw_bounds(to);
+  facectl::set_head_ranges(to, o);
   CloneWorkspace w = make_clone_workspace(source, target, map, o);
 
   std::printf("%-10s %-16s %5s %4s %6s %8s %8s %8s %8s %8s %8s\n", "kind", "pose", "free", "its",
@@ -64,14 +67,12 @@ void run_clone(const CloneArgs& a) {
   }
 
   std::filesystem::create_directories(a.out);
-  const std::string header = "# Cloned by `facectl face clone` from " + a.from + " onto " + a.to +
-                             " (docs/FACE_MODEL.md, \"Motion cloning\").\n";
+  const std::string header = "Cloned by `facectl face clone` from " + a.from + " onto " + a.to +
+                             " (docs/FACE_MODEL.md, \"Motion cloning\").\nSource: ";
   write_text_file(a.out + "/library.yaml",
-                  facectl::library_yaml(expressions, to, lib.sequences,
-                                        header + "# Source: " + a.library + "\n"));
-  write_text_file(
-      a.out + "/visemes.yaml",
-      facectl::visemes_yaml(visemes, viseme_poses, to, header + "# Source: " + a.visemes + "\n"));
+                  facectl::library_yaml(expressions, to, lib.sequences, header + a.library));
+  write_text_file(a.out + "/visemes.yaml",
+                  facectl::visemes_yaml(visemes, viseme_poses, to, header + a.visemes));
   if (!a.report.empty()) write_text_file(a.report, facectl::clone_report_json(rows));
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("%zu poses, %d full-model runs of %d frames, %.1f s\n", rows.size(), runs, o.frames,

@@ -3,13 +3,14 @@
 #include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "face_command_support.hpp"
 #include "facectl/face/actuator_placement.hpp"
 #include "facectl/face/input_error.hpp"
+#include "facectl/face/yaml_emit.hpp"
+#include "placement_yaml.hpp"
 
 namespace {
 
@@ -25,44 +26,6 @@ struct PlaceArgs {
   std::vector<std::string> expressions;
   PlacementOptions o;
 };
-
-std::string vec(const Vec3& v, int digits) {
-  char b[128];
-  std::snprintf(b, sizeof b, "[%.*f, %.*f, %.*f]", digits, v.x(), digits, v.y(), digits, v.z());
-  return b;
-}
-
-std::string num(double x, int digits = 3) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.*f", digits, x);
-  return b;
-}
-
-// Rig points name the head's control points (docs/CONFIG.md), so each entry names the
-// nearest one as `point`, and the vertex itself beside it.
-std::string placement_yaml(const PlaceArgs& a, const Placement& p) {
-  std::ostringstream y;
-  y << "# facectl face place-actuators --budget " << a.budget << " --head " << a.head
-    << "\n# --library " << a.library << "\n"
-    << "# Each actuator moves its skin point along `axis` (head frame) by travel_mm. `point`\n"
-    << "# is the control point nearest the vertex (rig maps can name only those), at\n"
-    << "# control_point_distance_mm; `landmark` when the vertex is one.\n"
-    << "actuators:\n";
-  for (const PlacedActuator& x : p.actuators) {
-    y << "  - { point: " << x.nearest_control_point << ", vertex: " << x.vertex;
-    if (!x.landmark.empty()) y << ", landmark: " << x.landmark;
-    y << ", control_point_distance_mm: " << num(x.control_point_distance_mm, 1)
-      << ", position_mm: " << vec(x.position_mm, 1) << ", axis: " << vec(x.axis, 3)
-      << ", travel_mm: [" << num(x.travel_min_mm, 2) << ", " << num(x.travel_max_mm, 2) << "] }\n";
-  }
-  y << "# Skin error left (mm) over the moving vertices, and with no actuators.\n"
-    << "errors:\n";
-  for (const ExpressionFit& f : p.fits)
-    y << "  " << f.name << ": { rms_mm: " << num(f.rms_mm) << ", max_mm: " << num(f.max_mm)
-      << ", rms_mm_no_actuators: " << num(f.rms0_mm) << ", max_mm_no_actuators: " << num(f.max0_mm)
-      << (f.settled ? "" : ", unsettled: true") << " }\n";
-  return y.str();
-}
 
 std::string placement_json(const PlaceArgs& a, const PlacementProblem& pr, const Placement& p,
                            double seconds) {
@@ -106,10 +69,12 @@ void run(PlaceArgs& a) {
   const PlacementProblem pr = build_placement_problem(m, lib, a.o, say);
   if (pr.candidate_vertex.empty())
     throw std::invalid_argument("no skin vertex moves more than --threshold-mm " +
-                                num(a.o.moving_threshold_mm, 2) + " in the expressions");
+                                exact_number(a.o.moving_threshold_mm) + " in the expressions");
   const Placement p = place_actuators(m, pr, a.budget, say);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const std::string yaml = placement_yaml(a, p);
+  const std::string yaml = facectl::placement_yaml(p, "facectl face place-actuators --budget " +
+                                                          std::to_string(a.budget) + " --head " +
+                                                          a.head + "\n--library " + a.library);
   if (a.out.empty())
     std::fputs(yaml.c_str(), stdout);
   else

@@ -1,58 +1,67 @@
 #include "facectl/face/head_writer.hpp"
 
-#include <cmath>
-#include <cstdio>
+#include <yaml-cpp/yaml.h>
+
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <system_error>
 
 #include "facectl/face/input_error.hpp"
+#include "facectl/face/yaml_emit.hpp"
 
 namespace facectl::face {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+using Y = YAML::Emitter;
+
+// Lengths are written in mm, as the readers take them.
+YamlScaled mm(double metres) {
+  return {metres, 1e-3};
 }
 
-std::string mm(double metres) {
-  return num(metres * 1e3);
+void vec_mm(Y& y, const Vec3& v) {
+  y << YAML::Flow << YAML::BeginSeq << mm(v.x()) << mm(v.y()) << mm(v.z()) << YAML::EndSeq;
 }
 
-std::string vec_mm(const Vec3& v) {
-  char buf[96];
-  // Values that round to zero print as 0.00, not -0.00.
-  auto c = [](double m) { return std::abs(m * 1e3) < 0.005 ? 0.0 : m * 1e3; };
-  std::snprintf(buf, sizeof buf, "[%.2f, %.2f, %.2f]", c(v.x()), c(v.y()), c(v.z()));
-  return buf;
+void ints(Y& y, const std::vector<int>& xs) {
+  y << YAML::Flow << YAML::BeginSeq;
+  for (const int x : xs) y << x;
+  y << YAML::EndSeq;
 }
 
-template <class T>
-std::string list(const std::vector<T>& xs) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < xs.size(); ++i) {
-    if (i) s += ", ";
-    if constexpr (std::is_same_v<T, std::string>)
-      s += xs[i];
-    else
-      s += std::to_string(xs[i]);
-  }
-  return s + "]";
+void names(Y& y, const std::vector<std::string>& xs) {
+  y << YAML::Flow << YAML::BeginSeq;
+  for (const std::string& x : xs) y << YamlName{x};
+  y << YAML::EndSeq;
 }
 
-std::string stiffness(const MuscleStiffness& k) {
-  return "{ up_latitudinal: " + num(k.up_latitudinal) +
-         ", up_longitudinal: " + num(k.up_longitudinal) +
-         ", low_latitudinal: " + num(k.low_latitudinal) +
-         ", low_longitudinal: " + num(k.low_longitudinal) + ", connection: " + num(k.connection) +
-         ", up_shear: " + num(k.up_shear) + ", low_shear: " + num(k.low_shear) +
-         ", bend: " + num(k.bend) + ", volume: " + num(k.volume) +
-         ", position: " + num(k.position) + " }";
+// A value and what the reader multiplies the file's number by (1e-3 for a length in mm).
+struct Num {
+  const char* key;
+  double si, si_per_unit = 1;
+};
+
+// `key: {a: 1, b: 2}`, a table of numbers on one line.
+void numbers(Y& y, const char* key, std::initializer_list<Num> ns) {
+  y << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginMap;
+  for (const Num& n : ns) y << YAML::Key << n.key << YAML::Value << YamlScaled{n.si, n.si_per_unit};
+  y << YAML::EndMap;
+}
+
+void stiffness(Y& y, const char* key, const MuscleStiffness& k) {
+  numbers(y, key,
+          {{"up_latitudinal", k.up_latitudinal},
+           {"up_longitudinal", k.up_longitudinal},
+           {"low_latitudinal", k.low_latitudinal},
+           {"low_longitudinal", k.low_longitudinal},
+           {"connection", k.connection},
+           {"up_shear", k.up_shear},
+           {"low_shear", k.low_shear},
+           {"bend", k.bend},
+           {"volume", k.volume},
+           {"position", k.position}});
 }
 
 void write_file(const fs::path& path, const std::string& text) {
@@ -70,81 +79,120 @@ void copy_into(const fs::path& from, const fs::path& to) {
 }
 
 std::string face_yaml(const HeadSpec& h, const HeadFolderSources& src) {
-  std::ostringstream o;
-  o << "# " << src.note << "\n";
-  o << "face:\n";
-  o << "  skin: { file: skin.obj, units: " << src.skin_units << " }\n";
-  o << "  landmarks: landmarks.yaml\n  muscles: muscles.yaml\n";
-  o << "  openings:\n";
-  for (const auto& [name, verts] : h.openings) o << "    " << name << ": " << list(verts) << "\n";
-  o << "  skull: { tissue_depth_mm: " << mm(h.tissue_depth) << " }\n";
-  o << "  teeth: { half_width_mm: " << mm(h.teeth_half_width)
-    << ", arch_depth_mm: " << mm(h.teeth_depth) << ", height_mm: " << mm(h.teeth_height)
-    << ", inset_mm: " << mm(h.teeth_inset) << ", gap_mm: " << mm(h.teeth_gap) << " }\n";
-  o << "  eyelids: { band_mm: " << mm(h.eyelid_band)
-    << ", eyeball_radius_mm: " << mm(h.eyeball_radius)
-    << ", upper_share: " << num(h.upper_lid_share)
-    << ", orbicularis_oculi_coupling: " << num(h.oculi_lid_coupling) << " }\n";
+  Y y;
+  y << YAML::Comment(src.note) << YAML::Newline << YAML::BeginMap;
+  y << YAML::Key << "face" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "skin" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  y << YAML::Key << "file" << YAML::Value << "skin.obj";
+  y << YAML::Key << "units" << YAML::Value << YamlName{src.skin_units} << YAML::EndMap;
+  y << YAML::Key << "landmarks" << YAML::Value << "landmarks.yaml";
+  y << YAML::Key << "muscles" << YAML::Value << "muscles.yaml";
+  y << YAML::Key << "openings" << YAML::Value << YAML::BeginMap;
+  for (const auto& [name, verts] : h.openings) {
+    y << YAML::Key << YamlName{name} << YAML::Value;
+    ints(y, verts);
+  }
+  y << YAML::EndMap;
+  constexpr double kMm = 1e-3;
+  numbers(y, "skull", {{"tissue_depth_mm", h.tissue_depth, kMm}});
+  numbers(y, "teeth",
+          {{"half_width_mm", h.teeth_half_width, kMm},
+           {"arch_depth_mm", h.teeth_depth, kMm},
+           {"height_mm", h.teeth_height, kMm},
+           {"inset_mm", h.teeth_inset, kMm},
+           {"gap_mm", h.teeth_gap, kMm}});
+  numbers(y, "eyelids",
+          {{"band_mm", h.eyelid_band, kMm},
+           {"eyeball_radius_mm", h.eyeball_radius, kMm},
+           {"upper_share", h.upper_lid_share},
+           {"orbicularis_oculi_coupling", h.oculi_lid_coupling}});
   const SkinStiffness& k = h.skin;
-  o << "  solver:\n    skin_iterations: " << h.skin_iterations
-    << "\n    influence_falloff_mm: " << mm(h.influence_falloff) << "\n";
-  o << "    skin: { stretch: " << num(k.stretch) << ", bending: " << num(k.bending)
-    << ", area: " << num(k.area) << ", anchor: " << num(k.anchor) << ", volume: " << num(k.volume)
-    << ", damping: " << num(k.damping) << ", min_projected_area: " << num(k.min_projected_area)
-    << " }\n";
-  o << "    sheet: " << stiffness(h.sheet) << "\n";
-  o << "    sphincter: " << stiffness(h.sphincter) << "\n";
-  if (h.variants.empty())
-    o << "  # variants: [vertex counts] (finer skins by edge splitting), none yet\n";
-  else
-    o << "  variants: " << list(h.variants) << "\n";
-  o << "  control_points: " << list(h.control_points) << "\n";
-  return o.str();
+  y << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "skin_iterations" << YAML::Value << h.skin_iterations;
+  y << YAML::Key << "influence_falloff_mm" << YAML::Value << mm(h.influence_falloff);
+  numbers(y, "skin",
+          {{"stretch", k.stretch},
+           {"bending", k.bending},
+           {"area", k.area},
+           {"anchor", k.anchor},
+           {"volume", k.volume},
+           {"damping", k.damping},
+           {"min_projected_area", k.min_projected_area}});
+  stiffness(y, "sheet", h.sheet);
+  stiffness(y, "sphincter", h.sphincter);
+  y << YAML::EndMap;
+  if (h.variants.empty()) {
+    y << YAML::Newline
+      << YAML::Comment("variants: [vertex counts] (finer skins by edge splitting), none yet");
+  } else {
+    y << YAML::Key << "variants" << YAML::Value;
+    ints(y, h.variants);
+  }
+  y << YAML::Key << "control_points" << YAML::Value;
+  names(y, h.control_points);
+  y << YAML::EndMap << YAML::EndMap;
+  return emitted(y);
 }
 
 std::string landmarks_yaml(const HeadSpec& h) {
-  std::ostringstream o;
-  o << "# MPEG-4 feature points on skin.obj (0-based vertex indices), placed by\n"
-       "# `facectl face fit-head`; offset_mm moves a bone point off the skin.\n";
-  o << "landmarks:\n";
+  Y y;
+  y << YAML::Comment(
+           "MPEG-4 feature points on skin.obj (0-based vertex indices), placed by\n"
+           "`facectl face fit-head`; offset_mm moves a bone point off the skin.")
+    << YAML::Newline << YAML::BeginMap << YAML::Key << "landmarks" << YAML::Value << YAML::BeginMap;
   for (const LandmarkSpec& l : h.landmarks) {
-    o << "  " << l.name << ": { ";
-    if (l.vertices.size() == 1)
-      o << "vertex: " << l.vertices[0];
-    else
-      o << "vertices: " << list(l.vertices);
-    if (l.offset.norm() > 0) o << ", offset_mm: " << vec_mm(l.offset);
-    o << " }\n";
+    y << YAML::Key << YamlName{l.name} << YAML::Value << YAML::Flow << YAML::BeginMap;
+    if (l.vertices.size() == 1) {
+      y << YAML::Key << "vertex" << YAML::Value << l.vertices[0];
+    } else {
+      y << YAML::Key << "vertices" << YAML::Value;
+      ints(y, l.vertices);
+    }
+    if (l.offset.norm() > 0) {
+      y << YAML::Key << "offset_mm" << YAML::Value;
+      vec_mm(y, l.offset);
+    }
+    y << YAML::EndMap;
   }
-  return o.str();
+  y << YAML::EndMap << YAML::EndMap;
+  return emitted(y);
 }
 
-void refs(std::ostringstream& o, const char* key, const std::vector<PointRef>& rs) {
-  o << "    " << key << ": [";
-  for (std::size_t i = 0; i < rs.size(); ++i)
-    o << (i ? ", " : "") << "{ at: " << rs[i].landmark << ", offset_mm: " << vec_mm(rs[i].offset)
-      << " }";
-  o << "]\n";
+void refs(Y& y, const char* key, const std::vector<PointRef>& rs) {
+  y << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (const PointRef& r : rs) {
+    y << YAML::BeginMap << YAML::Key << "at" << YAML::Value << YamlName{r.landmark};
+    y << YAML::Key << "offset_mm" << YAML::Value;
+    vec_mm(y, r.offset);
+    y << YAML::EndMap;
+  }
+  y << YAML::EndSeq;
 }
 
 std::string muscles_yaml(const HeadSpec& h) {
-  std::ostringstream o;
-  o << "# The muscle map carried onto this head by `facectl face fit-head` (RBF morph).\n";
-  o << "muscles:\n";
+  Y y;
+  y << YAML::Comment(
+           "The muscle map carried onto this head by `facectl face fit-head` (RBF morph).")
+    << YAML::Newline << YAML::BeginMap << YAML::Key << "muscles" << YAML::Value << YAML::BeginSeq;
   for (const MuscleSpec& m : h.muscles) {
     const bool sheet = m.kind == MuscleKind::kSheet;
-    o << "  - name: " << m.name << "\n    kind: " << (sheet ? "sheet" : "sphincter")
-      << "\n    layer: " << m.layer << "\n    grid: [" << m.rows << ", " << m.cols
-      << "]\n    thickness_mm: " << mm(m.thickness) << "\n";
+    y << YAML::BeginMap << YAML::Key << "name" << YAML::Value << YamlName{m.name};
+    y << YAML::Key << "kind" << YAML::Value << (sheet ? "sheet" : "sphincter");
+    y << YAML::Key << "layer" << YAML::Value << m.layer;
+    y << YAML::Key << "grid" << YAML::Value;
+    ints(y, {m.rows, m.cols});
+    y << YAML::Key << "thickness_mm" << YAML::Value << mm(m.thickness);
     if (sheet) {
-      refs(o, "origin", m.origin);
-      refs(o, "insertion", m.insertion);
+      refs(y, "origin", m.origin);
+      refs(y, "insertion", m.insertion);
     } else {
-      refs(o, "inner", m.inner);
-      refs(o, "outer", m.outer);
+      refs(y, "inner", m.inner);
+      refs(y, "outer", m.outer);
     }
+    y << YAML::EndMap;
   }
-  return o.str();
+  y << YAML::EndSeq << YAML::EndMap;
+  return emitted(y);
 }
 
 }  // namespace

@@ -63,7 +63,7 @@ double& value(Expression& e, const Param& p) {
 
 // The commands the source pose uses, as target parameters.
 std::vector<Param> free_parameters(const Expression& source, const CloneMap& map,
-                                   const JawBounds& j) {
+                                   const JawBounds& j, const LidRange (&lids)[2]) {
   std::vector<Param> ps;
   for (std::size_t s = 0; s < source.contractions.size(); ++s)
     if (source.contractions[s] > 0) ps.push_back({Param::kMuscle, map.target_slot[s], 0, 1});
@@ -74,7 +74,8 @@ std::vector<Param> free_parameters(const Expression& source, const CloneMap& map
   jaw(Param::kYaw, source.jaw.yaw_rad, j.yaw_min, j.yaw_max);
   jaw(Param::kProtrusion, source.jaw.protrusion_m, j.protrusion_min, j.protrusion_max);
   for (int side = 0; side < 2; ++side)
-    if (source.eyelid_closure[side] > 0) ps.push_back({Param::kLid, side, 0, 1});
+    if (source.eyelid_closure[side] > 0 && lids[side].max > lids[side].min)
+      ps.push_back({Param::kLid, side, lids[side].min, lids[side].max});
   return ps;
 }
 
@@ -105,6 +106,125 @@ CloneError error_of(const Eigen::VectorXd& r_mm, const Eigen::VectorXd& goal_mm)
   e.rms_mm = n > 0 ? std::sqrt(sum2 / static_cast<double>(n)) : 0;
   e.percent = goal > 0 ? 100 * sum / goal : 0;
   return e;
+}
+
+// The plain copy: same commands by muscle name, the jaw and lids clamped to the target's
+// ranges.
+Expression plain_copy(const FaceModel& target, const CloneMap& map, const Expression& pose,
+                      const MotionCloneOptions& o) {
+  Expression e;
+  e.name = pose.name;
+  e.contractions.assign(target.spec.commanded.size(), 0.0);
+  for (std::size_t s = 0; s < pose.contractions.size(); ++s)
+    e.contractions[static_cast<std::size_t>(map.target_slot[s])] = pose.contractions[s];
+  e.jaw.pitch_rad = std::clamp(pose.jaw.pitch_rad, o.jaw.pitch_min, o.jaw.pitch_max);
+  e.jaw.yaw_rad = std::clamp(pose.jaw.yaw_rad, o.jaw.yaw_min, o.jaw.yaw_max);
+  e.jaw.protrusion_m =
+      std::clamp(pose.jaw.protrusion_m, o.jaw.protrusion_min, o.jaw.protrusion_max);
+  for (int side = 0; side < 2; ++side)
+    e.eyelid_closure[side] =
+        std::clamp(pose.eyelid_closure[side], o.eyelid[side].min, o.eyelid[side].max);
+  return e;
+}
+
+// The target's least-squares problem for one pose. Parameters are normalised to [0, 1]
+// over their ranges, so one step size and one damping fit contractions, angles and
+// lengths alike.
+struct PoseFit {
+  const FaceModel& target;
+  const CloneMap& map;
+  const MotionCloneOptions& o;
+  CloneWorkspace& w;
+  const Eigen::VectorXd& goal;
+  const std::vector<Param>& ps;
+  Expression& e;         // the commands evaluated
+  int& evaluations;      // full-model runs so far
+  std::vector<Vec3>& x;  // landmark scratch
+  bool settled = true;   // of the last evaluation
+
+  Eigen::Index size() const { return static_cast<Eigen::Index>(ps.size()); }
+
+  void set(const Eigen::VectorXd& u) {
+    for (Eigen::Index j = 0; j < size(); ++j) {
+      const Param& p = ps[static_cast<std::size_t>(j)];
+      value(e, p) = p.lo + u[j] * (p.hi - p.lo);
+    }
+  }
+
+  Eigen::VectorXd normalised() {
+    Eigen::VectorXd u(size());
+    for (Eigen::Index j = 0; j < size(); ++j) {
+      const Param& p = ps[static_cast<std::size_t>(j)];
+      u[j] = (value(e, p) - p.lo) / (p.hi - p.lo);
+    }
+    return u;
+  }
+
+  // The target's residual (mm) under the commands in e.
+  Eigen::VectorXd evaluate() {
+    settled = run(target, w.target, e, map.target_landmark, o.frames, x);
+    ++evaluations;
+    Eigen::VectorXd r(goal.size());
+    for (std::size_t i = 0; i < x.size(); ++i)
+      r.segment<3>(3 * static_cast<Eigen::Index>(i)) =
+          (x[i] - w.target_neutral[i]) * kMmPerM -
+          goal.segment<3>(3 * static_cast<Eigen::Index>(i));
+    return r;
+  }
+
+  Eigen::VectorXd residual(const Eigen::VectorXd& u) {
+    set(u);
+    return evaluate();
+  }
+};
+
+// Forward differences at u (residual r), stepping back from the top of a range.
+Eigen::MatrixXd jacobian(PoseFit& f, const Eigen::VectorXd& u, const Eigen::VectorXd& r) {
+  Eigen::MatrixXd J(r.size(), f.size());
+  for (Eigen::Index j = 0; j < f.size(); ++j) {
+    Eigen::VectorXd v = u;
+    const double h = v[j] + f.o.fd_step <= 1 ? f.o.fd_step : -f.o.fd_step;
+    v[j] += h;
+    J.col(j) = (f.residual(v) - r) / h;
+  }
+  return J;
+}
+
+// Where the search stands: the parameters and residual of the best run, its commands (the
+// copy itself until a step improves on it, not u mapped back, which would round the
+// copy's values) and whether it settled.
+struct FitState {
+  Eigen::VectorXd u, r;
+  Expression best;
+  bool settled = true;
+  double lambda = 0;
+};
+
+// One Levenberg–Marquardt iteration: up to four projected, damped steps from s.u; true
+// (and s updated) at the first that lowers the squared error.
+bool improve(PoseFit& f, FitState& s) {
+  const Eigen::MatrixXd J = jacobian(f, s.u, s.r);
+  const Eigen::MatrixXd A = J.transpose() * J;
+  const Eigen::VectorXd g = J.transpose() * s.r;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    Eigen::MatrixXd M = A;
+    // Marquardt's scaling, with a floor for a command that moves no landmark.
+    for (Eigen::Index j = 0; j < f.size(); ++j) M(j, j) += s.lambda * std::max(A(j, j), 1e-6);
+    const Eigen::VectorXd next =
+        (s.u - M.ldlt().solve(g)).cwiseMax(0.0).cwiseMin(1.0);  // projected onto the box
+    if ((next - s.u).norm() < 1e-6) return false;
+    const Eigen::VectorXd rn = f.residual(next);
+    if (rn.squaredNorm() < s.r.squaredNorm()) {
+      s.u = next;
+      s.r = rn;
+      s.settled = f.settled;
+      s.best = f.e;
+      s.lambda /= 3;
+      return true;
+    }
+    s.lambda *= 4;
+  }
+  return false;
 }
 
 }  // namespace
@@ -151,10 +271,9 @@ CloneWorkspace make_clone_workspace(const FaceModel& source, const FaceModel& ta
   return w;
 }
 
-ClonedPose clone_pose(const FaceModel& source, const FaceModel& target, const CloneMap& map,
-                      const Expression& pose, const MotionCloneOptions& o, CloneWorkspace& w) {
+Eigen::VectorXd clone_goals(const FaceModel& source, const CloneMap& map, const Expression& pose,
+                            const MotionCloneOptions& o, CloneWorkspace& w) {
   const std::size_t L = map.source_landmark.size();
-  // Goals: the source's displacements through G's local behaviour at each landmark.
   std::vector<Vec3> x;
   run(source, w.source, pose, map.source_landmark, o.frames, x);
   Eigen::VectorXd goal(3 * static_cast<Eigen::Index>(L));
@@ -164,98 +283,37 @@ ClonedPose clone_pose(const FaceModel& source, const FaceModel& target, const Cl
     goal.segment<3>(3 * static_cast<Eigen::Index>(i)) =
         (map.g.apply(rest + d) - map.g.apply(rest)) * kMmPerM;
   }
+  return goal;
+}
 
-  // The plain copy: same commands by muscle name, the jaw clamped to the target's range.
+ClonedPose refine_clone(const FaceModel& target, const CloneMap& map, const Eigen::VectorXd& goal,
+                        const Expression& uses, const Expression& start,
+                        const MotionCloneOptions& o, CloneWorkspace& w) {
   ClonedPose out;
-  Expression& e = out.pose;
-  e.name = pose.name;
-  e.contractions.assign(target.spec.commanded.size(), 0.0);
-  for (std::size_t s = 0; s < pose.contractions.size(); ++s)
-    e.contractions[static_cast<std::size_t>(map.target_slot[s])] = pose.contractions[s];
-  e.jaw.pitch_rad = std::clamp(pose.jaw.pitch_rad, o.jaw.pitch_min, o.jaw.pitch_max);
-  e.jaw.yaw_rad = std::clamp(pose.jaw.yaw_rad, o.jaw.yaw_min, o.jaw.yaw_max);
-  e.jaw.protrusion_m =
-      std::clamp(pose.jaw.protrusion_m, o.jaw.protrusion_min, o.jaw.protrusion_max);
-  e.eyelid_closure[0] = pose.eyelid_closure[0];
-  e.eyelid_closure[1] = pose.eyelid_closure[1];
+  out.pose = start;
+  const std::vector<Param> ps = free_parameters(uses, map, o.jaw, o.eyelid);
+  out.free_parameters = static_cast<int>(ps.size());
+  std::vector<Vec3> x;
+  PoseFit f{target, map, o, w, goal, ps, out.pose, out.evaluations, x};
 
-  const std::vector<Param> ps = free_parameters(pose, map, o.jaw);
-  const auto k = static_cast<Eigen::Index>(ps.size());
-  out.free_parameters = static_cast<int>(k);
-
-  // Parameters normalised to [0, 1] over their ranges, so one step size and one damping
-  // fit contractions, angles and lengths alike.
-  auto set = [&](const Eigen::VectorXd& u) {
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const Param& p = ps[static_cast<std::size_t>(j)];
-      value(e, p) = p.lo + u[j] * (p.hi - p.lo);
-    }
-  };
-  bool settled = true;
-  auto evaluate = [&] {  // the target's residual (mm) under the commands in e
-    settled = run(target, w.target, e, map.target_landmark, o.frames, x);
-    ++out.evaluations;
-    Eigen::VectorXd r(goal.size());
-    for (std::size_t i = 0; i < L; ++i)
-      r.segment<3>(3 * static_cast<Eigen::Index>(i)) =
-          (x[i] - w.target_neutral[i]) * kMmPerM -
-          goal.segment<3>(3 * static_cast<Eigen::Index>(i));
-    return r;
-  };
-  auto residual = [&](const Eigen::VectorXd& u) {
-    set(u);
-    return evaluate();
-  };
-
-  Eigen::VectorXd u(k);
-  for (Eigen::Index j = 0; j < k; ++j) {
-    const Param& p = ps[static_cast<std::size_t>(j)];
-    u[j] = (value(e, p) - p.lo) / (p.hi - p.lo);
-  }
-  // The commands of the best run so far: the copy itself until a step improves on it (not
-  // u mapped back, which would round the copy's values).
-  Expression best = e;
-  Eigen::VectorXd r = evaluate();
-  bool r_settled = settled;
-  out.copy = error_of(r, goal);
-  double lambda = o.lambda;
-  while (k > 0 && out.iterations < o.iterations && error_of(r, goal).rms_mm > o.skip_rms_mm) {
+  FitState s{f.normalised(), f.evaluate(), out.pose, true, o.lambda};
+  s.settled = f.settled;
+  out.copy = error_of(s.r, goal);
+  while (f.size() > 0 && out.iterations < o.iterations &&
+         error_of(s.r, goal).rms_mm > o.skip_rms_mm) {
     ++out.iterations;
-    Eigen::MatrixXd J(r.size(), k);
-    for (Eigen::Index j = 0; j < k; ++j) {
-      Eigen::VectorXd v = u;
-      const double h = v[j] + o.fd_step <= 1 ? o.fd_step : -o.fd_step;
-      v[j] += h;
-      J.col(j) = (residual(v) - r) / h;
-    }
-    const Eigen::MatrixXd A = J.transpose() * J;
-    const Eigen::VectorXd g = J.transpose() * r;
-    bool improved = false;
-    for (int attempt = 0; attempt < 4 && !improved; ++attempt) {
-      Eigen::MatrixXd M = A;
-      // Marquardt's scaling, with a floor for a command that moves no landmark.
-      for (Eigen::Index j = 0; j < k; ++j) M(j, j) += lambda * std::max(A(j, j), 1e-6);
-      const Eigen::VectorXd next =
-          (u - M.ldlt().solve(g)).cwiseMax(0.0).cwiseMin(1.0);  // projected onto the box
-      if ((next - u).norm() < 1e-6) break;
-      const Eigen::VectorXd rn = residual(next);
-      if (rn.squaredNorm() < r.squaredNorm()) {
-        u = next;
-        r = rn;
-        r_settled = settled;
-        best = e;
-        lambda /= 3;
-        improved = true;
-      } else {
-        lambda *= 4;
-      }
-    }
-    if (!improved) break;
+    if (!improve(f, s)) break;
   }
-  e = best;
-  out.refined = error_of(r, goal);
-  out.settled = r_settled;
+  out.pose = s.best;
+  out.refined = error_of(s.r, goal);
+  out.settled = s.settled;
   return out;
+}
+
+ClonedPose clone_pose(const FaceModel& source, const FaceModel& target, const CloneMap& map,
+                      const Expression& pose, const MotionCloneOptions& o, CloneWorkspace& w) {
+  return refine_clone(target, map, clone_goals(source, map, pose, o, w), pose,
+                      plain_copy(target, map, pose, o), o, w);
 }
 
 }  // namespace facectl::face

@@ -6,6 +6,7 @@
 // full model (docs/FACE_MODEL.md, "Motion cloning").
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,11 @@ struct JawBounds {
 // The design limits (control/envelope/mandible_envelope.hpp), which every head narrows.
 JawBounds design_jaw_bounds();
 
+// The range of one eyelid's closure command (head.yaml `rigid: eyelid_closure`).
+struct LidRange {
+  double min = 0, max = 1;
+};
+
 struct MotionCloneOptions {
   // Full-model frames from rest for one evaluation. A fixed count, not a tolerance, so that
   // a finite difference compares two runs of the same length (a tolerance stop would
@@ -33,6 +39,7 @@ struct MotionCloneOptions {
   double lambda = 1e-2;       // initial damping, relative to diag(JᵀJ)
   double skip_rms_mm = 1e-6;  // a plain copy this close is kept as it is (the self-clone)
   JawBounds jaw = design_jaw_bounds();
+  LidRange eyelid[2];  // left, right
 };
 
 // How the two heads correspond: landmarks and commanded muscles matched by name, and G.
@@ -68,9 +75,19 @@ CloneWorkspace make_clone_workspace(const FaceModel& source, const FaceModel& ta
 
 // Clones one pose: the source's landmark displacements from its neutral run, d_i, become
 // goals t_i = G(P_i + d_i) − G(P_i) on the target; the target starts from the same
-// commands and Levenberg–Marquardt with forward differences moves the commands the pose
-// uses (non-zero contractions, jaw axes and eyelids) within their ranges to fit t_i.
+// commands (jaw and eyelids clamped to o.jaw and o.eyelid) and Levenberg–Marquardt with forward
+// differences moves the commands the pose uses (non-zero contractions, jaw axes and eyelids) within
+// their ranges to fit t_i.
 ClonedPose clone_pose(const FaceModel& source, const FaceModel& target, const CloneMap& map,
                       const Expression& pose, const MotionCloneOptions& o, CloneWorkspace& w);
+
+// clone_pose's two halves. The goals t_i (mm, x y z per landmark pair) of `pose`:
+Eigen::VectorXd clone_goals(const FaceModel& source, const CloneMap& map, const Expression& pose,
+                            const MotionCloneOptions& o, CloneWorkspace& w);
+// The refinement from `start` (target order; clone_pose starts from the plain copy),
+// moving the commands the source pose `uses` sets; ClonedPose::copy is the error at start.
+ClonedPose refine_clone(const FaceModel& target, const CloneMap& map, const Eigen::VectorXd& goal,
+                        const Expression& uses, const Expression& start,
+                        const MotionCloneOptions& o, CloneWorkspace& w);
 
 }  // namespace facectl::face
