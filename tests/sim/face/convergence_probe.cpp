@@ -12,7 +12,8 @@
 //   face_convergence_probe muscles [N] [seed] [frames]
 //     The random study's inputs on the muscles alone: which still move after `frames`.
 // Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
-// FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values; FACE_SCALE=
+// FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
+// FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
 // stretch|area scales them with the skin size or vertex area; in the random study
 // FACE_FREEZE=N freezes the muscles after N frames and FACE_NOTEETH=1 drops the contacts.
 #include <algorithm>
@@ -52,6 +53,14 @@ HeadSpec study_head() {
       {"FACE_STRETCH", &spec.skin.stretch}, {"FACE_BENDING", &spec.skin.bending},
       {"FACE_AREA", &spec.skin.area},       {"FACE_ANCHOR", &spec.skin.anchor},
       {"FACE_DAMPING", &spec.skin.damping}, {"FACE_MINAREA", &spec.skin.min_projected_area}};
+  // Muscle knobs, the same value for sheets and sphincters.
+  for (const auto& [name, member] : {std::pair{"FACE_MVOLUME", &MuscleStiffness::volume},
+                                     std::pair{"FACE_MBEND", &MuscleStiffness::bend},
+                                     std::pair{"FACE_MPOSITION", &MuscleStiffness::position}})
+    if (const char* e = std::getenv(name)) {
+      spec.sheet.*member = spec.sphincter.*member = std::atof(e);
+      std::fprintf(stderr, "%s = %g\n", name, std::atof(e));
+    }
   for (const auto& [name, value] : knobs)
     if (const char* e = std::getenv(name)) {
       *value = std::atof(e);
