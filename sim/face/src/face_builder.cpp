@@ -279,6 +279,13 @@ std::vector<int> bind_skin(const HeadSpec& spec, const Points& skin_n, int nbase
   int max_layer = 0;
   for (const Muscle& mu : m.muscles) max_layer = std::max(max_layer, mu.layer);
   m.anchor_local.resize(ns);
+  // The anchor stiffness is per unit skin area: a vertex of a finer variant holds a smaller
+  // share of the skin, so its anchor is weaker in proportion (k · nbase/ns), and the balance
+  // between the anchors and the edge network, which keeps its per-edge stiffness, stays
+  // that of the base mesh. With the same k on every variant the finer skins followed their
+  // anchors more and their neighbours less, and most library expressions did not settle on
+  // them (face_convergence_probe resolution).
+  const double anchor_k = spec.skin.anchor * nbase / ns;
   for (int i = 0; i < ns; ++i) {
     const Vec3 p = m.skin.v.get(i), n = skin_n.get(i);
     SurfacePoint sp;
@@ -299,7 +306,7 @@ std::vector<int> bind_skin(const HeadSpec& spec, const Points& skin_n, int nbase
     const Points& src = sp.layer == Layer::kSkull ? m.skull.v : m.muscle_rest;
     m.anchor_local.set(i, F.transpose() * (p - sp.position(src)));
     m.anchor_support.push_back(sp);
-    m.anchors.add(i, spec.skin.anchor);
+    m.anchors.add(i, anchor_k);
     const bool jaw = sp.layer == Layer::kSkull && (on_jaw[sp.i0] || on_jaw[sp.i1] || on_jaw[sp.i2]);
     (sp.layer == Layer::kMuscle ? m.anchors_on_muscles
      : jaw                      ? m.anchors_on_jaw

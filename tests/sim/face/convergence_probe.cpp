@@ -9,6 +9,13 @@
 //   face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]
 //     One held input (cp=C: corrugator and procerus at C alone): skin and muscle motion
 //     every `stride` frames (20).
+//   face_convergence_probe muscles [N] [seed] [frames]
+//     The random study's inputs on the muscles alone: which still move after `frames`.
+// Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
+// FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
+// FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
+// stretch|area scales them with the skin size or vertex area; in the random study
+// FACE_FREEZE=N freezes the muscles after N frames and FACE_NOTEETH=1 drops the contacts.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -38,15 +45,137 @@ std::vector<Vec3> displacements(const FaceModel& m, const FaceData& d,
   return out;
 }
 
+// Study overrides of the head's skin stiffnesses from the environment (FACE_STRETCH,
+// FACE_BENDING, FACE_AREA, FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA), for every mode.
+HeadSpec study_head() {
+  HeadSpec spec = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  const std::pair<const char*, double*> knobs[] = {
+      {"FACE_STRETCH", &spec.skin.stretch}, {"FACE_BENDING", &spec.skin.bending},
+      {"FACE_AREA", &spec.skin.area},       {"FACE_ANCHOR", &spec.skin.anchor},
+      {"FACE_DAMPING", &spec.skin.damping}, {"FACE_MINAREA", &spec.skin.min_projected_area}};
+  // Muscle knobs, the same value for sheets and sphincters.
+  for (const auto& [name, member] : {std::pair{"FACE_MVOLUME", &MuscleStiffness::volume},
+                                     std::pair{"FACE_MBEND", &MuscleStiffness::bend},
+                                     std::pair{"FACE_MPOSITION", &MuscleStiffness::position}})
+    if (const char* e = std::getenv(name)) {
+      spec.sheet.*member = spec.sphincter.*member = std::atof(e);
+      std::fprintf(stderr, "%s = %g\n", name, std::atof(e));
+    }
+  for (const auto& [name, value] : knobs)
+    if (const char* e = std::getenv(name)) {
+      *value = std::atof(e);
+      std::fprintf(stderr, "%s = %g\n", name, *value);
+    }
+  return spec;
+}
+
+// The default head's base skin size, the reference of the FACE_SCALE variants below.
+constexpr double kBaseVertices = 468;
+
+// FACE_SCALE=stretch: the skin stretch scaled by n/n_base (at most 1) on a finer skin, the
+// per-edge stiffness that keeps the edge network's stiffness per unit area.
+HeadSpec study_head_for(std::size_t vertices) {
+  HeadSpec spec = study_head();
+  const char* e = std::getenv("FACE_SCALE");
+  if (!e || vertices == 0 || std::string(e) != "stretch") return spec;
+  spec.skin.stretch =
+      std::min(1.0, spec.skin.stretch * static_cast<double>(vertices) / kBaseVertices);
+  std::fprintf(stderr, "%zu vertices: stretch %g\n", vertices, spec.skin.stretch);
+  return spec;
+}
+
+// FACE_SCALE=area: each anchor's stiffness in proportion to its own vertex's share of the
+// skin area (a third of its triangles'), k_i = anchor·A_i/(A/n_base), at most 1: the mean
+// per unit area is kept, the dense lips and eyes get weaker anchors than the sparse cheeks.
+FaceModel study_model(std::size_t vertices) {
+  const HeadSpec spec = study_head_for(vertices);
+  FaceModel m = build_face_model(spec, vertices);
+  const char* e = std::getenv("FACE_SCALE");
+  if (!e || std::string(e) != "area") return m;
+  std::vector<double> area(m.skin.v.size(), 0.0);
+  double total = 0;
+  for (const Tri& t : m.skin.tris) {
+    const double a = 0.5 * (m.skin.v.get(t[1]) - m.skin.v.get(t[0]))
+                               .cross(m.skin.v.get(t[2]) - m.skin.v.get(t[0]))
+                               .norm();
+    for (int v : t) area[v] += a / 3;
+    total += a;
+  }
+  double lo = 1, hi = 0;
+  for (std::size_t j = 0; j < m.anchors.size(); ++j) {
+    const double k =
+        std::min(1.0, spec.skin.anchor * area[m.anchors.particle[j]] / (total / kBaseVertices));
+    m.anchors.k[j] = k, lo = std::min(lo, k), hi = std::max(hi, k);
+  }
+  std::fprintf(stderr, "%zu vertices: anchors per area, k %.3f to %.3f\n", m.skin.v.size(), lo, hi);
+  return m;
+}
+
+// FACE_NOTEETH=1 turns the teeth contacts off in the random study.
+bool study_teeth() {
+  return std::getenv("FACE_NOTEETH") == nullptr;
+}
+
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
 }
 
+// Skin bending pairs turned by more than 90° and more than 154° (cos < −0.9) from their
+// rest dihedral, and the largest edge strain l/L − 1 of the interior edges.
+struct FoldCount {
+  int over90 = 0, near_wrap = 0;
+  double strain = 0;
+};
+FoldCount folds(const FaceModel& m, const Points& p) {
+  FoldCount f;
+  const BendingConstraints& b = m.skin_bending;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const Vec3 pa = p.get(b.a[i]), e = p.get(b.b[i]) - pa, u = p.get(b.c[i]) - pa,
+               v = p.get(b.d[i]) - pa;
+    const Vec3 n1 = e.cross(u), n2 = e.cross(v);
+    const double r = 1 / (n1.norm() * n2.norm());
+    const double c = n1.dot(n2) * r, sn = -u.dot(n2) * e.norm() * r;
+    const double cd = c * b.cos_rest[i] + sn * b.sin_rest[i];
+    f.over90 += cd < 0;
+    f.near_wrap += cd < -0.9;
+    const double rest = (m.skin.v.get(b.b[i]) - m.skin.v.get(b.a[i])).norm();
+    f.strain = std::max(f.strain, e.norm() / rest - 1);
+  }
+  return f;
+}
+
+// run_to_steady_state's criterion with the muscles frozen after `freeze` frames (their
+// state is put back before every later step, so each step's one muscle iteration starts
+// from the same state): whether the skin settles on still supports.
+SteadyStateResult run_frozen(const FaceModel& m, FaceData& d, const FaceInput& in,
+                             const SteadyStateOptions& o, int freeze) {
+  for (int f = 0; f < freeze; ++f) step_face(m, d, in);
+  const Points still = d.muscles;
+  std::vector<Points> ring;
+  SteadyStateResult r;
+  for (r.frames = 1; r.frames <= o.max_frames; ++r.frames) {
+    d.muscles = still;
+    step_face(m, d, in);
+    if (static_cast<int>(ring.size()) == o.window) ring.erase(ring.begin());
+    r.residual_mm = 0;
+    for (const Points& h : ring)
+      for (std::size_t i = 0; i < h.size(); ++i)
+        r.residual_mm = std::max(r.residual_mm, 1e3 * (h.get(i) - d.skin_x.get(i)).norm());
+    ring.push_back(d.skin_x);
+    if (r.frames >= std::max(o.min_frames, o.window) && r.residual_mm < o.tolerance_mm) {
+      r.converged = true;
+      break;
+    }
+  }
+  r.frames = std::min(r.frames, o.max_frames);
+  return r;
+}
+
 int random_study(int n, unsigned seed, std::size_t vertices) {
-  const HeadSpec spec = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
-  const FaceModel m = build_face_model(spec, vertices);
+  const HeadSpec spec = study_head_for(vertices);
+  const FaceModel m = study_model(vertices);
   const std::vector<int> cps = control_landmarks(m);
   ReduceOptions ro;
   ro.active_probability = 1.0;  // every muscle active, c ~ U(0, 1)
@@ -55,25 +184,33 @@ int random_study(int n, unsigned seed, std::size_t vertices) {
   const SteadyStateOptions o;
   std::vector<double> frames, settled_frames, drift_max, residual;
   double drift_sq = 0;
-  int converged = 0, drift_n = 0;
+  // FACE_FREEZE=N: the muscles are frozen after N frames (run_frozen).
+  const int freeze = std::getenv("FACE_FREEZE") ? std::atoi(std::getenv("FACE_FREEZE")) : 0;
+  int converged = 0, drift_n = 0, muscles_moving = 0;
   for (const ReducedSample& s : random_samples(spec, ro, n, seed)) {
     FaceInput in;
     in.contractions = s.contractions;
     in.jaw = s.jaw;
+    in.teeth_collision = study_teeth();
     reset_face_data(m, d);
-    const SteadyStateResult r = run_to_steady_state(m, d, in, o);
+    const SteadyStateResult r =
+        freeze > 0 ? run_frozen(m, d, in, o, freeze) : run_to_steady_state(m, d, in, o);
     converged += r.converged;
+    const FoldCount fc = folds(m, d.skin_x);
     std::size_t moving = 0;  // the vertex that moves most in the next 2 frames
-    double muscle_motion = 0;
+    double muscle_motion = 0, one_frame = 0;
     if (!r.converged) {
       const Points before = d.skin_x, mus = d.muscles;
       step_face(m, d, in);
+      for (std::size_t i = 0; i < before.size(); ++i)
+        one_frame = std::max(one_frame, 1e3 * (d.skin_x.get(i) - before.get(i)).norm());
       step_face(m, d, in);
       for (std::size_t i = 0; i < mus.size(); ++i)
         muscle_motion = std::max(muscle_motion, 1e3 * (d.muscles.get(i) - mus.get(i)).norm());
       double w = 0;
       for (std::size_t i = 0; i < before.size(); ++i)
         if (const double e = (d.skin_x.get(i) - before.get(i)).norm(); e > w) w = e, moving = i;
+      muscles_moving += freeze == 0 && muscle_motion > 0.01;
     }
     frames.push_back(r.converged ? r.frames : o.max_frames + 1.0);
     if (r.converged) settled_frames.push_back(r.frames);
@@ -91,38 +228,88 @@ int random_study(int n, unsigned seed, std::size_t vertices) {
       ++drift_n;
     }
     drift_max.push_back(worst);
+    std::printf("folds: %s, pairs over 90° %d, over 154° %d, max strain %.2f\n",
+                r.converged ? "settled" : "unsettled", fc.over90, fc.near_wrap, fc.strain);
     if (!r.converged)
       std::printf(
           "unsettled: residual %.3f mm after %d frames, 300→600 drift %.3f mm; vertex %zu at "
-          "(%.0f, %.0f, %.0f) mm moves most; muscles %.3f mm\n",
+          "(%.0f, %.0f, %.0f) mm moves most (%.3f mm in 1 frame); muscles %.3f mm\n",
           r.residual_mm, r.frames, worst, moving, 1e3 * m.skin.v.x[moving],
-          1e3 * m.skin.v.y[moving], 1e3 * m.skin.v.z[moving], muscle_motion);
+          1e3 * m.skin.v.y[moving], 1e3 * m.skin.v.z[moving], one_frame, muscle_motion);
   }
   std::printf(
       "%zu vertices, %d inputs (seed %u): %d settled to %.3f mm (window %d) within %d frames\n"
       "frames to settle (unsettled count as %d): median %.0f, p95 %.0f, max %.0f; of the "
       "settled alone: median %.0f, p95 %.0f, max %.0f\n"
-      "final residual: median %.4f mm, max %.3f mm\n"
+      "final residual: median %.4f mm, max %.3f mm; unsettled with muscles moving > 0.01 mm "
+      "in 2 frames: %d\n"
       "control points 300→600 frames: RMS %.4f mm; per input max: median %.4f, p95 %.3f, "
       "max %.3f mm\n",
       m.skin.v.size(), n, seed, converged, o.tolerance_mm, o.window, o.max_frames, o.max_frames + 1,
       percentile(frames, 0.5), percentile(frames, 0.95),
       *std::max_element(frames.begin(), frames.end()), percentile(settled_frames, 0.5),
       percentile(settled_frames, 0.95), percentile(settled_frames, 1.0), percentile(residual, 0.5),
-      *std::max_element(residual.begin(), residual.end()),
+      *std::max_element(residual.begin(), residual.end()), muscles_moving,
       std::sqrt(drift_sq / std::max(drift_n, 1)), percentile(drift_max, 0.5),
       percentile(drift_max, 0.95), *std::max_element(drift_max.begin(), drift_max.end()));
   return 0;
 }
 
+// The muscles alone (step_skull_and_muscles) under the random study's inputs: their
+// residual after `frames` frames (largest particle motion over the last 20 frames), and the
+// muscle that moves most with its contraction.
+int muscle_study(int n, unsigned seed, int frames) {
+  const HeadSpec spec = study_head();
+  const FaceModel m = build_face_model(spec);
+  ReduceOptions ro;
+  ro.active_probability = 1.0;
+  ro.max_contraction = 1.0;
+  FaceData d = make_face_data(m);
+  int still = 0;
+  std::vector<double> res;
+  for (const ReducedSample& s : random_samples(spec, ro, n, seed)) {
+    FaceInput in;
+    in.contractions = s.contractions;
+    in.jaw = s.jaw;
+    reset_face_data(m, d);
+    std::vector<Points> hist;
+    for (int f = 0; f < frames; ++f) {
+      step_skull_and_muscles(m, d, in);
+      if (f >= frames - 21) hist.push_back(d.muscles);
+    }
+    double worst = 0;
+    std::size_t at = 0;
+    for (const Points& h : hist)
+      for (std::size_t i = 0; i < h.size(); ++i)
+        if (const double e = 1e3 * (h.get(i) - d.muscles.get(i)).norm(); e > worst)
+          worst = e, at = i;
+    std::size_t k = 0;
+    while (k + 1 < m.muscles.size() && m.muscles[k + 1].first <= static_cast<int>(at)) ++k;
+    res.push_back(worst);
+    still += worst < 0.01;
+    const Points& prev = hist[hist.size() - 2];
+    const double last = 1e3 * (prev.get(at) - d.muscles.get(at)).norm();
+    const double span = 1e3 * (hist.front().get(at) - d.muscles.get(at)).norm();
+    if (worst >= 0.01)
+      std::printf(
+          "moving: %.3f mm (last frame %.3f, over 20 frames %.3f), %s particle %zu (c = %.2f)\n",
+          worst, last, span, m.muscles[k].name.c_str(), at - m.muscles[k].first, d.contraction[k]);
+  }
+  std::printf(
+      "muscles alone after %d frames: %d of %d still to 0.01 mm over 20 frames; residual "
+      "median %.4f, max %.3f mm\n",
+      frames, still, n, percentile(res, 0.5), *std::max_element(res.begin(), res.end()));
+  return 0;
+}
+
 int resolution_study(const std::vector<std::size_t>& sizes) {
-  const HeadSpec spec = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  const HeadSpec spec = study_head();
   const ExpressionLibrary lib =
       load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
   // result[size][expression][point]
   std::vector<std::vector<std::vector<Vec3>>> res;
   for (std::size_t v : sizes) {
-    const FaceModel m = build_face_model(spec, v);
+    const FaceModel m = study_model(v);
     const std::vector<int> cps = control_landmarks(m);
     FaceData d = make_face_data(m);
     res.emplace_back();
@@ -165,7 +352,7 @@ int resolution_study(const std::vector<std::size_t>& sizes) {
 // alone. Every `stride` frames, the largest skin and muscle particle motion over those frames
 // (mm), the skin vertex that moved most, and the frame's teeth contacts.
 int trace(const std::string& what, int frames, int stride, bool teeth) {
-  const HeadSpec spec = load_head_spec(FACECTL_DEFAULT_HEAD_DIR);
+  const HeadSpec spec = study_head();
   const FaceModel m = build_face_model(spec);
   const ExpressionLibrary lib =
       load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
@@ -215,6 +402,10 @@ int main(int argc, char** argv) {
     return random_study(argc > 2 ? std::atoi(argv[2]) : 100,
                         argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
                         argc > 4 ? static_cast<std::size_t>(std::atoi(argv[4])) : 0);
+  if (mode == "muscles")
+    return muscle_study(argc > 2 ? std::atoi(argv[2]) : 100,
+                        argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
+                        argc > 4 ? std::atoi(argv[4]) : 2000);
   if (mode == "trace" && argc > 2)
     return trace(argv[2], argc > 3 ? std::atoi(argv[3]) : 1000,
                  argc > 4 ? std::max(1, std::atoi(argv[4])) : 20,
@@ -226,6 +417,7 @@ int main(int argc, char** argv) {
   }
   std::fprintf(stderr,
                "usage: face_convergence_probe random [N] [seed] [vertices]\n"
+               "       face_convergence_probe muscles [N] [seed] [frames]\n"
                "       face_convergence_probe resolution V1 V2 ...   (0 = the base mesh)\n"
                "       face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]\n");
   return 2;

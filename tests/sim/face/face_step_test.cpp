@@ -59,6 +59,21 @@ TEST(FaceStep, FixedSkullAnchorsHaveSupportsThatNeverMove) {
             1e-4);
 }
 
+// The anchors are per unit skin area: a finer variant's vertices hold smaller shares of the
+// skin, so their anchors are weaker in proportion and the total stays that of the base mesh.
+TEST(FaceStep, AnchorStiffnessIsPerUnitSkinArea) {
+  const FaceModel& base = default_model();
+  const FaceModel fine = build_face_model(default_spec(), 1466);
+  ASSERT_GT(fine.anchors.size(), 3 * base.anchors.size());
+  double sum_base = 0, sum_fine = 0;
+  for (double k : base.anchors.k) {
+    ASSERT_EQ(k, default_spec().skin.anchor);  // the base mesh keeps the head's value
+    sum_base += k;
+  }
+  for (double k : fine.anchors.k) sum_fine += k;
+  EXPECT_NEAR(sum_fine, sum_base, 1e-9 * sum_base);
+}
+
 TEST(TeethCollision, NoSkinVertexEndsAFrameInsideATeethHull) {
   HeadSpec spec = default_spec();
   spec.teeth_inset = -0.004;  // teeth pushed through the lips: contacts are certain

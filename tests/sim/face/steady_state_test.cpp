@@ -5,6 +5,7 @@
 
 #include "default_head.hpp"
 #include "facectl/face/expression_library.hpp"
+#include "tests/support/sample_count.hpp"
 
 namespace facectl::face {
 namespace {
@@ -35,6 +36,27 @@ TEST(SteadyState, EveryLibraryExpressionSettles) {
       worst = std::max(worst, (d.skin_x.get(i) - settled.get(i)).norm());
     EXPECT_LT(1e3 * worst, 2 * o.tolerance_mm) << e.name;
   }
+}
+
+// On a finer skin too. With the same anchor stiffness per vertex as the base mesh, 10 of
+// the 18 ended their 2000 frames at 1466 vertices still moving by 0.05-4.4 mm (anger and
+// frown the most); with the anchors per unit skin area all but two settle. Surprise and
+// chew_open_left keep a lip cycle of 0.2 and 0.1 mm (face_convergence_probe resolution).
+TEST(SteadyState, LibraryExpressionsSettleOnAFinerSkin) {
+  const FaceModel m = build_face_model(testing::default_spec(), 1466);
+  FaceData d = make_face_data(m);
+  const SteadyStateOptions o;
+  int runs = 0;
+  for (const Expression& e : library().expressions) {
+    if (e.name == "surprise" || e.name == "chew_open_left") continue;
+    if (facectl::testing::kSanitized && e.name != "anger") continue;
+    reset_face_data(m, d);
+    const SteadyStateResult r = run_to_steady_state(m, d, face_input(e), o);
+    EXPECT_TRUE(r.converged) << e.name << ": residual " << r.residual_mm << " mm after " << r.frames
+                             << " frames";
+    ++runs;
+  }
+  EXPECT_GE(runs, 1);
 }
 
 TEST(SteadyState, ReportsAnUnsettledRunWhenFramesRunOut) {
