@@ -22,7 +22,7 @@ struct BoundOptions {
   // Stop a side once proven bound − attained value ≤ tolerance (channel units).
   double tolerance = 1e-6;
   // Boxes each side (upper, lower) may process before it reports the bound it has.
-  long max_boxes = 200000;
+  long max_boxes = 600000;
 };
 
 // The rounding slack added outside every proven bound: kRelativeSlack · M + kAbsoluteSlack,

@@ -28,7 +28,7 @@ ChannelPolynomial make_channel_polynomial(const face::ReducedFaceModel& model,
                                           const ChannelTerms& terms) {
   const int points = static_cast<int>(model.control_points.size());
   ChannelPolynomial p;
-  p.variable_count = static_cast<int>(model.muscles.size()) + 3;
+  p.variable_count = face::constant_variable(model.muscles.size());
   if (!std::isfinite(terms.offset))
     throw std::invalid_argument("channel polynomial: offset is not finite");
   p.constant = terms.offset;

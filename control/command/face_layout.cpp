@@ -25,8 +25,8 @@ constexpr RigidSignal kRigidSignals[] = {
     {"eye_yaw_r", SignalKind::kAngle, -180 * kDeg, 180 * kDeg},
     {"eye_pitch_l", SignalKind::kAngle, -180 * kDeg, 180 * kDeg},
     {"eye_pitch_r", SignalKind::kAngle, -180 * kDeg, 180 * kDeg},
-    {"eyelid_closure_l", SignalKind::kFraction, 0.0, 1.0},
-    {"eyelid_closure_r", SignalKind::kFraction, 0.0, 1.0},
+    {FaceLayout::kEyelidClosureLeft, SignalKind::kFraction, 0.0, 1.0},
+    {FaceLayout::kEyelidClosureRight, SignalKind::kFraction, 0.0, 1.0},
     {"neck_pan", SignalKind::kAngle, -180 * kDeg, 180 * kDeg},
     {"neck_tilt", SignalKind::kAngle, -180 * kDeg, 180 * kDeg},
     {"neck_roll", SignalKind::kAngle, -180 * kDeg, 180 * kDeg},
@@ -67,6 +67,8 @@ FaceLayout::FaceLayout(const std::vector<std::string>& muscle_names)
   for (const auto& rigid : kRigidSignals) {
     signals_.push_back({std::string(rigid.name), rigid.kind, rigid.domain_min, rigid.domain_max});
   }
+  eyelid_closure_[0] = *find(kEyelidClosureLeft);
+  eyelid_closure_[1] = *find(kEyelidClosureRight);
 }
 
 std::string yaml_key(const SignalInfo& info) {

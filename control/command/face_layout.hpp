@@ -41,6 +41,8 @@ class FaceLayout {
   static constexpr std::string_view kJawPitch = "jaw_pitch";
   static constexpr std::string_view kJawYaw = "jaw_yaw";
   static constexpr std::string_view kJawProtrusion = "jaw_protrusion";
+  static constexpr std::string_view kEyelidClosureLeft = "eyelid_closure_l";
+  static constexpr std::string_view kEyelidClosureRight = "eyelid_closure_r";
 
   explicit FaceLayout(const std::vector<std::string>& muscle_names);
 
@@ -55,10 +57,13 @@ class FaceLayout {
   std::size_t jaw_pitch() const { return muscle_count_; }
   std::size_t jaw_yaw() const { return muscle_count_ + 1; }
   std::size_t jaw_protrusion() const { return muscle_count_ + 2; }
+  // The eyelid closure of `side`: 0 left, 1 right.
+  std::size_t eyelid_closure(int side) const { return eyelid_closure_[side]; }
 
  private:
   std::vector<SignalInfo> signals_;
   std::size_t muscle_count_;
+  std::size_t eyelid_closure_[2] = {0, 0};
 };
 
 }  // namespace facectl

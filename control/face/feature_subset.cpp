@@ -10,7 +10,7 @@ FeatureSubset select_features(const ReducedFaceModel& m, std::vector<int> column
   FeatureSubset s;
   for (int c : columns) s.factors.push_back(feature_factors(m, c));
   s.columns = std::move(columns);
-  s.variables = m.muscles.size() + 4;
+  s.variables = static_cast<std::size_t>(constant_variable(m.muscles.size())) + 1;
   return s;
 }
 
@@ -19,11 +19,8 @@ FeatureSubsetWorkspace make_subset_workspace(const FeatureSubset& s) {
           Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.columns.size()))};
 }
 
-void evaluate_features(const FeatureSubset& s, FeatureSubsetWorkspace& w,
-                       std::span<const double> contractions, double pitch_rad, double yaw_rad,
-                       double protrusion_m) {
-  fill_feature_variables(contractions, pitch_rad, yaw_rad, protrusion_m,
-                         std::span<double>(w.variables.data(), s.variables));
+void evaluate_features(const FeatureSubset& s, FeatureSubsetWorkspace& w, const ReducedInput& in) {
+  fill_feature_variables(in, std::span<double>(w.variables.data(), s.variables));
   fill_features(std::span<const double>(w.variables.data(), s.variables), s.factors, w.values);
 }
 

@@ -16,7 +16,7 @@ namespace facectl::face {
 struct FeatureSubset {
   std::vector<int> columns;                 // feature columns of the model, ascending
   std::vector<std::array<int, 3>> factors;  // per column, as feature_factors()
-  std::size_t variables = 0;                // n + 4, as fill_feature_variables()
+  std::size_t variables = 0;                // n + 6, as fill_feature_variables()
 };
 
 // Throws std::out_of_range for a column the model does not have.
@@ -30,8 +30,6 @@ struct FeatureSubsetWorkspace {
 FeatureSubsetWorkspace make_subset_workspace(const FeatureSubset& s);
 
 // Fills w.values; each equals its column of evaluate_features() bit for bit.
-void evaluate_features(const FeatureSubset& s, FeatureSubsetWorkspace& w,
-                       std::span<const double> contractions, double pitch_rad, double yaw_rad,
-                       double protrusion_m);
+void evaluate_features(const FeatureSubset& s, FeatureSubsetWorkspace& w, const ReducedInput& in);
 
 }  // namespace facectl::face

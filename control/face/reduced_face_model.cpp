@@ -29,14 +29,15 @@ std::array<int, 3> feature_factors(const ReducedFaceModel& m, int column) {
   return m.features[static_cast<std::size_t>(column)];
 }
 
-void fill_feature_variables(std::span<const double> c, double pitch, double yaw, double prot,
-                            std::span<double> v) {
-  const std::size_t n = c.size();
-  std::copy(c.begin(), c.end(), v.begin());
-  v[n] = pitch * kPitchScale;
-  v[n + 1] = yaw * kYawScale;
-  v[n + 2] = prot * kProtrusionScale;
-  v[n + 3] = 1.0;
+void fill_feature_variables(const ReducedInput& in, std::span<double> v) {
+  const std::size_t n = in.contractions.size();
+  std::copy(in.contractions.begin(), in.contractions.end(), v.begin());
+  v[n] = in.pitch_rad * kPitchScale;
+  v[n + 1] = in.yaw_rad * kYawScale;
+  v[n + 2] = in.protrusion_m * kProtrusionScale;
+  v[n + 3] = in.eyelid_closure[0];
+  v[n + 4] = in.eyelid_closure[1];
+  v[n + 5] = 1.0;
 }
 
 // The symbolic twin of fill_features over SI jaw variables (the drift guard in
@@ -49,7 +50,7 @@ std::vector<Monomial> feature_monomials(const ReducedFaceModel& m) {
     Monomial mono;
     for (int var : triple) {
       if (var == one) continue;
-      if (var >= n) mono.coefficient *= kJawScale[static_cast<std::size_t>(var - n)];
+      if (var >= n && var < n + 3) mono.coefficient *= kJawScale[static_cast<std::size_t>(var - n)];
       if (!mono.powers.empty() && mono.powers.back()[0] == var)
         ++mono.powers.back()[1];
       else
@@ -73,18 +74,15 @@ ReducedFaceWorkspace make_reduced_workspace(const ReducedFaceModel& m) {
           Eigen::VectorXd::Zero(m.feature_count())};
 }
 
-void evaluate_features(const ReducedFaceModel& m, ReducedFaceWorkspace& w,
-                       std::span<const double> contractions, double pitch_rad, double yaw_rad,
-                       double protrusion_m) {
+void evaluate_features(const ReducedFaceModel& m, ReducedFaceWorkspace& w, const ReducedInput& in) {
   std::span<double> v(w.variables.data(), static_cast<std::size_t>(w.variables.size()));
-  fill_feature_variables(contractions, pitch_rad, yaw_rad, protrusion_m, v);
+  fill_feature_variables(in, v);
   fill_features(v, m.features, w.features);
 }
 
-void evaluate(const ReducedFaceModel& m, ReducedFaceWorkspace& w,
-              std::span<const double> contractions, double pitch_rad, double yaw_rad,
-              double protrusion_m, std::span<double> out) {
-  evaluate_features(m, w, contractions, pitch_rad, yaw_rad, protrusion_m);
+void evaluate(const ReducedFaceModel& m, ReducedFaceWorkspace& w, const ReducedInput& in,
+              std::span<double> out) {
+  evaluate_features(m, w, in);
   Eigen::Map<Eigen::VectorXd> o(out.data(), static_cast<Eigen::Index>(out.size()));
   o.noalias() = m.coefficients * w.features;
 }

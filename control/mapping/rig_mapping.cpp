@@ -36,12 +36,22 @@ MappingWorkspace make_mapping_workspace(const RigMapping& mapping) {
   return w;
 }
 
+face::ReducedInput reduced_input(const RigMapping& m,
+                                 const std::array<double, kMaxFaceSignals>& face) {
+  face::ReducedInput in;
+  in.contractions = std::span<const double>(face.data(), m.muscle_count);
+  in.pitch_rad = face[m.jaw_pitch];
+  in.yaw_rad = face[m.jaw_yaw];
+  in.protrusion_m = face[m.jaw_protrusion];
+  in.eyelid_closure[0] = face[m.eyelid_closure[0]];
+  in.eyelid_closure[1] = face[m.eyelid_closure[1]];
+  return in;
+}
+
 void evaluate_control_points(const RigMapping& m, MappingWorkspace& w,
                              const std::array<double, kMaxFaceSignals>& face) {
   if (!m.reduced || m.projection.actuator.empty()) return;
-  face::evaluate_features(m.projection.features, w.point_features,
-                          std::span<const double>(face.data(), m.muscle_count), face[m.jaw_pitch],
-                          face[m.jaw_yaw], face[m.jaw_protrusion]);
+  face::evaluate_features(m.projection.features, w.point_features, reduced_input(m, face));
   Eigen::Map<Eigen::VectorXd> out(w.point_effector.data(), m.projection.weights.rows());
   out.noalias() = m.projection.weights * w.point_features.values;
 }

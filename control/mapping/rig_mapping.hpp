@@ -42,6 +42,7 @@ struct RigMapping {
   PointProjection projection;
   std::size_t muscle_count = 0;  // face signals [0, muscle_count) are the model's muscles
   std::size_t jaw_pitch = 0, jaw_yaw = 0, jaw_protrusion = 0;  // face signal indices
+  std::size_t eyelid_closure[2] = {0, 0};                      // left, right
   // Struts that produce the mandible pose together, solved by inverse
   // kinematics after the per-channel transforms (their strut actuators have no
   // linear terms, points or transform).
@@ -65,6 +66,10 @@ MappingWorkspace make_mapping_workspace(const RigMapping& mapping);
 // Builds mapping.projection from mapping.points and mapping.reduced; call it
 // once the points are final.
 void finish_points(RigMapping& mapping);
+
+// The reduced face model's input from the face signals (contractions, jaw, eyelids).
+face::ReducedInput reduced_input(const RigMapping& mapping,
+                                 const std::array<double, kMaxFaceSignals>& face);
 
 // Evaluates the control-point sources (step 5) into w.point_effector.
 void evaluate_control_points(const RigMapping& mapping, MappingWorkspace& w,

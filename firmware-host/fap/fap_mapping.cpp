@@ -236,7 +236,7 @@ FapMapping FapMapping::build(const HeadConfig& head, const FeaturePoints& points
     for (std::size_t k = 0; k < r.along.size(); ++k) {
       std::fill(c.begin(), c.end(), 0.0);
       for (std::size_t i : r.muscles) c[i] = 0.1 * static_cast<double>(k);
-      face::evaluate(reduced, ws, c, 0.0, 0.0, 0.0, disp);
+      face::evaluate(reduced, ws, face::ReducedInput{.contractions = c}, disp);
       const face::Vec3 d(disp[3 * point], disp[3 * point + 1], disp[3 * point + 2]);
       // Running maximum: the inverse needs a monotone response.
       r.along[k] = std::max(k == 0 ? 0.0 : r.along[k - 1], d.dot(dir));

@@ -316,6 +316,8 @@ void set_mapping(const HeadConfig& head, const RigConfig& rig, const RuntimeConf
   map.jaw_pitch = m.layout.jaw_pitch();
   map.jaw_yaw = m.layout.jaw_yaw();
   map.jaw_protrusion = m.layout.jaw_protrusion();
+  map.eyelid_closure[0] = m.layout.eyelid_closure(0);
+  map.eyelid_closure[1] = m.layout.eyelid_closure(1);
   build_mechanism(head, rig, out.file_order, m, out.problems);
   load_reduced_if_read(head, rig, m);
   for (std::size_t i = 0; i < ordered.size(); ++i) {

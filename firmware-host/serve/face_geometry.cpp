@@ -124,6 +124,8 @@ void add_signals(const FaceLayout& layout, FaceGeometry& g) {
   g.jaw_pitch = layout.jaw_pitch();
   g.jaw_yaw = layout.jaw_yaw();
   g.jaw_protrusion = layout.jaw_protrusion();
+  g.eyelid_closure[0] = layout.eyelid_closure(0);
+  g.eyelid_closure[1] = layout.eyelid_closure(1);
 }
 
 }  // namespace

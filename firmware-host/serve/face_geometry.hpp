@@ -33,6 +33,7 @@ struct FaceGeometry {
   // Face signal index of each of the reduced model's muscles, and of the jaw's.
   std::vector<std::size_t> muscle_signals;
   std::size_t jaw_pitch = 0, jaw_yaw = 0, jaw_protrusion = 0;
+  std::size_t eyelid_closure[2] = {0, 0};  // left, right
 };
 
 // The geometry, or why the head has none (no reduced_face.txt, files that do not load).

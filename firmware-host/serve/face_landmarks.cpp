@@ -24,8 +24,11 @@ std::span<const double> FaceLandmarks::displacements_mm(std::span<const double> 
   for (std::size_t k = 0; k < g.muscle_signals.size(); ++k) {
     work_->contractions[k] = face_signals[g.muscle_signals[k]];
   }
-  face::evaluate(*g.reduced, work_->workspace, work_->contractions, face_signals[g.jaw_pitch],
-                 face_signals[g.jaw_yaw], face_signals[g.jaw_protrusion], work_->displacements);
+  face::ReducedInput in{work_->contractions, face_signals[g.jaw_pitch], face_signals[g.jaw_yaw],
+                        face_signals[g.jaw_protrusion]};
+  in.eyelid_closure[0] = face_signals[g.eyelid_closure[0]];
+  in.eyelid_closure[1] = face_signals[g.eyelid_closure[1]];
+  face::evaluate(*g.reduced, work_->workspace, in, work_->displacements);
   for (double& d : work_->displacements) d *= 1e3;  // m -> mm
   return work_->displacements;
 }

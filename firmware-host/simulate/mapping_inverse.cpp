@@ -132,7 +132,8 @@ MappingInverse make_mapping_inverse(const ControllerModel& model) {
     }
   }
   for (std::size_t s = 0; s < inv.signals; ++s) {
-    const bool model_input = s < m.muscle_count || is_jaw(m, s);
+    const bool model_input =
+        s < m.muscle_count || is_jaw(m, s) || s == m.eyelid_closure[0] || s == m.eyelid_closure[1];
     if (reads_points && model_input) inv.observed[s] = true;
     if (m.mechanism && is_jaw(m, s)) inv.observed[s] = false;  // solved by forward kinematics
   }

@@ -156,12 +156,21 @@ void check_encoding(const ActuatorModel& a, const BusConfig* drive_bus, const st
 }
 
 // The effector's range for a channel that reads control points: the reduced
-// model's polynomial over (muscles, jaw) is bounded by branch and bound;
-// signals outside the polynomial (eyes, neck) add their own box range, and
-// coupled limits that involve them are left out (which only widens the set).
+// model's polynomial over (muscles, jaw, eyelids) is bounded by branch and
+// bound; signals outside the polynomial (eyes, neck) add their own box range,
+// and coupled limits that involve them are left out (which only widens the set).
 std::optional<EffectorRange> point_effector_range(const ControllerModel& m, const Polytope& set,
                                                   std::size_t actuator, bool* converged) {
-  const std::size_t vars = m.layout.muscle_count() + 3;  // the polynomial's variables
+  // The polynomial's variables (muscles, jaw, eyelids) and the face signal of each.
+  const std::size_t vars =
+      static_cast<std::size_t>(face::constant_variable(m.layout.muscle_count()));
+  std::vector<std::size_t> signal_of(vars);
+  std::vector<int> var_of(set.size(), -1);
+  for (std::size_t v = 0; v < vars; ++v) {
+    const int lid = static_cast<int>(v) - face::lid_variable(m.layout.muscle_count(), 0);
+    signal_of[v] = lid >= 0 ? m.layout.eyelid_closure(lid) : v;
+    var_of[signal_of[v]] = static_cast<int>(v);
+  }
   ChannelTerms terms;
   terms.offset = m.mapping.linear.offset(actuator);
   for (const PointTerm& p : m.mapping.points) {
@@ -174,8 +183,8 @@ std::optional<EffectorRange> point_effector_range(const ControllerModel& m, cons
     const double g = m.mapping.linear.gain(actuator, j);
     lo_at[j] = hi_at[j] = std::clamp(m.neutral[j], set.lo[j], set.hi[j]);
     if (g == 0.0) continue;
-    if (j < vars) {
-      terms.linear.push_back({static_cast<int>(j), g});
+    if (var_of[j] >= 0) {
+      terms.linear.push_back({var_of[j], g});
     } else {
       lo_at[j] = g > 0 ? set.lo[j] : set.hi[j];
       hi_at[j] = g > 0 ? set.hi[j] : set.lo[j];
@@ -185,20 +194,28 @@ std::optional<EffectorRange> point_effector_range(const ControllerModel& m, cons
   }
   const ChannelPolynomial poly = make_channel_polynomial(*m.mapping.reduced, terms);
   std::vector<Interval> box;
-  for (std::size_t j = 0; j < vars; ++j) box.push_back({set.lo[j], set.hi[j]});
+  for (std::size_t v = 0; v < vars; ++v)
+    box.push_back({set.lo[signal_of[v]], set.hi[signal_of[v]]});
   std::vector<LinearInequality> rows;
   for (std::size_t r = 0; r < set.rows.size(); ++r) {
     bool inside = true;
-    for (std::size_t j = vars; j < set.size(); ++j) inside = inside && set.rows[r][j] == 0.0;
-    if (!inside) continue;
-    rows.push_back(
-        {std::vector<double>(set.rows[r].begin(), set.rows[r].begin() + vars), set.rhs[r]});
+    std::vector<double> a(vars, 0.0);
+    for (std::size_t j = 0; j < set.size(); ++j) {
+      if (set.rows[r][j] == 0.0) continue;
+      if (var_of[j] < 0)
+        inside = false;
+      else
+        a[static_cast<std::size_t>(var_of[j])] = set.rows[r][j];
+    }
+    if (inside) rows.push_back({std::move(a), set.rhs[r]});
   }
   const ChannelBound b = bound_channel(poly, box, rows);
   if (b.empty) return std::nullopt;
   *converged = b.converged;
-  for (std::size_t j = 0; j < vars && j < b.witness_min.size(); ++j) lo_at[j] = b.witness_min[j];
-  for (std::size_t j = 0; j < vars && j < b.witness_max.size(); ++j) hi_at[j] = b.witness_max[j];
+  for (std::size_t v = 0; v < vars && v < b.witness_min.size(); ++v)
+    lo_at[signal_of[v]] = b.witness_min[v];
+  for (std::size_t v = 0; v < vars && v < b.witness_max.size(); ++v)
+    hi_at[signal_of[v]] = b.witness_max[v];
   return EffectorRange{b.lower + outside.lo, b.upper + outside.hi, lo_at, hi_at};
 }
 

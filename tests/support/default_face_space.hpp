@@ -16,8 +16,9 @@ namespace facectl::testing {
 
 struct DefaultFaceSpace {
   face::ReducedFaceModel model;
-  int n = 0;                          // muscles; pitch = n, yaw = n + 1, protrusion = n + 2
-  std::vector<verify::Interval> box;  // n + 3 intervals, SI
+  // Muscles; pitch = n, yaw = n + 1, protrusion = n + 2, eyelid closures n + 3 and n + 4.
+  int n = 0;
+  std::vector<verify::Interval> box;  // n + 5 intervals, SI
 
   int muscle(const std::string& name) const {
     for (int i = 0; i < n; ++i)
@@ -30,7 +31,7 @@ struct DefaultFaceSpace {
     throw std::runtime_error("no control point " + name);
   }
   verify::LinearInequality row(std::vector<std::pair<int, double>> a, double b) const {
-    verify::LinearInequality r{std::vector<double>(static_cast<std::size_t>(n + 3), 0.0), b};
+    verify::LinearInequality r{std::vector<double>(box.size(), 0.0), b};
     for (auto [v, c] : a) r.a[static_cast<std::size_t>(v)] = c;
     return r;
   }
@@ -53,6 +54,8 @@ inline const DefaultFaceSpace& default_face_space() {
     r.box.push_back({-4 * kDeg, 18 * kDeg});
     r.box.push_back({-5 * kDeg, 5 * kDeg});
     r.box.push_back({0, 0.008});
+    r.box.push_back({0, 1});  // eyelid closures
+    r.box.push_back({0, 1});
     return r;
   }();
   return s;

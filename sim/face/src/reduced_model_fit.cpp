@@ -37,9 +37,18 @@ std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOpti
     s.jaw.pitch_rad = (kJawPitchMinDeg + (kJawPitchMaxDeg - kJawPitchMinDeg) * u(rng)) * kDeg;
     s.jaw.yaw_rad = (-kJawYawMaxDeg + 2 * kJawYawMaxDeg * u(rng)) * kDeg;
     s.jaw.protrusion_m = kJawProtrusionMaxMm * 1e-3 * u(rng);
+    if (o.random_eyelids)
+      for (double& lid : s.eyelid_closure) lid = u(rng);
     out.push_back(std::move(s));
   }
   return out;
+}
+
+ReducedInput reduced_input(const ReducedSample& s) {
+  ReducedInput in{s.contractions, s.jaw.pitch_rad, s.jaw.yaw_rad, s.jaw.protrusion_m};
+  in.eyelid_closure[0] = s.eyelid_closure[0];
+  in.eyelid_closure[1] = s.eyelid_closure[1];
+  return in;
 }
 
 std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
@@ -88,6 +97,7 @@ std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigne
     s.jaw.pitch_rad = dof(kJawPitchMinDeg, kJawPitchMaxDeg) * kDeg;
     s.jaw.yaw_rad = dof(-kJawYawMaxDeg, kJawYawMaxDeg) * kDeg;
     s.jaw.protrusion_m = dof(0, kJawProtrusionMaxMm) * 1e-3;
+    for (double& lid : s.eyelid_closure) lid = dof(0, 1);
     out.push_back(std::move(s));
   }
   // Each muscle alone over its range, half of them with the jaw at rest.
@@ -103,6 +113,14 @@ std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigne
       }
       out.push_back(std::move(s));
     }
+  // Each eyelid alone over its range.
+  for (int side = 0; side < (single_muscle_sweeps ? 2 : 0); ++side)
+    for (double c : {0.25, 0.5, 0.75, 1.0}) {
+      ReducedSample s;
+      s.contractions.assign(M, 0.0);
+      s.eyelid_closure[side] = c;
+      out.push_back(std::move(s));
+    }
   return out;
 }
 
@@ -110,18 +128,22 @@ namespace {
 
 using Triple = std::array<int, 3>;
 
-// The feature triples a control point moved by `muscles` is fitted on: per muscle c, c²,
-// c³ and c times each jaw variable; the jaw's full cubic; c_a·c_b for each pair. Richer
-// forms (c²·jaw, c·jaw², c_a²·c_b) fit 5-15% better but left verify's branch and bound on
-// a brow channel unconverged after 400 000 boxes (docs/FACE_MODEL.md).
-std::vector<Triple> point_features(const std::vector<int>& muscles, int n) {
-  const int P = n, Y = n + 1, T = n + 2, one = n + 3;
+// The feature triples a control point moved by `muscles` and `lids` is fitted on: per
+// muscle c, c², c³ and c times each jaw variable; the jaw's full cubic; c_a·c_b for each
+// pair; per lid l, and for the lids of `lid_points` (those that carry the point) l², l³
+// and l times each of the muscles too (the orbicularis oculi adds to a lid's closure, the
+// brows carry it). Richer forms (c²·jaw, c·jaw², c_a²·c_b) fit 5-15% better but left verify's
+// branch and bound on a brow channel unconverged after 400 000 boxes (docs/FACE_MODEL.md).
+std::vector<Triple> point_features(const std::vector<int>& muscles, const std::vector<int>& lids,
+                                   const std::vector<int>& lid_points, int n) {
+  const int P = n, Y = n + 1, T = n + 2, one = constant_variable(static_cast<std::size_t>(n));
   std::vector<Triple> f;
   // The jaw's cubic: every product of up to three of pitch, yaw and protrusion.
-  for (int a = P; a <= one; ++a)
-    for (int b = a; b <= one; ++b)
-      for (int c = b; c <= one; ++c)
-        if (a != one) f.push_back({a, b, c});
+  const std::array<int, 4> jaw = {P, Y, T, one};
+  for (std::size_t a = 0; a < jaw.size(); ++a)
+    for (std::size_t b = a; b < jaw.size(); ++b)
+      for (std::size_t c = b; c < jaw.size(); ++c)
+        if (jaw[a] != one) f.push_back({jaw[a], jaw[b], jaw[c]});
   for (int i : muscles)
     for (const Triple& t : std::initializer_list<Triple>{
              {i, one, one}, {i, i, one}, {i, i, i}, {i, P, one}, {i, Y, one}, {i, T, one}})
@@ -131,6 +153,12 @@ std::vector<Triple> point_features(const std::vector<int>& muscles, int n) {
       const int a = std::min(muscles[x], muscles[y]), b = std::max(muscles[x], muscles[y]);
       f.push_back({a, b, one});
     }
+  for (int l : lids) f.push_back({l, one, one});
+  for (int l : lid_points) {
+    f.push_back({l, l, one});
+    f.push_back({l, l, l});
+    for (int i : muscles) f.push_back({i, l, one});
+  }
   return f;
 }
 
@@ -155,22 +183,42 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
     return y;
   };
 
-  // Which muscles move which control point: one full-model run per muscle alone at 1.
-  std::vector<std::vector<int>> movers(static_cast<std::size_t>(P));
+  // Which muscles and lids move which control point: one full-model run per muscle alone
+  // at 1, and per eyelid closed.
+  std::vector<std::vector<int>> movers(static_cast<std::size_t>(P)), lids(movers.size());
+  // Lids that move a point by more than kLidPointMm (the lid points themselves) enter as a
+  // cubic coupled with its muscles; elsewhere a lid's small drag enters linearly, which
+  // keeps verify's branch and bound over the brow channels within its budget.
+  constexpr double kLidPointMm = 3;
+  std::vector<std::vector<int>> lid_points(movers.size());
+  auto probe = [&](const ReducedSample& s, int variable, std::vector<std::vector<int>>& into) {
+    const std::vector<double> y = response(s);
+    for (int p = 0; p < P; ++p) {
+      const double mm = Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3;
+      if (mm > o.relevance_mm) into[static_cast<std::size_t>(p)].push_back(variable);
+      if (&into == &lids && mm > kLidPointMm)
+        lid_points[static_cast<std::size_t>(p)].push_back(variable);
+    }
+  };
   for (int i = 0; i < M; ++i) {
     ReducedSample s;
     s.contractions.assign(static_cast<std::size_t>(M), 0.0);
     s.contractions[static_cast<std::size_t>(i)] = 1.0;
-    const std::vector<double> y = response(s);
-    for (int p = 0; p < P; ++p)
-      if (Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3 > o.relevance_mm)
-        movers[static_cast<std::size_t>(p)].push_back(i);
+    probe(s, i, movers);
+  }
+  for (int side = 0; side < 2; ++side) {
+    ReducedSample s;
+    s.contractions.assign(static_cast<std::size_t>(M), 0.0);
+    s.eyelid_closure[side] = 1.0;
+    probe(s, lid_variable(static_cast<std::size_t>(M), side), lids);
   }
   // Each point's columns in the model's shared, deduplicated feature list.
   std::map<Triple, int> index;
   std::vector<std::vector<int>> cols(static_cast<std::size_t>(P));
   for (int p = 0; p < P; ++p)
-    for (const Triple& t : point_features(movers[static_cast<std::size_t>(p)], M)) {
+    for (const Triple& t :
+         point_features(movers[static_cast<std::size_t>(p)], lids[static_cast<std::size_t>(p)],
+                        lid_points[static_cast<std::size_t>(p)], M)) {
       const auto [it, added] = index.emplace(t, static_cast<int>(r.features.size()));
       if (added) r.features.push_back(t);
       cols[static_cast<std::size_t>(p)].push_back(it->second);
@@ -181,10 +229,9 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
                      Eigen::MatrixXd& Y) {
     X.resize(static_cast<Eigen::Index>(set.size()), F);
     Y.resize(static_cast<Eigen::Index>(set.size()), 3 * P);
-    Eigen::VectorXd v(M + 4), f(F);
+    Eigen::VectorXd v(constant_variable(static_cast<std::size_t>(M)) + 1), f(F);
     for (std::size_t k = 0; k < set.size(); ++k) {
-      fill_feature_variables(set[k].contractions, set[k].jaw.pitch_rad, set[k].jaw.yaw_rad,
-                             set[k].jaw.protrusion_m, std::span<double>(v.data(), v.size()));
+      fill_feature_variables(reduced_input(set[k]), std::span<double>(v.data(), v.size()));
       fill_features(std::span<const double>(v.data(), v.size()), r.features, f);
       X.row(static_cast<Eigen::Index>(k)) = f.transpose();
       const std::vector<double> y = response(set[k]);
@@ -252,7 +299,7 @@ void save_reduced_model(const ReducedFaceModel& m, const std::string& path) {
   for (const auto& n : m.control_points) check(n);
   std::ofstream out(path);
   if (!out) throw InputError(path + ": cannot open file for writing");
-  out << "facectl-reduced-face 2\n";
+  out << "facectl-reduced-face 3\n";
   out << "fitted_to " << m.fitted_to.size();
   for (const auto& [file, digest] : m.fitted_to) out << ' ' << file << ' ' << digest;
   out << "\nmuscles " << m.muscles.size();
@@ -285,16 +332,17 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
   };
   constexpr const char* kRebuild = " (rebuild with `facectl face reduce`)";
   {
-    auto s = next("the header 'facectl-reduced-face 2'");
+    auto s = next("the header 'facectl-reduced-face 3'");
     std::string tag;
     int v = 0;
     if (!(s >> tag) || tag != "facectl-reduced-face")
       throw InputError(path, ln, 0,
-                       "expected 'facectl-reduced-face 2', found '" + line.substr(0, 80) + "'");
-    if (!(s >> v) || v != 2)
+                       "expected 'facectl-reduced-face 3', found '" + line.substr(0, 80) + "'");
+    if (!(s >> v) || v != 3)
       throw InputError(path, ln, 0,
-                       "expected format 2, found '" + line.substr(0, 80) +
-                           "': an older model has another form and no record of its head" +
+                       "expected format 3, found '" + line.substr(0, 80) +
+                           "': an older model has another form (format 2: no eyelids; 1: no "
+                           "record of its head)" +
                            kRebuild);
   }
   // A line "key N" followed by N groups of `width` tokens; N is bounded by what the line holds.

@@ -18,11 +18,12 @@ ReducedSample relaxed(const HeadSpec& head) {
   return s;
 }
 
-std::vector<ReducedSample> random_set(const HeadSpec& head, double active, double max_c, int n,
-                                      unsigned seed) {
+std::vector<ReducedSample> random_set(const HeadSpec& head, double active, double max_c, bool lids,
+                                      int n, unsigned seed) {
   ReduceOptions o;
   o.active_probability = active;
   o.max_contraction = max_c;
+  o.random_eyelids = lids;
   return random_samples(head, o, n, seed);
 }
 
@@ -32,12 +33,13 @@ std::vector<NamedSampleSet> reduced_test_sets(const HeadSpec& head,
                                               const ExpressionLibrary& library, int n,
                                               unsigned seed) {
   std::vector<NamedSampleSet> sets;
-  sets.push_back({"in_distribution", "35% of muscles active at c ~ U(0, 0.7), jaw uniform",
-                  random_set(head, 0.35, 0.7, n, seed + 101)});
-  sets.push_back({"sparse_uniform", "35% of muscles active at c ~ U(0, 1), jaw uniform",
-                  random_set(head, 0.35, 1.0, n, seed + 202)});
-  sets.push_back({"dense_uniform", "every muscle at c ~ U(0, 1), jaw uniform",
-                  random_set(head, 1.0, 1.0, n, seed + 303)});
+  sets.push_back({"in_distribution",
+                  "35% of muscles active at c ~ U(0, 0.7), jaw uniform, eyes open",
+                  random_set(head, 0.35, 0.7, false, n, seed + 101)});
+  sets.push_back({"sparse_uniform", "35% of muscles active at c ~ U(0, 1), jaw and eyelids uniform",
+                  random_set(head, 0.35, 1.0, true, n, seed + 202)});
+  sets.push_back({"dense_uniform", "every muscle at c ~ U(0, 1), jaw and eyelids uniform",
+                  random_set(head, 1.0, 1.0, true, n, seed + 303)});
 
   NamedSampleSet single{"single_muscle_full", "each muscle alone at c = 1, jaw at rest", {}};
   for (std::size_t i = 0; i < head.commanded.size(); ++i) {
@@ -50,7 +52,7 @@ std::vector<NamedSampleSet> reduced_test_sets(const HeadSpec& head,
   // The envelope's corners, relaxed and under a random sparse mix.
   NamedSampleSet corners{
       "jaw_corners", "the 8 corners of the mandible envelope, relaxed and with a sparse mix", {}};
-  const std::vector<ReducedSample> mixes = random_set(head, 0.35, 1.0, 8, seed + 404);
+  const std::vector<ReducedSample> mixes = random_set(head, 0.35, 1.0, false, 8, seed + 404);
   for (int k = 0; k < 16; ++k) {
     ReducedSample s = k < 8 ? relaxed(head) : mixes[static_cast<std::size_t>(k - 8)];
     const int c = k % 8;
@@ -94,8 +96,7 @@ std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceMod
       SteadyStateResult settled;
       const std::vector<double> truth = full_model_response(full, d, cps, s, steady, &settled);
       e.unsettled += settled.converged ? 0 : 1;
-      evaluate(reduced, w, s.contractions, s.jaw.pitch_rad, s.jaw.yaw_rad, s.jaw.protrusion_m,
-               predicted);
+      evaluate(reduced, w, reduced_input(s), predicted);
       for (std::size_t p = 0; p < cps.size(); ++p) {
         const double dx = predicted[3 * p] - truth[3 * p];
         const double dy = predicted[3 * p + 1] - truth[3 * p + 1];

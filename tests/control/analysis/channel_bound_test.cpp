@@ -218,7 +218,10 @@ class TickChannel {
   }
   double operator()(const std::vector<double>& x) {
     const auto n = static_cast<std::size_t>(shipped().n);
-    face::evaluate(model_, w_, std::span<const double>(x).first(n), x[n], x[n + 1], x[n + 2], out_);
+    face::ReducedInput in{std::span<const double>(x).first(n), x[n], x[n + 1], x[n + 2]};
+    in.eyelid_closure[0] = x[n + 3];
+    in.eyelid_closure[1] = x[n + 4];
+    face::evaluate(model_, w_, in, out_);
     double q = terms_.offset;
     for (const ControlPointTerm& p : terms_.points) {
       const auto k = static_cast<std::size_t>(3 * p.control_point);
@@ -384,7 +387,7 @@ TEST(ChannelPolynomial, MatchesTheModelAndRejectsBadTerms) {
   bad.points = {{99, {1, 0, 0}, 1}};
   EXPECT_THROW(make_channel_polynomial(s.model, bad), std::invalid_argument);
   bad.points = {};
-  bad.linear = {{s.n + 3, 1}};
+  bad.linear = {{s.n + 5, 1}};
   EXPECT_THROW(make_channel_polynomial(s.model, bad), std::invalid_argument);
 }
 

@@ -26,14 +26,17 @@ void expect_monomials_match_features(ReducedFaceModel m, unsigned seed) {
   std::mt19937 rng(seed);
   // Beyond the admissible ranges too, so that a sign or a scale cannot hide.
   std::uniform_real_distribution<double> u(-1.5, 1.5);
-  std::vector<double> x(static_cast<std::size_t>(n + 3)), features(static_cast<std::size_t>(F));
+  std::vector<double> x(static_cast<std::size_t>(n + 5)), features(static_cast<std::size_t>(F));
   for (int trial = 0; trial < 200; ++trial) {
     for (double& v : x) v = u(rng);
     x[n] *= 0.4;       // pitch, rad
     x[n + 1] *= 0.1;   // yaw, rad
     x[n + 2] *= 0.01;  // protrusion, m
-    evaluate(m, w, std::span<const double>(x).first(static_cast<std::size_t>(n)), x[n], x[n + 1],
-             x[n + 2], features);
+    ReducedInput in{std::span<const double>(x).first(static_cast<std::size_t>(n)), x[n], x[n + 1],
+                    x[n + 2]};
+    in.eyelid_closure[0] = x[n + 3];  // the lids: variables n + 3 and n + 4
+    in.eyelid_closure[1] = x[n + 4];
+    evaluate(m, w, in, features);
     for (int k = 0; k < F; ++k) {
       const double expected = features[static_cast<std::size_t>(k)];
       const double got = evaluate_monomial(monomials[static_cast<std::size_t>(k)], x);
@@ -52,8 +55,11 @@ TEST(FeatureMonomials, DescribeEveryFeatureOfTheShippedModel) {
 TEST(FeatureMonomials, DescribeAnyFeatureList) {
   ReducedFaceModel m = shipped();
   const int one = constant_variable(m.muscles.size());
-  // A muscle cubed, a wide pair, the jaw's three variables, a muscle by pitch squared.
-  m.features = {{5, 5, 5}, {0, 28, one}, {29, 30, 31}, {1, 29, 29}, {30, 30, one}};
+  // A muscle cubed, a wide pair, the jaw's three variables, a muscle by pitch squared, the
+  // lids with each other, a muscle and the jaw.
+  const int lid_l = lid_variable(m.muscles.size(), 0), lid_r = lid_variable(m.muscles.size(), 1);
+  m.features = {{5, 5, 5},     {0, 28, one},          {29, 30, 31},    {1, 29, 29},
+                {30, 30, one}, {lid_l, lid_r, lid_r}, {2, lid_l, one}, {29, lid_r, one}};
   expect_monomials_match_features(m, 2);
 }
 

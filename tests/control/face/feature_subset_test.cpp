@@ -23,7 +23,13 @@ ReducedFaceModel shipped() {
 
 struct Input {
   std::vector<double> contractions;
-  double pitch = 0, yaw = 0, protrusion = 0;
+  double pitch = 0, yaw = 0, protrusion = 0, lid_l = 0, lid_r = 0;
+  ReducedInput reduced() const {
+    ReducedInput r{contractions, pitch, yaw, protrusion};
+    r.eyelid_closure[0] = lid_l;
+    r.eyelid_closure[1] = lid_r;
+    return r;
+  }
 };
 
 Input random_input(std::size_t muscles, std::mt19937& rng) {
@@ -35,6 +41,8 @@ Input random_input(std::size_t muscles, std::mt19937& rng) {
   in.pitch = 0.4 * u(rng);
   in.yaw = 0.1 * u(rng);
   in.protrusion = 0.01 * u(rng);
+  in.lid_l = u(rng);
+  in.lid_r = u(rng);
   return in;
 }
 
@@ -48,8 +56,8 @@ void expect_every_column_bit_for_bit(const ReducedFaceModel& m, unsigned seed) {
   std::mt19937 rng(seed);
   for (int trial = 0; trial < 200; ++trial) {
     const Input in = random_input(m.muscles.size(), rng);
-    evaluate_features(m, w, in.contractions, in.pitch, in.yaw, in.protrusion);
-    evaluate_features(s, sw, in.contractions, in.pitch, in.yaw, in.protrusion);
+    evaluate_features(m, w, in.reduced());
+    evaluate_features(s, sw, in.reduced());
     for (std::size_t k = 0; k < s.columns.size(); ++k) {
       ASSERT_EQ(s.columns[k], static_cast<int>(k));
       // Bit for bit: the tick's values must not depend on which path made them.
@@ -66,8 +74,11 @@ TEST(FeatureSubset, EveryColumnEqualsTheFullFeatureVectorBitForBit) {
 TEST(FeatureSubset, AnyFeatureListToo) {
   ReducedFaceModel m = shipped();
   const int one = constant_variable(m.muscles.size());
-  // A muscle cubed, a wide pair, the jaw alone and with a muscle, the constant.
-  m.features = {{5, 5, 5}, {0, 28, one}, {29, 30, 31}, {1, 29, 29}, {one, one, one}};
+  // A muscle cubed, a wide pair, the jaw alone and with a muscle, both lids, a lid with a
+  // muscle and with the jaw, the constant.
+  const int lid_l = lid_variable(m.muscles.size(), 0), lid_r = lid_variable(m.muscles.size(), 1);
+  m.features = {{5, 5, 5},           {0, 28, one},      {29, 30, 31},     {1, 29, 29},
+                {lid_l, lid_r, one}, {3, lid_l, lid_l}, {29, lid_r, one}, {one, one, one}};
   m.coefficients.resize(m.coefficients.rows(), static_cast<Eigen::Index>(m.features.size()));
   expect_every_column_bit_for_bit(m, 2);
 }
@@ -104,8 +115,8 @@ TEST(FeatureSubset, TheProjectionWeighsOnlyItsNonZeroColumnsAndLosesNothing) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 100; ++trial) {
     const Input in = random_input(m.muscles.size(), rng);
-    evaluate_features(m, w, in.contractions, in.pitch, in.yaw, in.protrusion);
-    evaluate_features(p.features, sw, in.contractions, in.pitch, in.yaw, in.protrusion);
+    evaluate_features(m, w, in.reduced());
+    evaluate_features(p.features, sw, in.reduced());
     const Eigen::VectorXd dense = p.rows * w.features;
     const Eigen::VectorXd compact = p.weights * sw.values;
     for (Eigen::Index r = 0; r < dense.size(); ++r) {

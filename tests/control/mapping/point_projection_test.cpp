@@ -38,14 +38,16 @@ TEST(PointProjection, EqualsTheSumOfItsPointTermsOverTheDisplacements) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int trial = 0; trial < 100; ++trial) {
     for (double& v : c) v = u(rng);
-    const double pitch = 0.3 * u(rng), yaw = 0.08 * (u(rng) - 0.5), protrusion = 0.008 * u(rng);
-    face::evaluate(m, w, c, pitch, yaw, protrusion, displacement);
+    face::ReducedInput in{c, 0.3 * u(rng), 0.08 * (u(rng) - 0.5), 0.008 * u(rng)};
+    in.eyelid_closure[0] = u(rng);
+    in.eyelid_closure[1] = u(rng);
+    face::evaluate(m, w, in, displacement);
     std::array<double, 8> expected{};
     for (const PointTerm& t : terms) {
       const double* d = displacement.data() + 3 * t.point;
       expected[t.actuator] += t.gain * (d[0] * t.axis[0] + d[1] * t.axis[1] + d[2] * t.axis[2]);
     }
-    face::evaluate_features(m, w, c, pitch, yaw, protrusion);
+    face::evaluate_features(m, w, in);
     const Eigen::VectorXd got = p.rows * w.features;
     for (std::size_t r = 0; r < p.actuator.size(); ++r) {
       const double e = expected[p.actuator[r]];
@@ -64,11 +66,12 @@ TEST(PointProjection, TheTickEvaluatesTheDenseRowsOverTheFeatureSubset) {
                                face::load_head_spec(FACECTL_DEFAULT_HEAD_DIR)));
   const std::size_t n = model->muscles.size();
   RigMapping map;
-  map.linear = LinearMapping(4, n + 3);
+  map.linear = LinearMapping(4, n + 5);
   map.transforms.resize(4);
   map.reduced = model;
   map.muscle_count = n;
   map.jaw_pitch = n, map.jaw_yaw = n + 1, map.jaw_protrusion = n + 2;
+  map.eyelid_closure[0] = n + 3, map.eyelid_closure[1] = n + 4;
   map.points = {{0, 0, {0, 1, 0}, 1.8},
                 {0, 0, {1, 0, 0}, 0.6},
                 {2, 1, {0, 1, 0}, 1.8},
@@ -85,9 +88,13 @@ TEST(PointProjection, TheTickEvaluatesTheDenseRowsOverTheFeatureSubset) {
   for (int trial = 0; trial < 100; ++trial) {
     for (std::size_t i = 0; i < n; ++i) face[i] = u(rng);
     face[n] = 0.3 * u(rng), face[n + 1] = 0.08 * (u(rng) - 0.5), face[n + 2] = 0.008 * u(rng);
+    face[n + 3] = u(rng), face[n + 4] = u(rng);
     evaluate_control_points(map, w, face);
-    face::evaluate_features(*model, full, std::span<const double>(face.data(), n), face[n],
-                            face[n + 1], face[n + 2]);
+    face::ReducedInput in{std::span<const double>(face.data(), n), face[n], face[n + 1],
+                          face[n + 2]};
+    in.eyelid_closure[0] = face[n + 3];
+    in.eyelid_closure[1] = face[n + 4];
+    face::evaluate_features(*model, full, in);
     const Eigen::VectorXd dense = map.projection.rows * full.features;
     for (std::size_t r = 0; r < 3; ++r) {
       const double e = dense[static_cast<Eigen::Index>(r)];

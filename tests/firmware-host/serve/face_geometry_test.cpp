@@ -138,14 +138,18 @@ TEST(FaceLandmarks, ASmileMovesTheLeftLipCornerUpAndOut) {
                                     landmarks.displacements_mm(signals).end());
   const std::size_t zyg = *m.layout.find("zygomaticus_major_l");
   signals[zyg] = 1.0;
-  signals[m.layout.jaw_pitch()] = 0.05;  // rad: the jaw's input reaches the model too
+  signals[m.layout.jaw_pitch()] = 0.05;       // rad: the jaw's input reaches the model too
+  signals[m.layout.eyelid_closure(0)] = 0.6;  // and the lids' do
   const auto smile = landmarks.displacements_mm(signals);
 
   face::ReducedFaceWorkspace w = face::make_reduced_workspace(*g->reduced);
   std::vector<double> expected(3 * g->points.size());
-  face::evaluate(*g->reduced, w, std::span(signals).first(m.layout.muscle_count()),
-                 signals[m.layout.jaw_pitch()], signals[m.layout.jaw_yaw()],
-                 signals[m.layout.jaw_protrusion()], expected);
+  face::ReducedInput in{std::span(signals).first(m.layout.muscle_count()),
+                        signals[m.layout.jaw_pitch()], signals[m.layout.jaw_yaw()],
+                        signals[m.layout.jaw_protrusion()]};
+  in.eyelid_closure[0] = signals[m.layout.eyelid_closure(0)];
+  in.eyelid_closure[1] = signals[m.layout.eyelid_closure(1)];
+  face::evaluate(*g->reduced, w, in, expected);
   ASSERT_EQ(smile.size(), expected.size());
   for (std::size_t i = 0; i < smile.size(); ++i) EXPECT_NEAR(smile[i], expected[i] * 1e3, 1e-9);
 

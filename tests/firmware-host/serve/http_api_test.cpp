@@ -371,8 +371,11 @@ TEST(HttpApi, TelemetryCarriesTheReducedModelsDisplacements) {
   };
   face::ReducedFaceWorkspace w = face::make_reduced_workspace(reduced);
   std::vector<double> expected(3 * reduced.control_points.size());
-  face::evaluate(reduced, w, contractions, yaml(m.layout.jaw_pitch()), yaml(m.layout.jaw_yaw()),
-                 yaml(m.layout.jaw_protrusion()), expected);
+  face::ReducedInput in{contractions, yaml(m.layout.jaw_pitch()), yaml(m.layout.jaw_yaw()),
+                        yaml(m.layout.jaw_protrusion())};
+  in.eyelid_closure[0] = yaml(m.layout.eyelid_closure(0));
+  in.eyelid_closure[1] = yaml(m.layout.eyelid_closure(1));
+  face::evaluate(reduced, w, in, expected);
   for (std::size_t i = 0; i < expected.size(); ++i)
     EXPECT_NEAR(smile["landmarks_mm"][i].get<double>(), expected[i] * 1e3, 2e-4) << i;
 

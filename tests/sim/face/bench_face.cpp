@@ -84,8 +84,11 @@ void BM_ReducedPerTick(benchmark::State& state) {
   double phase = 0;
   for (auto _ : state) {
     phase += 1e-3;  // vary the input a little so nothing is hoisted
-    evaluate(r, w, e.contractions, e.jaw.pitch_rad + phase * 1e-3, e.jaw.yaw_rad,
-             e.jaw.protrusion_m, out);
+    ReducedInput in{e.contractions, e.jaw.pitch_rad + phase * 1e-3, e.jaw.yaw_rad,
+                    e.jaw.protrusion_m};
+    in.eyelid_closure[0] = e.eyelid_closure[0];
+    in.eyelid_closure[1] = e.eyelid_closure[1];
+    evaluate(r, w, in, out);
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["control_points"] = static_cast<double>(r.control_points.size());

@@ -61,7 +61,7 @@ TEST(ReducedFaceModel, ZeroInputGivesZeroDisplacement) {
   const ReducedFaceModel& r = shipped();
   ReducedFaceWorkspace w = make_reduced_workspace(r);
   std::vector<double> c(r.muscles.size(), 0.0), out(3 * r.control_points.size(), 1.0);
-  evaluate(r, w, c, 0, 0, 0, out);
+  evaluate(r, w, ReducedInput{c}, out);
   for (double v : out) EXPECT_EQ(v, 0.0);
 }
 
@@ -70,7 +70,10 @@ TEST(ReducedFaceModel, EvaluateDoesNotAllocate) {
   ReducedFaceWorkspace w = make_reduced_workspace(r);
   std::vector<double> c(r.muscles.size(), 0.3), out(3 * r.control_points.size());
   testing::arm_alloc_counter();
-  for (int i = 0; i < 100; ++i) evaluate(r, w, c, 0.1, 0.02, 0.003, out);
+  ReducedInput in{c, 0.1, 0.02, 0.003};
+  in.eyelid_closure[0] = 0.4;
+  in.eyelid_closure[1] = 0.7;
+  for (int i = 0; i < 100; ++i) evaluate(r, w, in, out);
   EXPECT_EQ(testing::disarm_alloc_counter(), 0);
 }
 
@@ -106,7 +109,7 @@ TEST(ReducedFaceModel, ShippedCacheTracksTheFullModelOnAnExpression) {
   const std::vector<double> full = full_model_response(m, d, cps, s, SteadyStateOptions{});
   ReducedFaceWorkspace w = make_reduced_workspace(shipped());
   std::vector<double> out(full.size());
-  evaluate(shipped(), w, s.contractions, s.jaw.pitch_rad, 0, 0, out);
+  evaluate(shipped(), w, reduced_input(s), out);
   for (std::size_t p = 0; p < cps.size(); ++p) {
     const Vec3 e(out[3 * p] - full[3 * p], out[3 * p + 1] - full[3 * p + 1],
                  out[3 * p + 2] - full[3 * p + 2]);
@@ -118,7 +121,7 @@ TEST(ReducedFaceModel, MalformedFileNamesFileAndLine) {
   const std::string p = (std::filesystem::temp_directory_path() /
                          ("facectl_bad_reduced_" + std::to_string(getpid()) + ".txt"))
                             .string();
-  std::ofstream(p) << "facectl-reduced-face 2\nfitted_to 1 face.yaml\n";
+  std::ofstream(p) << "facectl-reduced-face 3\nfitted_to 1 face.yaml\n";
   try {
     load_reduced_model(p, testing::default_spec());
     FAIL() << "no error";
@@ -164,12 +167,17 @@ TEST(ReducedFaceModel, AModelFittedToOtherHeadFilesIsRefusedAsStale) {
 }
 
 TEST(ReducedFaceModel, AnOlderFormatIsRefusedWithTheReason) {
-  const auto dir = copy_of_default_head("v1");
-  std::ofstream(dir / "reduced_face.txt") << "facectl-reduced-face 1\nmuscles 0\n";
-  const std::string e = load_error(dir);
-  EXPECT_NE(e.find("reduced_face.txt:1:"), std::string::npos) << e;
-  EXPECT_NE(e.find("expected format 2"), std::string::npos) << e;
-  std::filesystem::remove_all(dir);
+  // Format 1 had no record of its head; format 2 took no eyelids.
+  for (int v : {1, 2}) {
+    const auto dir = copy_of_default_head("v" + std::to_string(v));
+    std::ofstream(dir / "reduced_face.txt")
+        << "facectl-reduced-face " << v << "\nfitted_to 0\nmuscles 0\n";
+    const std::string e = load_error(dir);
+    EXPECT_NE(e.find("reduced_face.txt:1:"), std::string::npos) << e;
+    EXPECT_NE(e.find("expected format 3"), std::string::npos) << e;
+    EXPECT_NE(e.find("facectl face reduce"), std::string::npos) << e;
+    std::filesystem::remove_all(dir);
+  }
 }
 
 }  // namespace

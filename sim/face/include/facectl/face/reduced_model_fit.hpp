@@ -17,6 +17,7 @@ struct ReduceOptions {
   int train_samples = 2000, test_samples = 200;
   SteadyStateOptions steady;  // when a sample's full-model run counts as settled
   double active_probability = 0.35, max_contraction = 0.7;
+  bool random_eyelids = false;  // random_samples: each lid closed to U(0, 1), else open
   unsigned seed = 1;
   double ridge = 1e-6;
   double relevance_mm = 0.3;  // a muscle moves a point if c = 1 alone moves it this much
@@ -36,11 +37,13 @@ struct ReduceReport {
 struct ReducedSample {
   std::vector<double> contractions;
   MandiblePose jaw;
-  double eyelid_closure[2] = {0, 0};  // left, right; the reduced model does not take them
+  double eyelid_closure[2] = {0, 0};  // left, right
 };
+// The reduced model's input for a sample (which must outlive it).
+ReducedInput reduced_input(const ReducedSample& s);
 // The fit's inputs: n mixes from sparse to dense with c ~ U(0, 1), the jaw over its envelope
-// with its limits weighted, then (single_muscle_sweeps) each muscle alone at 0.25, 0.5,
-// 0.75 and 1.
+// and each eyelid over [0, 1] with their limits weighted, then (single_muscle_sweeps) each
+// muscle and each eyelid alone at 0.25, 0.5, 0.75 and 1.
 std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigned seed,
                                             bool single_muscle_sweeps);
 std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOptions& o, int n,
