@@ -2,6 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdio>
+#include <cstdlib>
+
 #include "facectl/face/yaml_emit.hpp"
 
 namespace facectl {
@@ -11,13 +14,24 @@ using face::YamlName;
 using face::YamlNumber;
 using Y = YAML::Emitter;
 
-void vec(Y& y, const face::Vec3& v) {
-  y << YAML::Flow << YAML::BeginSeq << YamlNumber{v.x()} << YamlNumber{v.y()} << YamlNumber{v.z()}
-    << YAML::EndSeq;
+// A proposal for a person to read and copy into a rig, not data to read back exactly:
+// lengths to 0.01 mm (finer than any servo places a skin point), directions to 1e-4.
+constexpr int kMmDecimals = 2, kAxisDecimals = 4, kErrorDecimals = 3;
+
+// The double nearest v rounded to `decimals` places, which prints as that short decimal.
+YamlNumber rounded(double v, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v);
+  return {std::strtod(text, nullptr)};
 }
 
-void entry(Y& y, const char* key, double v) {
-  y << YAML::Key << key << YAML::Value << YamlNumber{v};
+void vec(Y& y, const face::Vec3& v, int decimals) {
+  y << YAML::Flow << YAML::BeginSeq << rounded(v.x(), decimals) << rounded(v.y(), decimals)
+    << rounded(v.z(), decimals) << YAML::EndSeq;
+}
+
+void entry(Y& y, const char* key, double v, int decimals) {
+  y << YAML::Key << key << YAML::Value << rounded(v, decimals);
 }
 
 }  // namespace
@@ -37,13 +51,14 @@ std::string placement_yaml(const face::Placement& p, const std::string& command)
     y << YAML::Key << "point" << YAML::Value << YamlName{x.nearest_control_point};
     y << YAML::Key << "vertex" << YAML::Value << x.vertex;
     if (!x.landmark.empty()) y << YAML::Key << "landmark" << YAML::Value << YamlName{x.landmark};
-    entry(y, "control_point_distance_mm", x.control_point_distance_mm);
+    entry(y, "control_point_distance_mm", x.control_point_distance_mm, kMmDecimals);
     y << YAML::Key << "position_mm" << YAML::Value;
-    vec(y, x.position_mm);
+    vec(y, x.position_mm, kMmDecimals);
     y << YAML::Key << "axis" << YAML::Value;
-    vec(y, x.axis);
+    vec(y, x.axis, kAxisDecimals);
     y << YAML::Key << "travel_mm" << YAML::Value << YAML::Flow << YAML::BeginSeq
-      << YamlNumber{x.travel_min_mm} << YamlNumber{x.travel_max_mm} << YAML::EndSeq;
+      << rounded(x.travel_min_mm, kMmDecimals) << rounded(x.travel_max_mm, kMmDecimals)
+      << YAML::EndSeq;
     y << YAML::EndMap;
   }
   y << YAML::EndSeq << YAML::Newline
@@ -51,10 +66,10 @@ std::string placement_yaml(const face::Placement& p, const std::string& command)
   y << YAML::Key << "errors" << YAML::Value << YAML::BeginMap;
   for (const face::ExpressionFit& f : p.fits) {
     y << YAML::Key << YamlName{f.name} << YAML::Value << YAML::Flow << YAML::BeginMap;
-    entry(y, "rms_mm", f.rms_mm);
-    entry(y, "max_mm", f.max_mm);
-    entry(y, "rms_mm_no_actuators", f.rms0_mm);
-    entry(y, "max_mm_no_actuators", f.max0_mm);
+    entry(y, "rms_mm", f.rms_mm, kErrorDecimals);
+    entry(y, "max_mm", f.max_mm, kErrorDecimals);
+    entry(y, "rms_mm_no_actuators", f.rms0_mm, kErrorDecimals);
+    entry(y, "max_mm_no_actuators", f.max0_mm, kErrorDecimals);
     if (!f.settled) y << YAML::Key << "unsettled" << YAML::Value << true;
     y << YAML::EndMap;
   }
