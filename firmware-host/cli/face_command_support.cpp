@@ -13,6 +13,12 @@ FaceArgs default_face_args() {
   return a;
 }
 
+void cap_frames_option(CLI::App* c, int default_cap) {
+  c->get_option("--frames")
+      ->description("cap on the full-model frames of each run to steady state")
+      ->default_str(std::to_string(default_cap));
+}
+
 void add_common(CLI::App* c, FaceArgs& a) {
   c->add_option("--head", a.head, "head folder (face.yaml, landmarks, muscles)")
       ->capture_default_str();

@@ -33,6 +33,8 @@ FaceArgs default_face_args();
 
 // --head, --library, --frames and --resolution, bound to `a`.
 void add_common(CLI::App* c, FaceArgs& a);
+// For commands that run each input to a steady state: --frames is a cap, with this default.
+void cap_frames_option(CLI::App* c, int default_cap);
 
 // The model at the requested skin resolution (kLargestVariant: face.yaml's largest); a
 // count the base mesh cannot be refined to is an error rather than a silent fallback.

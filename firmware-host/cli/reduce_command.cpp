@@ -39,6 +39,7 @@ void add_reduce_commands(CLI::App* face) {
   CLI::App* reduce =
       face->add_subcommand("reduce", "fit the reduced real-time model to the full model");
   add_common(reduce, args);
+  cap_frames_option(reduce, ro.steady.max_frames);
   reduce->add_option("--out", reduced_out, "output file (default <head>/reduced_face.txt)");
   reduce->add_option("--samples", ro.train_samples, "training inputs")->capture_default_str();
   reduce->add_option("--test-samples", ro.test_samples, "held-out inputs")->capture_default_str();
@@ -47,7 +48,7 @@ void add_reduce_commands(CLI::App* face) {
   reduce
       ->add_option("--tolerance-mm", ro.steady.tolerance_mm,
                    "a sample is settled when no skin vertex moved more than this over the "
-                   "last 20 frames (--frames caps the frames, default 2000)")
+                   "last 20 frames")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   reduce->callback([reduce] {
@@ -95,6 +96,7 @@ void add_reduce_commands(CLI::App* face) {
   CLI::App* check = face->add_subcommand(
       "check-reduced", "the shipped reduced model's error against the full model, per test set");
   add_common(check, args);
+  cap_frames_option(check, SteadyStateOptions{}.max_frames);
   check->add_option("--samples", check_samples, "inputs in each random set")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
