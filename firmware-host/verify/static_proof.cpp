@@ -160,15 +160,18 @@ void check_encoding(const ActuatorModel& a, const BusConfig* drive_bus, const st
 // bound; signals outside the polynomial (eyes, neck) add their own box range,
 // and coupled limits that involve them are left out (which only widens the set).
 std::optional<EffectorRange> point_effector_range(const ControllerModel& m, const Polytope& set,
-                                                  std::size_t actuator, bool* converged) {
+                                                  std::size_t actuator, long max_boxes,
+                                                  bool* converged) {
   // The polynomial's variables (muscles, jaw, eyelids) and the face signal of each.
   const std::size_t vars =
       static_cast<std::size_t>(face::constant_variable(m.layout.muscle_count()));
   std::vector<std::size_t> signal_of(vars);
   std::vector<int> var_of(set.size(), -1);
+  const std::size_t n = m.layout.muscle_count();
+  const std::size_t rigid[] = {m.layout.jaw_pitch(), m.layout.jaw_yaw(), m.layout.jaw_protrusion(),
+                               m.layout.eyelid_closure(0), m.layout.eyelid_closure(1)};
   for (std::size_t v = 0; v < vars; ++v) {
-    const int lid = static_cast<int>(v) - face::lid_variable(m.layout.muscle_count(), 0);
-    signal_of[v] = lid >= 0 ? m.layout.eyelid_closure(lid) : v;
+    signal_of[v] = v < n ? v : rigid[v - n];  // the model's variable order after the muscles
     var_of[signal_of[v]] = static_cast<int>(v);
   }
   ChannelTerms terms;
@@ -209,7 +212,9 @@ std::optional<EffectorRange> point_effector_range(const ControllerModel& m, cons
     }
     if (inside) rows.push_back({std::move(a), set.rhs[r]});
   }
-  const ChannelBound b = bound_channel(poly, box, rows);
+  BoundOptions bo;
+  bo.max_boxes = max_boxes;
+  const ChannelBound b = bound_channel(poly, box, rows, bo);
   if (b.empty) return std::nullopt;
   *converged = b.converged;
   for (std::size_t v = 0; v < vars && v < b.witness_min.size(); ++v)
@@ -338,7 +343,7 @@ std::string describe_face(const ControllerModel& m, const std::vector<double>& x
   return out.empty() ? "the neutral pose" : out;
 }
 
-StaticProof prove(const LoadedConfig& cfg) {
+StaticProof prove(const LoadedConfig& cfg, const ProofOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const ControllerModel& m = cfg.built.model;
   StaticProof out;
@@ -405,7 +410,7 @@ StaticProof prove(const LoadedConfig& cfg) {
                      : "branch and bound on the mandible mechanism (budget hit: loose bound)";
     } else if (reads_points) {
       bool converged = false;
-      effector = point_effector_range(m, set, i, &converged);
+      effector = point_effector_range(m, set, i, options.max_boxes, &converged);
       r.method = converged ? "branch and bound on the reduced model"
                            : "branch and bound on the reduced model (budget hit: loose bound)";
     } else {

@@ -187,8 +187,9 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   // at 1, and per eyelid closed.
   std::vector<std::vector<int>> movers(static_cast<std::size_t>(P)), lids(movers.size());
   // Lids that move a point by more than kLidPointMm (the lid points themselves) enter as a
-  // cubic coupled with its muscles; elsewhere a lid's small drag enters linearly, which
-  // keeps verify's branch and bound over the brow channels within its budget.
+  // cubic coupled with its muscles; elsewhere a lid's small drag enters linearly: with the
+  // cubic there too, verify's branch and bound over the inner-brow channels took four
+  // times as long (it needs 600 000 boxes a side even so; docs/VERIFY.md).
   constexpr double kLidPointMm = 3;
   std::vector<std::vector<int>> lid_points(movers.size());
   auto probe = [&](const ReducedSample& s, int variable, std::vector<std::vector<int>>& into) {

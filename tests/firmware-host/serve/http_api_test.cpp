@@ -39,7 +39,8 @@ class ServedApi {
     api_->bind();
     thread_ = std::thread([this] { api_->serve(); });
     client_ = std::make_unique<httplib::Client>("http://" + api_->address());
-    client_->set_read_timeout(10, 0);
+    // Long enough for the first request that proves the jog ranges in a sanitizer build.
+    client_->set_read_timeout(60, 0);
   }
   ~ServedApi() {
     api_->stop();
