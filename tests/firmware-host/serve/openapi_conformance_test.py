@@ -266,7 +266,9 @@ class Server:
         return rc
 
 
-def request(port, method, path, query=None, body=None, headers=None, timeout=15):
+# 60 s: the first GET /api/v1/rig proves the jog ranges (docs/API.md), which takes tens
+# of seconds in a sanitizer build.
+def request(port, method, path, query=None, body=None, headers=None, timeout=60):
     """(status, content type, headers, body bytes); `body` bytes or a JSON value."""
     url = path + ("?" + urllib.parse.urlencode(query) if query else "")
     if body is not None and not isinstance(body, bytes):
