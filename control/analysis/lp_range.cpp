@@ -84,4 +84,8 @@ std::optional<Extremum> minimize(const Polytope& p, const std::vector<double>& c
   return optimize(p, c, GLP_MIN);
 }
 
+void release_lp_thread_state() {
+  glp_free_env();
+}
+
 }  // namespace facectl::verify

@@ -25,4 +25,9 @@ struct Extremum {
 std::optional<Extremum> maximize(const Polytope& p, const std::vector<double>& c);
 std::optional<Extremum> minimize(const Polytope& p, const std::vector<double>& c);
 
+// Frees GLPK's environment of the calling thread (GLPK keeps one per thread and builds it
+// again on the next call). A thread that solved and then ends calls it, or the environment
+// leaks with the thread.
+void release_lp_thread_state();
+
 }  // namespace facectl::verify

@@ -41,6 +41,7 @@ const std::vector<HeadService::JogRange>& HeadService::jog_ranges() const {
     verify::ProofOptions quick;
     quick.max_boxes = verify::ProofOptions{}.max_boxes / 10;
     const verify::StaticProof proof = verify::prove(*head_.cfg, quick);
+    verify::release_lp_thread_state();  // the API's worker threads end without GLPK
     const ControllerModel& m = head_.model();
     for (const ActuatorModel& a : m.actuators) {
       const double k = yaml_per_si(a.kind);
