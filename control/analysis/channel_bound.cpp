@@ -53,6 +53,14 @@ Interval cubic_range(double c1, double c2, double c3, Interval x) {
   return r;
 }
 
+// The largest value of g·t + a·t²/2 over |t| ≤ r: at an end, or at the vertex when the
+// parabola opens downwards and its vertex lies inside.
+double quadratic_max(double g, double a, double r) {
+  double m = std::fabs(g) * r + 0.5 * a * r * r;
+  if (a < 0 && std::fabs(g) < -a * r) m = std::max(m, g * g / (-2.0 * a));
+  return m;
+}
+
 // A sparse polynomial over the search dimensions, split into a constant, one cubic per
 // dimension (evaluated exactly on an interval) and cross terms (interval products).
 class Compiled {
@@ -167,6 +175,9 @@ struct Search {
 struct Side {
   Compiled f;
   std::vector<Compiled> gradient;  // per search dimension
+  // The second derivatives that are not identically zero: ∂²f/∂x_d∂x_e for d ≤ e.
+  std::vector<Compiled> hessian;
+  std::vector<std::array<int, 2>> hessian_at;  // {d, e} of each
 };
 
 struct SideResult {
@@ -367,12 +378,13 @@ class Maximiser {
   struct Reduction {
     std::vector<Interval> box, grad;
     std::vector<char> fixed;
-    std::vector<double> centre;
+    std::vector<double> centre, curvature;
     void resize(std::size_t D) {
       box.resize(D);
       grad.resize(D);
       fixed.resize(D);
       centre.resize(D);
+      curvature.resize(D);
     }
   };
 
@@ -422,7 +434,35 @@ class Maximiser {
       if (s_.split[k] && !r.fixed[k])
         mv = mv + r.grad[k] * (r.box[k] - Interval{r.centre[k], r.centre[k]});
     }
-    return std::min(upper, fm + mv.hi);
+    return std::min({upper, fm + mv.hi, second_order(r, shift, fm)});
+  }
+
+  // The second-order Taylor form on the reduced box: with h = x − m and the Hessian
+  // enclosed over the box (Lagrange remainder), L(x) ≤ L(m) + Σ_d (g_d·h_d + H_dd.hi·h_d²/2)
+  // + Σ_{d<e} |H_de|·|h_d|·|h_e|, each part maximised over |h| ≤ half-width. Its
+  // overestimate near an interior maximum is about half the mean-value form's, and a
+  // concave direction can lower it below L(m) + |g|·r. The shift is linear: it moves the
+  // gradient, not the Hessian.
+  double second_order(Reduction& r, const double* shift, double fm) const {
+    const int D = s_.dims;
+    std::fill(r.curvature.begin(), r.curvature.end(), 0.0);
+    double bound = fm;
+    for (std::size_t k = 0; k < side_.hessian.size(); ++k) {
+      const auto [d, e] = side_.hessian_at[k];
+      if (r.fixed[static_cast<std::size_t>(d)] || r.fixed[static_cast<std::size_t>(e)]) continue;
+      const Interval h = side_.hessian[k].enclose(r.box.data());
+      if (d == e)
+        r.curvature[static_cast<std::size_t>(d)] = h.hi;
+      else
+        bound += h.mag() * (0.5 * r.box[d].width()) * (0.5 * r.box[e].width());
+    }
+    for (int d = 0; d < D; ++d) {
+      const auto k = static_cast<std::size_t>(d);
+      if (!s_.split[k] || r.fixed[k]) continue;
+      const double g = side_.gradient[k].value(r.centre.data()) + (shift ? shift[d] : 0.0);
+      bound += quadratic_max(g, r.curvature[k], 0.5 * r.box[d].width());
+    }
+    return bound;
   }
 
   // A Lagrangian bound: for multipliers λ ≥ 0, max f over box ∩ {A·x ≤ b} ≤ max over the
@@ -563,8 +603,18 @@ class Maximiser {
 };
 
 Side make_side(const Search& s, const std::vector<LocalTerm>& terms) {
-  Side side{Compiled(s.dims, terms), {}};
-  for (int d = 0; d < s.dims; ++d) side.gradient.emplace_back(s.dims, derivative(terms, d));
+  Side side{Compiled(s.dims, terms), {}, {}, {}};
+  for (int d = 0; d < s.dims; ++d) {
+    const std::vector<LocalTerm> first = derivative(terms, d);
+    side.gradient.emplace_back(s.dims, first);
+    for (int e = d; e < s.dims; ++e) {
+      std::vector<LocalTerm> second = derivative(first, e);
+      std::erase_if(second, [](const LocalTerm& t) { return t.coefficient == 0.0; });
+      if (second.empty()) continue;
+      side.hessian.emplace_back(s.dims, second);
+      side.hessian_at.push_back({d, e});
+    }
+  }
   return side;
 }
 

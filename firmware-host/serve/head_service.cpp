@@ -34,13 +34,9 @@ HeadService::HeadService(HeadRuntime& head, FaceDirector& director, const ShowCa
 
 const std::vector<HeadService::JogRange>& HeadService::jog_ranges() const {
   std::call_once(jog_proven_, [this] {
-    // The static proof's ranges are in file order of the rig's actuators, by name. A jog
-    // range needs a sound bound, not verify's tight one: a tenth of its box budget takes a
-    // third of the time on the default rig (1.4 s against 4.5 s on a loaded machine) for
-    // inner-brow bounds about 1.3 deg wider, inside the soft range they are clipped to.
-    verify::ProofOptions quick;
-    quick.max_boxes = verify::ProofOptions{}.max_boxes / 10;
-    const verify::StaticProof proof = verify::prove(*head_.cfg, quick);
+    // The static proof's ranges are in file order of the rig's actuators, by name: the
+    // same proof as `facectl verify`, so a jog range is what verify reports.
+    const verify::StaticProof proof = verify::prove(*head_.cfg);
     verify::release_lp_thread_state();  // the API's worker threads end without GLPK
     const ControllerModel& m = head_.model();
     for (const ActuatorModel& a : m.actuators) {

@@ -1,23 +1,17 @@
 #pragma once
 
-#include <optional>
 #include <vector>
 
 #include "control/analysis/lp_range.hpp"
 #include "control/controller_model.hpp"
+#include "firmware-host/verify/proven_channel.hpp"
 
 namespace facectl::verify {
 
-// What the range proof gives for one strut of the rig's mandible mechanism:
-// every admissible face's stroke (before the inverse kinematics clamps it to
-// the strut's soft limits) lies in [lo, hi] (m), attained at the two witness
-// faces (full face vectors, jaw set to the witness pose).
-struct MechanismChannel {
-  std::size_t actuator = 0;
-  double lo = 0.0, hi = 0.0;
-  std::vector<double> at_lo, at_hi;
-  bool converged = false;  // proven bounds within 1 µm of attained strokes
-};
+// A strut of the rig's mandible mechanism: its stroke (before the inverse
+// kinematics clamps it to the strut's soft limits), the witnesses with the jaw
+// set to the witness pose; converged: within 1 µm of attained strokes.
+using MechanismChannel = ProvenChannel;
 
 // One entry per strut; empty without a mechanism or when the admissible set
 // holds no face. Coupled face limits are relaxed to the jaw by bounding their

@@ -13,6 +13,7 @@
 #include "drivers/protocol/cia402_counts.hpp"
 #include "drivers/protocol/wire_encoding.hpp"
 #include "firmware-host/verify/mechanism_channels.hpp"
+#include "firmware-host/verify/point_channels.hpp"
 
 namespace facectl::verify {
 namespace {
@@ -153,75 +154,6 @@ void check_encoding(const ActuatorModel& a, const BusConfig* drive_bus, const st
                           ""});
     }
   }
-}
-
-// The effector's range for a channel that reads control points: the reduced
-// model's polynomial over (muscles, jaw, eyelids) is bounded by branch and
-// bound; signals outside the polynomial (eyes, neck) add their own box range,
-// and coupled limits that involve them are left out (which only widens the set).
-std::optional<EffectorRange> point_effector_range(const ControllerModel& m, const Polytope& set,
-                                                  std::size_t actuator, long max_boxes,
-                                                  bool* converged) {
-  // The polynomial's variables (muscles, jaw, eyelids) and the face signal of each.
-  const std::size_t vars =
-      static_cast<std::size_t>(face::constant_variable(m.layout.muscle_count()));
-  std::vector<std::size_t> signal_of(vars);
-  std::vector<int> var_of(set.size(), -1);
-  const std::size_t n = m.layout.muscle_count();
-  const std::size_t rigid[] = {m.layout.jaw_pitch(), m.layout.jaw_yaw(), m.layout.jaw_protrusion(),
-                               m.layout.eyelid_closure(0), m.layout.eyelid_closure(1)};
-  for (std::size_t v = 0; v < vars; ++v) {
-    signal_of[v] = v < n ? v : rigid[v - n];  // the model's variable order after the muscles
-    var_of[signal_of[v]] = static_cast<int>(v);
-  }
-  ChannelTerms terms;
-  terms.offset = m.mapping.linear.offset(actuator);
-  for (const PointTerm& p : m.mapping.points) {
-    if (p.actuator != actuator) continue;
-    terms.points.push_back({static_cast<int>(p.point), p.axis, p.gain});
-  }
-  EffectorRange outside{0.0, 0.0, {}, {}};
-  std::vector<double> lo_at(set.size()), hi_at(set.size());
-  for (std::size_t j = 0; j < set.size(); ++j) {
-    const double g = m.mapping.linear.gain(actuator, j);
-    lo_at[j] = hi_at[j] = std::clamp(m.neutral[j], set.lo[j], set.hi[j]);
-    if (g == 0.0) continue;
-    if (var_of[j] >= 0) {
-      terms.linear.push_back({var_of[j], g});
-    } else {
-      lo_at[j] = g > 0 ? set.lo[j] : set.hi[j];
-      hi_at[j] = g > 0 ? set.hi[j] : set.lo[j];
-      outside.lo += g * lo_at[j];
-      outside.hi += g * hi_at[j];
-    }
-  }
-  const ChannelPolynomial poly = make_channel_polynomial(*m.mapping.reduced, terms);
-  std::vector<Interval> box;
-  for (std::size_t v = 0; v < vars; ++v)
-    box.push_back({set.lo[signal_of[v]], set.hi[signal_of[v]]});
-  std::vector<LinearInequality> rows;
-  for (std::size_t r = 0; r < set.rows.size(); ++r) {
-    bool inside = true;
-    std::vector<double> a(vars, 0.0);
-    for (std::size_t j = 0; j < set.size(); ++j) {
-      if (set.rows[r][j] == 0.0) continue;
-      if (var_of[j] < 0)
-        inside = false;
-      else
-        a[static_cast<std::size_t>(var_of[j])] = set.rows[r][j];
-    }
-    if (inside) rows.push_back({std::move(a), set.rhs[r]});
-  }
-  BoundOptions bo;
-  bo.max_boxes = max_boxes;
-  const ChannelBound b = bound_channel(poly, box, rows, bo);
-  if (b.empty) return std::nullopt;
-  *converged = b.converged;
-  for (std::size_t v = 0; v < vars && v < b.witness_min.size(); ++v)
-    lo_at[signal_of[v]] = b.witness_min[v];
-  for (std::size_t v = 0; v < vars && v < b.witness_max.size(); ++v)
-    hi_at[signal_of[v]] = b.witness_max[v];
-  return EffectorRange{b.lower + outside.lo, b.upper + outside.hi, lo_at, hi_at};
 }
 
 // The rig's limits against what the actuator's servo can do (its `plant:`
@@ -378,6 +310,19 @@ StaticProof prove(const LoadedConfig& cfg, const ProofOptions& options) {
   }
 
   const std::vector<MechanismChannel> struts = mechanism_channels(m, set);
+  auto strut_of = [&](std::size_t i) {
+    return std::find_if(struts.begin(), struts.end(),
+                        [&](const MechanismChannel& c) { return c.actuator == i; });
+  };
+  // The channels that read control points: branch and bound on the reduced model.
+  std::vector<std::size_t> point_actuators;
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    const bool reads_points = std::any_of(m.mapping.points.begin(), m.mapping.points.end(),
+                                          [&](const PointTerm& p) { return p.actuator == i; });
+    if (reads_points && strut_of(i) == struts.end()) point_actuators.push_back(i);
+  }
+  const std::vector<PointChannel> points =
+      point_channels(m, set, point_actuators, options.max_boxes);
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
     const ActuatorModel& a = m.actuators[i];
     const std::string who = a.name;
@@ -397,22 +342,21 @@ StaticProof prove(const LoadedConfig& cfg, const ProofOptions& options) {
                               ""});
     }
 
-    const bool reads_points = std::any_of(m.mapping.points.begin(), m.mapping.points.end(),
-                                          [&](const PointTerm& p) { return p.actuator == i; });
     std::optional<EffectorRange> effector;
     bool proven = true;
-    const auto strut = std::find_if(struts.begin(), struts.end(),
-                                    [&](const MechanismChannel& c) { return c.actuator == i; });
+    const auto strut = strut_of(i);
+    const auto point = std::find_if(points.begin(), points.end(),
+                                    [&](const PointChannel& c) { return c.actuator == i; });
     if (strut != struts.end()) {
       effector = EffectorRange{strut->lo, strut->hi, strut->at_lo, strut->at_hi};
       r.method = strut->converged
                      ? "branch and bound on the mandible mechanism"
                      : "branch and bound on the mandible mechanism (budget hit: loose bound)";
-    } else if (reads_points) {
-      bool converged = false;
-      effector = point_effector_range(m, set, i, options.max_boxes, &converged);
-      r.method = converged ? "branch and bound on the reduced model"
-                           : "branch and bound on the reduced model (budget hit: loose bound)";
+    } else if (point != points.end()) {
+      if (!point->empty) effector = EffectorRange{point->lo, point->hi, point->at_lo, point->at_hi};
+      r.method = point->converged
+                     ? "branch and bound on the reduced model"
+                     : "branch and bound on the reduced model (budget hit: loose bound)";
     } else {
       effector = linear_effector_range(m, set, i);
       r.method = "exact LP (GLPK, rational)";
