@@ -30,7 +30,8 @@ done
 
 # Over a target: exit 1, and the set is marked.
 status=0
-"$facectl" face check-reduced --samples 2 --frames 100 --rms-mm 0.0001 > "$tmp/over.txt" 2>&1 || status=$?
+# Ten frames are enough: the point is the exit status, not the error.
+"$facectl" face check-reduced --samples 2 --frames 10 --rms-mm 0.0001 > "$tmp/over.txt" 2>&1 || status=$?
 [ "$status" = 1 ] || { echo "expected exit 1 over target, got $status"; cat "$tmp/over.txt"; exit 1; }
 grep -q "over target" "$tmp/over.txt"
 
