@@ -78,7 +78,7 @@ std::vector<NamedSampleSet> reduced_test_sets(const HeadSpec& head,
 
 std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceModel& reduced,
                                      const std::vector<NamedSampleSet>& sets,
-                                     const SteadyStateOptions& steady) {
+                                     const SteadyStateOptions& steady, bool settled_only) {
   std::vector<int> cps;
   for (const auto& name : reduced.control_points) cps.push_back(full.landmark_index(name));
   FaceData d = make_face_data(full);
@@ -96,6 +96,8 @@ std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceMod
       SteadyStateResult settled;
       const std::vector<double> truth = full_model_response(full, d, cps, s, steady, &settled);
       e.unsettled += settled.converged ? 0 : 1;
+      if (settled_only && !settled.converged) continue;
+      ++e.measured;
       evaluate(reduced, w, reduced_input(s), predicted);
       for (std::size_t p = 0; p < cps.size(); ++p) {
         const double dx = predicted[3 * p] - truth[3 * p];
@@ -126,8 +128,9 @@ std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceMod
 std::string set_errors_json(const std::vector<SetError>& errors) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const SetError& e : errors)
-    j[e.name] = {{"samples", e.samples}, {"unsettled", e.unsettled}, {"rms_mm", e.rms_mm},
-                 {"p99_mm", e.p99_mm},   {"max_mm", e.max_mm},       {"worst", e.worst}};
+    j[e.name] = {{"samples", e.samples}, {"unsettled", e.unsettled}, {"measured", e.measured},
+                 {"rms_mm", e.rms_mm},   {"p99_mm", e.p99_mm},       {"max_mm", e.max_mm},
+                 {"worst", e.worst}};
   return j.dump(2) + "\n";
 }
 

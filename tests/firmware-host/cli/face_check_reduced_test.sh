@@ -22,6 +22,7 @@ for name in sets:
     for key in ("rms_mm", "p99_mm", "max_mm"):
         assert isinstance(e[key], float) and math.isfinite(e[key]) and e[key] >= 0, (name, e)
     assert e["rms_mm"] > 0 and e["p99_mm"] <= e["max_mm"] and e["samples"] > 0, (name, e)
+    assert e["measured"] == e["samples"], (name, e)  # every run counts without --settled-only
 assert errors["single_muscle_full"]["samples"] == 29, errors
 PY
 for name in in_distribution sparse_uniform dense_uniform single_muscle_full jaw_corners library; do
@@ -34,6 +35,15 @@ status=0
 "$facectl" face check-reduced --samples 2 --frames 10 --rms-mm 0.0001 > "$tmp/over.txt" 2>&1 || status=$?
 [ "$status" = 1 ] || { echo "expected exit 1 over target, got $status"; cat "$tmp/over.txt"; exit 1; }
 grep -q "over target" "$tmp/over.txt"
+
+# --settled-only: one frame settles nothing, so no run is measured and every one is unsettled.
+"$facectl" face check-reduced --samples 2 --frames 1 --settled-only --json "$tmp/settled.json" \
+  > "$tmp/settled.txt"
+python3 - "$tmp/settled.json" <<'PY'
+import json, sys
+for name, e in json.load(open(sys.argv[1])).items():
+    assert e["measured"] == 0 and e["unsettled"] == e["samples"] > 0, (name, e)
+PY
 
 # A head whose skin changed after the fit: refused as stale, naming the file.
 cp -r "$src/config/heads/default" "$tmp/head"

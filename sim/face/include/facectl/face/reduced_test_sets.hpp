@@ -34,13 +34,16 @@ struct SetError {
   double rms_mm = 0, p99_mm = 0, max_mm = 0;  // of the per-point 3-D errors
   std::string worst;                          // "point in sample k" of the maximum
   int unsettled = 0;                          // full-model runs that did not reach the steady state
+  int measured = 0;                           // runs the errors are over
 };
 
 // The reduced model against the full model's steady state on each set; each set
-// reports how many full-model runs did not settle.
+// reports how many full-model runs did not settle. With `settled_only` the errors leave
+// those runs out: what the model's form misses where the truth is a steady state, apart
+// from the snapshots of a still-moving skin.
 std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceModel& reduced,
                                      const std::vector<NamedSampleSet>& sets,
-                                     const SteadyStateOptions& steady);
+                                     const SteadyStateOptions& steady, bool settled_only = false);
 
 // The sets' errors as a JSON object keyed by set name.
 std::string set_errors_json(const std::vector<SetError>& errors);
