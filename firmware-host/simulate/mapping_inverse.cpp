@@ -233,6 +233,11 @@ std::pair<double, int> descend(const MappingInverse& inv, MappingInverseWorkspac
 
 }  // namespace
 
+bool needs_second_start(std::span<const double> weighted_residual) {
+  return std::any_of(weighted_residual.begin(), weighted_residual.end(),
+                     [](double r) { return std::fabs(r) > kRestartResidual; });
+}
+
 MappingInverseResult invert_mapping(const MappingInverse& inv, MappingInverseWorkspace& w,
                                     std::span<const double> positions,
                                     std::array<double, kMaxFaceSignals>& face) {
@@ -262,7 +267,7 @@ MappingInverseResult invert_mapping(const MappingInverse& inv, MappingInverseWor
   // descent from neutral leaves a visible misfit, start again from the middle of the box.
   residual(inv, w, w.face, w.residual, weight);
   const int rows = static_cast<int>(m.actuators());
-  if (rows > 0 && w.residual.head(rows).lpNorm<Eigen::Infinity>() > kRestartResidual) {
+  if (inv.second_start && needs_second_start({w.residual.data(), static_cast<std::size_t>(rows)})) {
     w.best = w.face;
     for (int k = 0; k < n; ++k) {
       const std::size_t s = static_cast<std::size_t>(w.variable[static_cast<std::size_t>(k)]);

@@ -39,6 +39,7 @@ struct MappingInverse {
   std::array<double, kMaxActuators> weight{};            // 0: actuator not used (strut, undriven)
   face::MandiblePose mandible_rest;                      // forward kinematics' first guess
   double regularisation = 1e-8;
+  bool second_start = true;  // false: the descent from neutral alone (tests compare with it)
 };
 
 MappingInverse make_mapping_inverse(const ControllerModel& model);
@@ -69,6 +70,11 @@ struct MappingInverseResult {
   int iterations = 0;
   bool mandible_solved = true;  // false: forward kinematics failed, jaw held at rest
 };
+
+// The second start's trigger: some used actuator's weighted misfit (a fraction of its
+// effector span) above 1e-4. The worst actuator, not an average: one servo left far off
+// among twenty well-fitted ones is a visible error, though the RMS is small.
+bool needs_second_start(std::span<const double> weighted_residual);
 
 // Writes the face (SI, layout order; entries past `signals` untouched) whose
 // mapping best reproduces `positions` (actuator order, SI).

@@ -368,6 +368,8 @@ StaticProof prove(const LoadedConfig& cfg, const ProofOptions& options) {
     r.proven = proven;
     r.lo = act.lo * scale;
     r.hi = act.hi * scale;
+    r.at_lo = act.at_lo;
+    r.at_hi = act.at_hi;
     r.hardware_margin = std::min(r.lo - r.hardware_min, r.hardware_max - r.hi);
     r.soft_margin = std::min(r.lo - r.soft_min, r.soft_max - r.hi);
     const double eps = 1e-9 * std::max(1.0, r.hardware_max - r.hardware_min);  // rounding

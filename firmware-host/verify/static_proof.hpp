@@ -20,6 +20,8 @@ struct ActuatorRange {
   double soft_margin = 0.0;
   std::string method;  // how [lo, hi] was obtained
   bool proven = true;  // false where a step is numerical, not a proof
+  // Admissible faces (SI, layout order) whose commands attain lo and hi, where known.
+  std::vector<double> at_lo, at_hi;
 };
 
 struct StaticProof {

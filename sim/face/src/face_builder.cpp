@@ -388,9 +388,21 @@ void build_eyelids(const HeadSpec& spec, const Landmarks& L, const Adjacency& ad
   }
 }
 
+// A muscle's name is its command slot and, for orbicularis_oculi_l/_r, the eyelid it
+// closes: two of one name would share the slot, and the lid would follow only one of them.
+// load_head_spec refuses them with the line; this refuses a spec assembled in code.
+void check_unique_muscle_names(const HeadSpec& spec) {
+  std::map<std::string, int> seen;
+  for (const MuscleSpec& ms : spec.muscles)
+    if (++seen[ms.name] == 2)
+      throw InputError(spec.dir + ": two muscles are named '" + ms.name +
+                       "'; each muscle needs its own name");
+}
+
 }  // namespace
 
 FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices) {
+  check_unique_muscle_names(spec);
   FaceModel m;
   m.spec = spec;
   const TriMesh base = read_base_skin(spec);

@@ -137,7 +137,8 @@ void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
 }  // namespace
 
 double lid_closure(const FaceModel& m, const FaceInput& in, int side) {
-  // The palpebral part of the orbicularis oculi narrows the eye (AU 7).
+  // The palpebral part of the orbicularis oculi narrows the eye (AU 7). One muscle per side
+  // at most: it is found by name, and build_face_model refuses two muscles of one name.
   double oculi = 0;
   for (std::size_t k = 0; k < m.muscles.size(); ++k) {
     const int slot = m.command_slot[k];

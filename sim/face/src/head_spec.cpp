@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 #include <type_traits>
@@ -216,9 +217,15 @@ HeadSpec load_head_spec(const std::string& dir) {
   Doc mu = load(dir + "/" + h.files.back());
   YAML::Node ms = need(mu, mu.root, "muscles");
   if (!ms.IsSequence()) fail(mu, ms, "muscles", "a list of muscles");
+  std::map<std::string, int> first_line;  // a name is its command slot and, for
+                                          // orbicularis_oculi_l/_r, the lid it closes
   for (const auto& n : ms) {
     MuscleSpec m;
     m.name = as<std::string>(mu, need(mu, n, "name"), "name", "a muscle name");
+    const auto [first, fresh] = first_line.emplace(m.name, n["name"].Mark().line + 1);
+    if (!fresh)
+      fail(mu, n["name"], "name",
+           "a name no other muscle has (first at line " + std::to_string(first->second) + ")");
     std::string kind = as<std::string>(mu, need(mu, n, "kind"), "kind", "sheet or sphincter");
     if (kind == "sheet")
       m.kind = MuscleKind::kSheet;

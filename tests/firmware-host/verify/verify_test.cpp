@@ -4,11 +4,15 @@
 // (sampling never finds a command outside it).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/verify/static_proof.hpp"
@@ -511,6 +515,116 @@ TEST(Verify, TheStaticProofIsSoundOnTheDefaultRig) {
 
 TEST(Verify, TheStaticProofIsSoundOnTheHobbyRig) {
   expect_sound(kSource + "/config/rigs/hobby.yaml", testing::sample_count(1'000'000));
+}
+
+// The proof's witnesses on the channels that read control points. Each is an
+// admissible face (inside the box and every coupled face limit the set holds),
+// and the rig's real mapping takes it to the proven end within the branch and
+// bound's tolerance: the proof's variables (muscles, jaw, eyelids) and the face
+// layout's signals correspond, else a witness maps elsewhere. Returns the
+// point channels checked.
+int expect_point_witnesses_attain(const LoadedConfig& cfg, const verify::StaticProof& proof) {
+  const ControllerModel& m = cfg.built.model;
+  const verify::Polytope set = verify::admissible_face_set(m);
+  MappingWorkspace w = make_mapping_workspace(m.mapping);
+  std::array<double, kMaxFaceSignals> face{};
+  std::array<double, kMaxActuators> out{};
+  int checked = 0;
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    const bool reads_points = std::any_of(m.mapping.points.begin(), m.mapping.points.end(),
+                                          [&](const PointTerm& p) { return p.actuator == i; });
+    if (!reads_points) continue;
+    const std::string& name = m.actuators[i].name;
+    const auto r = std::find_if(proof.actuators.begin(), proof.actuators.end(),
+                                [&](const verify::ActuatorRange& a) { return a.name == name; });
+    if (r == proof.actuators.end()) {
+      ADD_FAILURE() << name << ": no proven range";
+      continue;
+    }
+    ++checked;
+    EXPECT_EQ(r->method, "branch and bound on the reduced model") << name;
+    const double scale = r->unit == "deg" ? 180.0 / M_PI : 1e3;
+    const double tol = (verify::BoundOptions{}.tolerance + 1e-9) * scale;  // YAML unit
+    for (const auto& [x, end, which] :
+         {std::tuple{&r->at_lo, r->lo, "lo"}, std::tuple{&r->at_hi, r->hi, "hi"}}) {
+      const std::string at = name + " at " + which;
+      if (x->size() != set.size()) {
+        ADD_FAILURE() << at << ": a witness of " << x->size() << " signals";
+        continue;
+      }
+      for (std::size_t j = 0; j < set.size(); ++j) {
+        EXPECT_GE((*x)[j], set.lo[j] - 1e-12) << at << ", " << m.layout.signal(j).name;
+        EXPECT_LE((*x)[j], set.hi[j] + 1e-12) << at << ", " << m.layout.signal(j).name;
+        face[j] = (*x)[j];
+      }
+      for (std::size_t k = 0; k < set.rows.size(); ++k) {
+        double lhs = 0.0;
+        for (std::size_t j = 0; j < set.size(); ++j) lhs += set.rows[k][j] * (*x)[j];
+        EXPECT_LE(lhs, set.rhs[k] + 1e-9) << at << ": coupled face limit " << k;
+      }
+      map_to_actuators(m.mapping, w, face, out);
+      EXPECT_NEAR(out[i] * scale, end, tol) << at << ": " << verify::describe_face(m, *x);
+    }
+  }
+  return checked;
+}
+
+// The default rig and its proof, shared by the tests below (2.5 s each time).
+struct ProvenRig {
+  LoadedConfig cfg;
+  verify::StaticProof proof;
+};
+const ProvenRig& proven_default_rig() {
+  static const auto r = [] {
+    auto p =
+        std::make_unique<ProvenRig>(ProvenRig{load_rig(kSource + "/config/rigs/default.yaml"), {}});
+    p->proof = verify::prove(p->cfg);
+    return p;
+  }();
+  return *r;
+}
+
+TEST(Verify, PointChannelWitnessesAreAdmissibleAndAttainTheProvenEnds) {
+  const ProvenRig& rig = proven_default_rig();
+  EXPECT_EQ(expect_point_witnesses_attain(rig.cfg, rig.proof), 8);  // brows, cheeks, lip corners
+}
+
+// A coupled face limit over an eyelid and a brow muscle: the inner brow may not
+// rise fully with the lid closing (frontalis_inner_l + eyelid_closure_l <= 0.5).
+// The brow servo's proven range honours it: its top, where the frontalis pulls
+// fully, is cut, its bottom stays, and the witness keeps to the limit.
+TEST(Verify, ACoupledLimitOverAnEyelidNarrowsTheBrowChannel) {
+  const std::string limit =
+      "  coupled_limits:\n"
+      "    - name: brow_lid_l\n"
+      "      face: { frontalis_inner_l: 1, eyelid_closure_l: 1 }\n"
+      "      max: 0.5\n";
+  const auto rig = default_rig().replace("  coupled_limits:\n", limit).write();
+  const auto cfg = load_rig(rig.path());
+  ASSERT_TRUE(cfg.built.problems.empty()) << cfg.built.problems.front();
+  const verify::StaticProof& base = proven_default_rig().proof;
+  const auto proof = verify::prove(cfg);
+  auto brow = [](const verify::StaticProof& p) {
+    return *std::find_if(p.actuators.begin(), p.actuators.end(),
+                         [](const verify::ActuatorRange& a) { return a.name == "brow_inner_l"; });
+  };
+  const verify::ActuatorRange wide = brow(base), narrow = brow(proof);
+  const ControllerModel& m = cfg.built.model;
+  const std::size_t frontalis = *m.layout.find("frontalis_inner_l");
+  const std::size_t lid = *m.layout.find("eyelid_closure_l");
+  auto within_limit = [&](const std::vector<double>& x) {
+    return x[frontalis] + x[lid] <= 0.5 + 1e-9;
+  };
+  // The unconstrained top lies beyond the limit, so the limit must cut it.
+  ASSERT_FALSE(within_limit(wide.at_hi)) << verify::describe_face(m, wide.at_hi);
+  const double tol = (verify::BoundOptions{}.tolerance + 1e-9) * 180.0 / M_PI;
+  EXPECT_LT(narrow.hi, wide.hi - 1.0) << "deg";
+  EXPECT_GE(narrow.lo, wide.lo - tol);
+  EXPECT_TRUE(within_limit(narrow.at_hi)) << verify::describe_face(m, narrow.at_hi);
+  EXPECT_TRUE(within_limit(narrow.at_lo)) << verify::describe_face(m, narrow.at_lo);
+  EXPECT_EQ(expect_point_witnesses_attain(cfg, proof), 8);
+  std::printf("brow_inner_l: [%.4g, %.4g] deg without the limit, [%.4g, %.4g] with it\n", wide.lo,
+              wide.hi, narrow.lo, narrow.hi);
 }
 
 }  // namespace

@@ -210,6 +210,42 @@ TEST(HeadInput, BadMuscleKeyNamesFileLineAndKey) {
       << e;
 }
 
+// A second palpebral orbicularis oculi on the left side. The lid follows the muscle named
+// orbicularis_oculi_l, and a name is also a command slot: the two would share one command
+// and the lid one of their contractions. Refused at load with both lines, and at build for
+// a spec assembled in code.
+TEST(HeadInput, TwoOrbicularisOculiOnOneSideAreRefused) {
+  const std::string second =
+      "  - name: orbicularis_oculi_l  # palpebral ring, inside the orbital one\n"
+      "    kind: sphincter\n    layer: 1\n    grid: [2, 12]\n    thickness_mm: 1\n"
+      "    inner:\n      - { at: fdp_3_7, offset_mm: [3, 0, -1] }\n"
+      "      - { at: fdp_3_1, offset_mm: [0, 3, 0] }\n"
+      "      - { at: fdp_3_11, offset_mm: [-2, 0, 0] }\n"
+      "      - { at: fdp_3_3, offset_mm: [0, -3, 0] }\n"
+      "    outer:\n      - { at: fdp_3_7, offset_mm: [6, 0, -2] }\n"
+      "      - { at: fdp_3_1, offset_mm: [0, 8, 1] }\n"
+      "      - { at: fdp_3_11, offset_mm: [-5, 1, 1] }\n"
+      "      - { at: fdp_3_3, offset_mm: [0, -7, -1] }\n";
+  const std::string right = "  - name: orbicularis_oculi_r";
+  const std::string dir = head_edited("muscles.yaml", right, second + right);
+  const std::string e = error_of([&] { load_head_spec(dir); });
+  EXPECT_NE(e.find("muscles.yaml:248:11: key 'name': expected a name no other muscle has "
+                   "(first at line 233), found 'orbicularis_oculi_l'"),
+            std::string::npos)
+      << e;
+
+  HeadSpec spec = testing::default_spec();
+  MuscleSpec copy = spec.muscles.front();
+  for (const MuscleSpec& ms : spec.muscles)
+    if (ms.name == "orbicularis_oculi_l") copy = ms;
+  ASSERT_EQ(copy.name, "orbicularis_oculi_l");
+  spec.muscles.push_back(copy);
+  const std::string b = error_of([&] { build_face_model(spec); });
+  EXPECT_NE(b.find("two muscles are named 'orbicularis_oculi_l'; each muscle needs its own name"),
+            std::string::npos)
+      << b;
+}
+
 TEST(HeadInput, UnknownLandmarkIsNamed) {
   const std::string dir = head_with("muscles.yaml",
                                     "muscles:\n  - name: x\n    kind: sheet\n    layer: 0\n    "
