@@ -71,10 +71,18 @@ PointChannel bound_point_channel(const ControllerModel& m, const Polytope& set,
   const ChannelBound b = bound_channel(poly, box, rows, bo);
   out.empty = b.empty;
   out.converged = b.converged;
-  for (std::size_t v = 0; v < vars && v < b.witness_min.size(); ++v)
-    out.at_lo[signal_of[v]] = b.witness_min[v];
-  for (std::size_t v = 0; v < vars && v < b.witness_max.size(); ++v)
-    out.at_hi[signal_of[v]] = b.witness_max[v];
+  // The search leaves the variables it did not need (neither in the polynomial nor in a
+  // limit) at their box's middle; the witnesses keep those at neutral, so that a finding
+  // names only what drives the channel (as the LP witnesses do).
+  std::vector<char> searched(vars, 0);
+  for (int v : poly.used_variables()) searched[static_cast<std::size_t>(v)] = 1;
+  for (const LinearInequality& row : rows)
+    for (std::size_t v = 0; v < vars; ++v) searched[v] = searched[v] || row.a[v] != 0.0;
+  for (std::size_t v = 0; v < vars; ++v) {
+    if (!searched[v]) continue;
+    if (v < b.witness_min.size()) out.at_lo[signal_of[v]] = b.witness_min[v];
+    if (v < b.witness_max.size()) out.at_hi[signal_of[v]] = b.witness_max[v];
+  }
   out.lo = b.lower + outside_lo;
   out.hi = b.upper + outside_hi;
   return out;
