@@ -130,6 +130,36 @@ TEST(ChannelBound, EmptyAdmissibleSetIsReported) {
   EXPECT_TRUE(bound_channel(p, box, std::vector{row(2, {}, -1)}).empty);
 }
 
+TEST(ChannelBound, AnInteriorMaximumInSixVariablesTakesFewBoxes) {
+  // q = Σ_i (2·a_i·x_i − x_i²) + 0.1·Σ_{i<j} x_i·x_j on [0, 1]⁶: concave, its maximum
+  // inside the box where −2·x_i + 2·a_i + 0.1·Σ_{j≠i} x_j = 0. The mean-value form's
+  // overestimate near such a maximum is twice the second-order Taylor form's in every
+  // pair of variables: the search takes 3106 boxes with the Taylor form, 89 796 without.
+  constexpr int n = 6;
+  const double a[n] = {0.3, 0.45, 0.5, 0.35, 0.6, 0.4};
+  std::vector<std::pair<double, face::Monomial>> terms;
+  for (int i = 0; i < n; ++i) {
+    terms.push_back({2 * a[i], {1, {{i, 1}}}});
+    terms.push_back({-1.0, {1, {{i, 2}}}});
+    for (int j = i + 1; j < n; ++j) terms.push_back({0.1, {1, {{i, 1}, {j, 1}}}});
+  }
+  const ChannelPolynomial p = polynomial(n, 0, terms);
+  double x[n] = {};
+  for (int it = 0; it < 200; ++it)  // Jacobi on the stationarity conditions (contracting)
+    for (int i = 0; i < n; ++i) {
+      double rest = 0;
+      for (int j = 0; j < n; ++j) rest += j == i ? 0 : x[j];
+      x[i] = a[i] + 0.05 * rest;
+    }
+  const double top = p.evaluate(std::vector<double>(x, x + n));
+  const ChannelBound b = bound_channel(p, std::vector<Interval>(n, {0, 1}), {}, {1e-9, 100000});
+  ASSERT_TRUE(b.converged);
+  EXPECT_GE(b.upper, top);
+  EXPECT_NEAR(b.upper, top, 2e-9);
+  for (int i = 0; i < n; ++i) EXPECT_NEAR(b.witness_max[static_cast<std::size_t>(i)], x[i], 1e-3);
+  EXPECT_LE(b.boxes_used, 10000);
+}
+
 TEST(ChannelBound, BudgetExhaustedStillGivesAProvenBound) {
   const ChannelBound b = bound_channel(hand_checked(), kHandCheckedBox, {}, {0.0, 3});
   EXPECT_FALSE(b.converged);
