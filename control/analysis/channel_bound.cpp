@@ -374,7 +374,8 @@ class Maximiser {
   }
 
   // Scratch for one enclosure: the box reduced by monotonicity, the gradient enclosures,
-  // which dimensions were fixed, and the reduced box's centre.
+  // which dimensions were fixed, the reduced box's centre and the Hessian diagonal's upper
+  // ends (the Taylor form's).
   struct Reduction {
     std::vector<Interval> box, grad;
     std::vector<char> fixed;
@@ -434,6 +435,8 @@ class Maximiser {
       if (s_.split[k] && !r.fixed[k])
         mv = mv + r.grad[k] * (r.box[k] - Interval{r.centre[k], r.centre[k]});
     }
+    // std::min keeps the earlier argument when a later one is NaN: the Taylor form, last,
+    // can never replace a bound by NaN.
     return std::min({upper, fm + mv.hi, second_order(r, shift, fm)});
   }
 
@@ -553,7 +556,8 @@ class Maximiser {
     }
 
     // Split rule: the dimension contributing most width (|gradient| · width) to the
-    // enclosure that gave the bound. A fixed (monotone) dimension contributes nothing,
+    // mean-value enclosure of the reduction that gave the bound (also when the Taylor form
+    // gave it: the rule only steers the search). A fixed (monotone) dimension contributes nothing,
     // unless it is in a row that cuts the face the bound came from: then part of the gap is
     // that face's inadmissible corner.
     int split = -1;

@@ -21,6 +21,12 @@ bool print_set_errors(const std::vector<SetError>& errors, double rms_mm, double
   std::printf("%-20s %7s %9s %8s %8s %8s %8s  %s\n", "set", "samples", "unsettled", "measured",
               "rms_mm", "p99_mm", "max_mm", "worst");
   for (const SetError& e : errors) {
+    if (e.measured == 0) {  // --settled-only and nothing settled: no error to judge
+      ok = false;
+      std::printf("%-20s %7d %9d %8d %8s %8s %8s  (no settled run)\n", e.name.c_str(), e.samples,
+                  e.unsettled, e.measured, "-", "-", "-");
+      continue;
+    }
     const bool pass = e.rms_mm <= rms_mm && e.p99_mm <= p99_mm;
     ok = ok && pass;
     std::printf("%-20s %7d %9d %8d %8.3f %8.3f %8.3f  %s%s\n", e.name.c_str(), e.samples,
@@ -109,7 +115,8 @@ void add_reduce_commands(CLI::App* face) {
       ->capture_default_str();
   static bool settled_only = false;
   check->add_flag("--settled-only", settled_only,
-                  "leave the full-model runs that did not settle out of the errors");
+                  "leave the full-model runs that did not settle out of the errors (a set "
+                  "with none settled fails; no run settles before 60 frames)");
   check->callback([check] {
     guarded("check-reduced", [check] {
       const HeadSpec spec = load_head_spec(args.head);
@@ -127,7 +134,7 @@ void add_reduce_commands(CLI::App* face) {
       if (!ok) {
         std::fprintf(stderr,
                      "facectl face check-reduced: a set is over %.3f mm RMS or %.3f mm at the "
-                     "99th percentile\n",
+                     "99th percentile, or has no settled run\n",
                      target_rms_mm, target_p99_mm);
         throw CLI::RuntimeError(1);
       }

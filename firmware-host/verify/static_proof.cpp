@@ -8,7 +8,6 @@
 #include <optional>
 #include <stdexcept>
 
-#include "control/analysis/channel_bound.hpp"
 #include "control/units.hpp"
 #include "drivers/protocol/cia402_counts.hpp"
 #include "drivers/protocol/wire_encoding.hpp"

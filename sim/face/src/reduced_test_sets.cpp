@@ -127,10 +127,13 @@ std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceMod
 
 std::string set_errors_json(const std::vector<SetError>& errors) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
-  for (const SetError& e : errors)
+  for (const SetError& e : errors) {
     j[e.name] = {{"samples", e.samples}, {"unsettled", e.unsettled}, {"measured", e.measured},
                  {"rms_mm", e.rms_mm},   {"p99_mm", e.p99_mm},       {"max_mm", e.max_mm},
                  {"worst", e.worst}};
+    if (e.measured == 0)  // no error was measured: not a perfect fit
+      for (const char* k : {"rms_mm", "p99_mm", "max_mm"}) j[e.name][k] = nullptr;
+  }
   return j.dump(2) + "\n";
 }
 

@@ -36,13 +36,18 @@ status=0
 [ "$status" = 1 ] || { echo "expected exit 1 over target, got $status"; cat "$tmp/over.txt"; exit 1; }
 grep -q "over target" "$tmp/over.txt"
 
-# --settled-only: one frame settles nothing, so no run is measured and every one is unsettled.
+# --settled-only: one frame settles nothing, so no run is measured, every one is unsettled,
+# the errors are null rather than a perfect 0, and the sets fail.
+status=0
 "$facectl" face check-reduced --samples 2 --frames 1 --settled-only --json "$tmp/settled.json" \
-  > "$tmp/settled.txt"
+  > "$tmp/settled.txt" 2>&1 || status=$?
+[ "$status" = 1 ] || { echo "expected exit 1 with nothing settled, got $status"; cat "$tmp/settled.txt"; exit 1; }
+grep -q "(no settled run)" "$tmp/settled.txt"
 python3 - "$tmp/settled.json" <<'PY'
 import json, sys
 for name, e in json.load(open(sys.argv[1])).items():
     assert e["measured"] == 0 and e["unsettled"] == e["samples"] > 0, (name, e)
+    assert e["rms_mm"] is None and e["p99_mm"] is None and e["max_mm"] is None, (name, e)
 PY
 
 # A head whose skin changed after the fit: refused as stale, naming the file.

@@ -12,6 +12,7 @@
 #include "facectl/face/head_spec.hpp"
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/reduced_model_fit.hpp"
+#include "facectl/face/reduced_test_sets.hpp"
 #include "tests/support/sample_count.hpp"
 
 namespace facectl::face {
@@ -115,6 +116,28 @@ TEST(ReducedFaceModel, ShippedCacheTracksTheFullModelOnAnExpression) {
                  out[3 * p + 2] - full[3 * p + 2]);
     EXPECT_LT(e.norm(), 1.5e-3) << shipped().control_points[p];
   }
+}
+
+TEST(ReducedFaceModel, SettledOnlyErrorsLeaveOutTheRunsThatDidNotSettle) {
+  // The relaxed face settles within 100 frames; every muscle at 1 with the jaw open does not.
+  const FaceModel& m = testing::default_model();
+  NamedSampleSet set{"two", "", {}};
+  ReducedSample relaxed;
+  relaxed.contractions.assign(m.spec.commanded.size(), 0.0);
+  ReducedSample busy = relaxed;
+  busy.contractions.assign(m.spec.commanded.size(), 1.0);
+  busy.jaw.pitch_rad = 0.25;
+  set.samples = {relaxed, busy};
+  SteadyStateOptions steady;
+  steady.max_frames = 100;
+  const SetError all = reduced_errors(m, shipped(), {set}, steady).front();
+  const SetError settled = reduced_errors(m, shipped(), {set}, steady, true).front();
+  EXPECT_EQ(all.unsettled, 1);
+  EXPECT_EQ(all.measured, 2);
+  EXPECT_EQ(settled.unsettled, 1);
+  EXPECT_EQ(settled.measured, 1);
+  EXPECT_TRUE(settled.worst.ends_with(" in sample 0")) << settled.worst;
+  EXPECT_LT(settled.max_mm, all.max_mm);
 }
 
 TEST(ReducedFaceModel, MalformedFileNamesFileAndLine) {
