@@ -464,6 +464,7 @@ void reset_face_data(const FaceModel& m, FaceData& d) {
   d.skin_p = m.skin.v;
   d.skull = m.skull.v;
   d.muscles = m.muscle_rest;
+  d.muscles_before = m.muscle_rest;
   d.muscle_normals = m.muscle_rest_normals;
   d.lid_targets = m.lid_rest;
   d.lower_teeth = m.lower_teeth;

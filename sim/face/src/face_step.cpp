@@ -25,14 +25,31 @@ void update_lid_drivers(const FaceModel& m, FaceData& d, const double closure[2]
 }
 
 // Layer by layer, deepest first; within a layer the muscles' one iteration each, with
-// their distance and bending sets projected together (FaceModel::MuscleLayer).
+// their distance and bending sets projected together (FaceModel::MuscleLayer). The frame's
+// muscle update F is then under-relaxed, x ← x + ω·(F(x) − x): the same fixed points, but
+// each eigenvalue λ of the iteration becomes 1 − ω + ω·λ. The sphincters and some
+// corrugators sat in period-2 cycles (λ ≈ −1: the k = 1 distance and volume projections
+// overshooting against the attachments' pull); ω = 3/4 makes that −1/2, and slows the slow modes (λ
+// near 1) by only a quarter where ω = 1/2 would halve their speed (docs/FACE_MODEL.md, "Steady
+// state").
+constexpr double kMuscleRelaxation = 0.75;
+
 void step_muscles(const FaceModel& m, FaceData& d) {
+  Points& x = d.muscles;
+  Points& before = d.muscles_before;
+  const std::size_t n = x.size();
+  for (std::size_t i = 0; i < n; ++i)
+    before.x[i] = x.x[i], before.y[i] = x.y[i], before.z[i] = x.z[i];
   for (const FaceModel::MuscleLayer& L : m.muscle_layers) {
-    project(L.distances, d.muscles, m.muscle_w);
-    project(L.bending, d.muscles, m.muscle_w);
+    project(L.distances, x, m.muscle_w);
+    project(L.bending, x, m.muscle_w);
     for (int k = L.first; k < L.end; ++k)
-      finish_muscle_step(m.muscles[k], d.contraction[k], d.skull, d.muscles, m.muscle_w, d.scratch,
-                         d.grad);
+      finish_muscle_step(m.muscles[k], d.contraction[k], d.skull, x, m.muscle_w, d.scratch, d.grad);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    x.x[i] = before.x[i] + kMuscleRelaxation * (x.x[i] - before.x[i]);
+    x.y[i] = before.y[i] + kMuscleRelaxation * (x.y[i] - before.y[i]);
+    x.z[i] = before.z[i] + kMuscleRelaxation * (x.z[i] - before.z[i]);
   }
 }
 

@@ -11,6 +11,8 @@
 //     every `stride` frames (20).
 //   face_convergence_probe muscles [N] [seed] [frames]
 //     The random study's inputs on the muscles alone: which still move after `frames`.
+//   face_convergence_probe mdetail [N] [seed] [frames]
+//     The same, muscle by muscle: period-2 cycles and steady creep told apart.
 // Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
 // FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
 // FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
@@ -255,6 +257,19 @@ int random_study(int n, unsigned seed, std::size_t vertices) {
   return 0;
 }
 
+// The muscles alone (step_skull_and_muscles) run from rest for `frames` frames: their
+// last 21 states, oldest first.
+std::vector<Points> muscle_history(const FaceModel& m, FaceData& d, const FaceInput& in,
+                                   int frames) {
+  reset_face_data(m, d);
+  std::vector<Points> hist;
+  for (int f = 0; f < frames; ++f) {
+    step_skull_and_muscles(m, d, in);
+    if (f >= frames - 21) hist.push_back(d.muscles);
+  }
+  return hist;
+}
+
 // The muscles alone (step_skull_and_muscles) under the random study's inputs: their
 // residual after `frames` frames (largest particle motion over the last 20 frames), and the
 // muscle that moves most with its contraction.
@@ -271,12 +286,7 @@ int muscle_study(int n, unsigned seed, int frames) {
     FaceInput in;
     in.contractions = s.contractions;
     in.jaw = s.jaw;
-    reset_face_data(m, d);
-    std::vector<Points> hist;
-    for (int f = 0; f < frames; ++f) {
-      step_skull_and_muscles(m, d, in);
-      if (f >= frames - 21) hist.push_back(d.muscles);
-    }
+    const std::vector<Points> hist = muscle_history(m, d, in, frames);
     double worst = 0;
     std::size_t at = 0;
     for (const Points& h : hist)
@@ -299,6 +309,66 @@ int muscle_study(int n, unsigned seed, int frames) {
       "muscles alone after %d frames: %d of %d still to 0.01 mm over 20 frames; residual "
       "median %.4f, max %.3f mm\n",
       frames, still, n, percentile(res, 0.5), *std::max_element(res.begin(), res.end()));
+  return 0;
+}
+
+// The muscles-alone study muscle by muscle: each moving muscle's largest particle motion
+// over the last 1, 2 and 20 frames (r1, r2, r20) and its volume over its rest volume. A
+// period-2 cycle shows r2 ≈ 0 < r1; a steady creep r20 ≈ 20·r1. Knobs: MVOLK and MATTACH
+// override the volume and attachment stiffness of every muscle, MCLAMP=C caps every
+// contraction at C.
+int muscle_detail(int n, unsigned seed, int frames) {
+  const HeadSpec spec = study_head();
+  FaceModel m = build_face_model(spec);
+  for (Muscle& mu : m.muscles) {
+    if (const char* e = std::getenv("MVOLK")) mu.volume.k = std::atof(e);
+    if (const char* e = std::getenv("MATTACH"))
+      for (double& k : mu.attach.k) k = std::atof(e);
+  }
+  ReduceOptions ro;
+  ro.active_probability = 1.0;
+  ro.max_contraction = 1.0;
+  FaceData d = make_face_data(m);
+  int still = 0, idx = 0, period2 = 0, creep = 0;
+  std::vector<double> res;
+  for (const ReducedSample& s : random_samples(spec, ro, n, seed)) {
+    FaceInput in;
+    std::vector<double> cs = s.contractions;
+    if (const char* e = std::getenv("MCLAMP"))
+      for (double& c : cs) c = std::min(c, std::atof(e));
+    in.contractions = cs;
+    in.jaw = s.jaw;
+    const std::vector<Points> hist = muscle_history(m, d, in, frames);
+    double all = 0;
+    for (std::size_t k = 0; k < m.muscles.size(); ++k) {
+      const Muscle& mu = m.muscles[k];
+      double r1 = 0, r2 = 0, r20 = 0;
+      const Points& x = d.muscles;
+      for (int i = mu.first; i < mu.first + mu.particle_count(); ++i) {
+        r1 = std::max(r1, 1e3 * (x.get(i) - hist[hist.size() - 2].get(i)).norm());
+        r2 = std::max(r2, 1e3 * (x.get(i) - hist[hist.size() - 3].get(i)).norm());
+        for (const Points& h : hist) r20 = std::max(r20, 1e3 * (x.get(i) - h.get(i)).norm());
+      }
+      all = std::max(all, r20);
+      if (r20 < 0.01) continue;
+      const bool p2 = r2<0.05 * r1, cr = r20> 15 * r1;
+      period2 += p2, creep += cr;
+      std::printf("input %d %-40s c=%.2f r1 %.4f r2 %.4f r20 %.4f vol %.3f%s\n", idx,
+                  mu.name.c_str(), d.contraction[k], r1, r2, r20,
+                  volume_of(mu.volume, x) / mu.volume.rest,
+                  p2   ? " period 2"
+                  : cr ? " creep"
+                       : "");
+    }
+    res.push_back(all);
+    still += all < 0.01;
+    ++idx;
+  }
+  std::printf(
+      "muscles alone after %d frames: %d of %d still; moving muscles in period-2 cycles %d, "
+      "creeping %d; residual median %.4f max %.3f mm\n",
+      frames, still, n, period2, creep, percentile(res, 0.5),
+      *std::max_element(res.begin(), res.end()));
   return 0;
 }
 
@@ -406,6 +476,10 @@ int main(int argc, char** argv) {
     return muscle_study(argc > 2 ? std::atoi(argv[2]) : 100,
                         argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
                         argc > 4 ? std::atoi(argv[4]) : 2000);
+  if (mode == "mdetail")
+    return muscle_detail(argc > 2 ? std::atoi(argv[2]) : 100,
+                         argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
+                         argc > 4 ? std::atoi(argv[4]) : 2000);
   if (mode == "trace" && argc > 2)
     return trace(argv[2], argc > 3 ? std::atoi(argv[3]) : 1000,
                  argc > 4 ? std::max(1, std::atoi(argv[4])) : 20,
@@ -418,6 +492,7 @@ int main(int argc, char** argv) {
   std::fprintf(stderr,
                "usage: face_convergence_probe random [N] [seed] [vertices]\n"
                "       face_convergence_probe muscles [N] [seed] [frames]\n"
+               "       face_convergence_probe mdetail [N] [seed] [frames]\n"
                "       face_convergence_probe resolution V1 V2 ...   (0 = the base mesh)\n"
                "       face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]\n");
   return 2;

@@ -95,6 +95,7 @@ struct FaceData {
   Points skin_x, skin_prev, skin_p;
   Points skull;
   Points muscles, muscle_normals;
+  Points muscles_before;  // the muscles at the start of the frame (under-relaxation)
   Points anchor_targets, lid_targets;
   Points grad;  // volume-gradient scratch, sized to the largest particle array
   MuscleScratch scratch;
