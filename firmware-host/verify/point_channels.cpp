@@ -12,7 +12,7 @@ namespace {
 // box range, and coupled limits that involve them are left out (which only
 // widens the set).
 PointChannel bound_point_channel(const ControllerModel& m, const Polytope& set,
-                                 std::size_t actuator, long max_boxes) {
+                                 std::size_t actuator) {
   // The polynomial's variables (muscles, jaw, eyelids) and the face signal of each.
   const std::size_t vars =
       static_cast<std::size_t>(face::constant_variable(m.layout.muscle_count()));
@@ -66,9 +66,7 @@ PointChannel bound_point_channel(const ControllerModel& m, const Polytope& set,
     }
     if (inside) rows.push_back({std::move(a), set.rhs[r]});
   }
-  BoundOptions bo;
-  bo.max_boxes = max_boxes;
-  const ChannelBound b = bound_channel(poly, box, rows, bo);
+  const ChannelBound b = bound_channel(poly, box, rows);
   out.empty = b.empty;
   out.converged = b.converged;
   // The search leaves the variables it did not need (neither in the polynomial nor in a
@@ -91,10 +89,9 @@ PointChannel bound_point_channel(const ControllerModel& m, const Polytope& set,
 }  // namespace
 
 std::vector<PointChannel> point_channels(const ControllerModel& m, const Polytope& set,
-                                         const std::vector<std::size_t>& actuators,
-                                         long max_boxes) {
+                                         const std::vector<std::size_t>& actuators) {
   std::vector<PointChannel> out;
-  for (std::size_t a : actuators) out.push_back(bound_point_channel(m, set, a, max_boxes));
+  for (std::size_t a : actuators) out.push_back(bound_point_channel(m, set, a));
   return out;
 }
 

@@ -15,9 +15,9 @@ struct PointChannel : ProvenChannel {
   bool empty = false;  // the admissible set, restricted to the polynomial, is empty
 };
 
-// One entry per actuator in `actuators`, in that order; `max_boxes` is each side's
-// branch-and-bound budget (BoundOptions).
+// One entry per actuator in `actuators`, in that order, each bounded with the default
+// BoundOptions.
 std::vector<PointChannel> point_channels(const ControllerModel& m, const Polytope& set,
-                                         const std::vector<std::size_t>& actuators, long max_boxes);
+                                         const std::vector<std::size_t>& actuators);
 
 }  // namespace facectl::verify

@@ -274,7 +274,7 @@ std::string describe_face(const ControllerModel& m, const std::vector<double>& x
   return out.empty() ? "the neutral pose" : out;
 }
 
-StaticProof prove(const LoadedConfig& cfg, const ProofOptions& options) {
+StaticProof prove(const LoadedConfig& cfg) {
   const auto start = std::chrono::steady_clock::now();
   const ControllerModel& m = cfg.built.model;
   StaticProof out;
@@ -320,8 +320,7 @@ StaticProof prove(const LoadedConfig& cfg, const ProofOptions& options) {
                                           [&](const PointTerm& p) { return p.actuator == i; });
     if (reads_points && strut_of(i) == struts.end()) point_actuators.push_back(i);
   }
-  const std::vector<PointChannel> points =
-      point_channels(m, set, point_actuators, options.max_boxes);
+  const std::vector<PointChannel> points = point_channels(m, set, point_actuators);
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
     const ActuatorModel& a = m.actuators[i];
     const std::string who = a.name;

@@ -3,7 +3,6 @@
 #include <string>
 #include <vector>
 
-#include "control/analysis/channel_bound.hpp"
 #include "control/analysis/lp_range.hpp"
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/verify/findings.hpp"
@@ -37,14 +36,8 @@ Polytope admissible_face_set(const ControllerModel& m);
 // "zygomaticus_major_l=1, jaw_pitch_deg=18": the signals of `x` away from neutral.
 std::string describe_face(const ControllerModel& m, const std::vector<double>& x);
 
-struct ProofOptions {
-  // Boxes a side for a channel that reads control points (branch and bound). Fewer give a
-  // looser bound, still sound (ActuatorRange::method says "budget hit").
-  long max_boxes = BoundOptions{}.max_boxes;
-};
-
 // Proves, over the whole admissible face set, where each actuator's mapped
 // command can go, and checks the rig's other static obligations.
-StaticProof prove(const LoadedConfig& cfg, const ProofOptions& options = {});
+StaticProof prove(const LoadedConfig& cfg);
 
 }  // namespace facectl::verify

@@ -189,7 +189,7 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   // Lids that move a point by more than kLidPointMm (the lid points themselves) enter as a
   // cubic coupled with its muscles; elsewhere a lid's small drag enters linearly: with the
   // cubic there too, verify's branch and bound over the inner-brow channels took four
-  // times as long (it needs 600 000 boxes a side even so; docs/VERIFY.md).
+  // times as long (measured before its Taylor form; docs/VERIFY.md).
   constexpr double kLidPointMm = 3;
   std::vector<std::vector<int>> lid_points(movers.size());
   auto probe = [&](const ReducedSample& s, int variable, std::vector<std::vector<int>>& into) {

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "control/analysis/channel_bound.hpp"
 #include "firmware-host/config/loaded_config.hpp"
 #include "firmware-host/verify/static_proof.hpp"
 #include "firmware-host/verify/verify_command.hpp"
