@@ -19,6 +19,15 @@ void cap_frames_option(CLI::App* c, int default_cap) {
       ->default_str(std::to_string(default_cap));
 }
 
+void passes_option(CLI::App* c, face::SolverPasses& passes) {
+  c->add_option_function<int>(
+       "--passes", [&passes](int n) { passes = {.skin = n, .muscle = n}; },
+       "skin iterations and muscle passes a frame in each run to steady state (the same "
+       "steady states as the head's solver, reached in fewer frames)")
+      ->default_str(std::to_string(passes.muscle))
+      ->check(CLI::Range(1, 100));
+}
+
 void add_common(CLI::App* c, FaceArgs& a) {
   c->add_option("--head", a.head, "head folder (face.yaml, landmarks, muscles)")
       ->capture_default_str();

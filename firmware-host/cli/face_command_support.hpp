@@ -35,6 +35,8 @@ FaceArgs default_face_args();
 void add_common(CLI::App* c, FaceArgs& a);
 // For commands that run each input to a steady state: --frames is a cap, with this default.
 void cap_frames_option(CLI::App* c, int default_cap);
+// --passes N: N skin iterations and N muscle passes a frame in each run to steady state.
+void passes_option(CLI::App* c, face::SolverPasses& passes);
 
 // The model at the requested skin resolution (kLargestVariant: face.yaml's largest); a
 // count the base mesh cannot be refined to is an error rather than a silent fallback.

@@ -58,6 +58,7 @@ void add_reduce_commands(CLI::App* face) {
                    "last 20 frames")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  passes_option(reduce, ro.steady.passes);
   reduce->callback([reduce] {
     guarded("reduce", [reduce] {
       const HeadSpec spec = load_head_spec(args.head);
@@ -113,6 +114,8 @@ void add_reduce_commands(CLI::App* face) {
       ->capture_default_str();
   check->add_option("--p99-mm", target_p99_mm, "exit 1 if a set's 99th percentile exceeds this")
       ->capture_default_str();
+  static SolverPasses check_passes = ReduceOptions{}.steady.passes;
+  passes_option(check, check_passes);
   static bool settled_only = false;
   check->add_flag("--settled-only", settled_only,
                   "leave the full-model runs that did not settle out of the errors (a set "
@@ -126,6 +129,7 @@ void add_reduce_commands(CLI::App* face) {
       const ExpressionLibrary lib = load_expression_library(args.library, spec);
       // Each input runs to a steady state; --frames, if given, caps it.
       SteadyStateOptions steady;
+      steady.passes = check_passes;
       if (check->count("--frames") > 0) steady.max_frames = args.frames;
       const auto errors = reduced_errors(
           m, red, reduced_test_sets(spec, lib, check_samples, check_seed), steady, settled_only);

@@ -137,8 +137,8 @@ void project_contacts(FaceData& d, Points& p) {
 
 // The skin iterations. Each interior edge's stretch rides with its bending pair
 // (docs/FACE_MODEL.md, "Fused edge sweep").
-void iterate_skin(const FaceModel& m, FaceData& d, Points& p) {
-  for (int it = 0; it < m.spec.skin_iterations; ++it) {
+void iterate_skin(const FaceModel& m, FaceData& d, Points& p, int iterations) {
+  for (int it = 0; it < iterations; ++it) {
     project(m.skin_stretch, p, m.skin_w);  // border edges
     project_with_stretch(m.skin_bending, m.skin_pair_stretch, p, m.skin_w);
     project(m.skin_area, p, m.skin_w);
@@ -166,7 +166,8 @@ double lid_closure(const FaceModel& m, const FaceInput& in, int side) {
   return std::clamp(in.eyelid_closure[side] + m.spec.oculi_lid_coupling * oculi, 0.0, 1.0);
 }
 
-void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in) {
+void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in,
+                            int muscle_passes) {
   // (2)–(7) inputs and rigid parts.
   for (std::size_t k = 0; k < m.muscles.size(); ++k) {
     const int slot = m.command_slot[k];
@@ -178,11 +179,11 @@ void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in
   update_bones(m, d, in.jaw);
   update_lid_drivers(m, d, closure);
   // (8)–(11) muscles, deepest first.
-  step_muscles(m, d);
+  for (int k = 0; k < muscle_passes; ++k) step_muscles(m, d);
 }
 
-void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
-  step_skull_and_muscles(m, d, in);
+void step_face(const FaceModel& m, FaceData& d, const FaceInput& in, SolverPasses passes) {
+  step_skull_and_muscles(m, d, in, passes.muscle);
   // (12)–(13) skin anchors.
   update_moving_anchor_targets(m, d);
   // Prediction with damping: v ← (1 − damping)·v, p = x + v·Δt (Δt cancels, see §2).
@@ -200,7 +201,7 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in) {
     detect_teeth(m, d, p);
   else
     d.hits = 0;
-  iterate_skin(m, d, p);
+  iterate_skin(m, d, p, passes.skin > 0 ? passes.skin : m.spec.skin_iterations);
   // (16)–(17) influence weights; eyelid particles keep their drivers' motion.
   for (std::size_t i = 0; i < ns; ++i) {
     const double w = m.influence[i];

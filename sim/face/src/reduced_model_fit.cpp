@@ -100,9 +100,12 @@ std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigne
     for (double& lid : s.eyelid_closure) lid = dof(0, 1);
     out.push_back(std::move(s));
   }
-  // Each muscle alone over its range, half of them with the jaw at rest.
+  // Each muscle alone over its range, half of them with the jaw at rest. The small
+  // contractions hold the fit's slope at c = 0 to the full model's: without them a point a
+  // muscle lifts could dip by a thousandth of a degree first, and verify's direction check
+  // (every 1/64 of the range) refuses the model.
   for (std::size_t i = 0; i < (single_muscle_sweeps ? M : 0); ++i)
-    for (double c : {0.25, 0.5, 0.75, 1.0}) {
+    for (double c : {0.0625, 0.125, 0.25, 0.5, 0.75, 1.0}) {
       ReducedSample s;
       s.contractions.assign(M, 0.0);
       s.contractions[i] = c;

@@ -21,7 +21,7 @@ SteadyStateResult run_to_steady_state(const FaceModel& m, FaceData& d, const Fac
   for (int f = 1; f <= o.max_frames; ++f) {
     Points& slot = ring[static_cast<std::size_t>((f - 1) % w)];
     slot = d.skin_x;  // frame f − 1's state (the first is the state handed in)
-    step_face(m, d, in);
+    step_face(m, d, in, o.passes);
     r.frames = f;
     // Until the window is full the residual covers the frames there are, but cannot
     // converge.

@@ -13,11 +13,17 @@
 //     The random study's inputs on the muscles alone: which still move after `frames`.
 //   face_convergence_probe mdetail [N] [seed] [frames]
 //     The same, muscle by muscle: period-2 cycles and steady creep told apart.
+//   face_convergence_probe single [C]
+//     Each muscle alone at C (1), the jaw at rest: which settle, and what still moves.
+//   face_convergence_probe passes SKIN MUSCLE
+//     Every library expression at steady state under the head's solver and under SKIN skin
+//     iterations and MUSCLE muscle passes a frame: frames to settle, control-point differences.
 // Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
 // FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
 // FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
 // stretch|area scales them with the skin size or vertex area; in the random study
-// FACE_FREEZE=N freezes the muscles after N frames and FACE_NOTEETH=1 drops the contacts.
+// FACE_FREEZE=N freezes the muscles after N frames, FACE_NOTEETH=1 drops the contacts and
+// FACE_PASSES=N runs N skin iterations and muscle passes a frame.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -113,6 +119,17 @@ FaceModel study_model(std::size_t vertices) {
   return m;
 }
 
+// FACE_PASSES=N: N skin iterations and muscle passes a frame in the random study's runs
+// to steady state (SolverPasses).
+SteadyStateOptions study_steady() {
+  SteadyStateOptions o;
+  if (const char* e = std::getenv("FACE_PASSES")) {
+    o.passes = {.skin = std::atoi(e), .muscle = std::atoi(e)};
+    std::fprintf(stderr, "FACE_PASSES = %d\n", std::atoi(e));
+  }
+  return o;
+}
+
 // FACE_NOTEETH=1 turns the teeth contacts off in the random study.
 bool study_teeth() {
   return std::getenv("FACE_NOTEETH") == nullptr;
@@ -183,7 +200,7 @@ int random_study(int n, unsigned seed, std::size_t vertices) {
   ro.active_probability = 1.0;  // every muscle active, c ~ U(0, 1)
   ro.max_contraction = 1.0;
   FaceData d = make_face_data(m);
-  const SteadyStateOptions o;
+  const SteadyStateOptions o = study_steady();
   std::vector<double> frames, settled_frames, drift_max, residual;
   double drift_sq = 0;
   // FACE_FREEZE=N: the muscles are frozen after N frames (run_frozen).
@@ -372,6 +389,78 @@ int muscle_detail(int n, unsigned seed, int frames) {
   return 0;
 }
 
+// Each commanded muscle alone at c, the jaw at rest, run to steady state (FACE_PASSES
+// applies): settled or not, and for those that are not, the skin vertex and the muscle
+// particle that move most over the next 20 frames.
+int single_study(double c) {
+  const HeadSpec spec = study_head();
+  const FaceModel m = build_face_model(spec);
+  const SteadyStateOptions o = study_steady();
+  FaceData d = make_face_data(m);
+  int settled = 0;
+  for (std::size_t i = 0; i < spec.commanded.size(); ++i) {
+    std::vector<double> cs(spec.commanded.size(), 0.0);
+    cs[i] = c;
+    FaceInput in;
+    in.contractions = cs;
+    reset_face_data(m, d);
+    const SteadyStateResult r = run_to_steady_state(m, d, in, o);
+    settled += r.converged;
+    const Points skin = d.skin_x, mus = d.muscles;
+    for (int f = 0; f < 20; ++f) step_face(m, d, in, o.passes);
+    double sk = 0, mu = 0;
+    std::size_t v = 0;
+    for (std::size_t k = 0; k < skin.size(); ++k)
+      if (const double e = 1e3 * (d.skin_x.get(k) - skin.get(k)).norm(); e > sk) sk = e, v = k;
+    for (std::size_t k = 0; k < mus.size(); ++k)
+      mu = std::max(mu, 1e3 * (d.muscles.get(k) - mus.get(k)).norm());
+    const Vec3 at = 1e3 * skin.get(v);
+    std::printf("%-28s %s after %4d frames, residual %.3f mm; next 20 frames: skin %.3f mm "
+                "(vertex %zu at %.0f, %.0f, %.0f mm), muscles %.3f mm\n",
+                spec.commanded[i].c_str(), r.converged ? "settled  " : "UNSETTLED", r.frames,
+                r.residual_mm, sk, v, at.x(), at.y(), at.z(), mu);
+  }
+  std::printf("%d of %zu muscles alone at %.2f settle\n", settled, spec.commanded.size(), c);
+  return 0;
+}
+
+// The library's settled control points under two solvers: the head's, and `skin` skin
+// iterations with `muscle` muscle passes a frame (the same fixed points if both settle).
+int passes_study(int skin, int muscle) {
+  const HeadSpec base = study_head();
+  const ExpressionLibrary lib =
+      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", base);
+  std::vector<std::vector<Vec3>> res[2];
+  const FaceModel m = build_face_model(base, 0);
+  for (int k = 0; k < 2; ++k) {
+    SteadyStateOptions o;
+    if (k == 1) o.passes = {.skin = skin, .muscle = muscle};
+    const std::vector<int> cps = control_landmarks(m);
+    FaceData d = make_face_data(m);
+    for (const Expression& e : lib.expressions) {
+      reset_face_data(m, d);
+      const SteadyStateResult r = run_to_steady_state(m, d, face_input(e), o);
+      std::printf("solver %d, %s: %s after %d frames, residual %.3f mm\n", k, e.name.c_str(),
+                  r.converged ? "settled" : "unsettled", r.frames, r.residual_mm);
+      res[k].push_back(displacements(m, d, cps));
+    }
+  }
+  double all_sq = 0, all_max = 0;
+  int all_n = 0;
+  for (std::size_t e = 0; e < lib.expressions.size(); ++e) {
+    double sq = 0, worst = 0;
+    for (std::size_t p = 0; p < res[0][e].size(); ++p) {
+      const double d = (res[0][e][p] - res[1][e][p]).norm();  // mm
+      sq += d * d, worst = std::max(worst, d);
+    }
+    all_sq += sq, all_n += static_cast<int>(res[0][e].size()), all_max = std::max(all_max, worst);
+    std::printf("%-17s RMS %.3f max %.3f mm\n", lib.expressions[e].name.c_str(),
+                std::sqrt(sq / static_cast<double>(res[0][e].size())), worst);
+  }
+  std::printf("all RMS %.3f max %.3f mm\n", std::sqrt(all_sq / all_n), all_max);
+  return 0;
+}
+
 int resolution_study(const std::vector<std::size_t>& sizes) {
   const HeadSpec spec = study_head();
   const ExpressionLibrary lib =
@@ -484,6 +573,8 @@ int main(int argc, char** argv) {
     return trace(argv[2], argc > 3 ? std::atoi(argv[3]) : 1000,
                  argc > 4 ? std::max(1, std::atoi(argv[4])) : 20,
                  !(argc > 5 && std::string(argv[5]) == "noteeth"));
+  if (mode == "single") return single_study(argc > 2 ? std::atof(argv[2]) : 1.0);
+  if (mode == "passes" && argc > 3) return passes_study(std::atoi(argv[2]), std::atoi(argv[3]));
   if (mode == "resolution" && argc > 2) {
     std::vector<std::size_t> sizes;
     for (int i = 2; i < argc; ++i) sizes.push_back(static_cast<std::size_t>(std::atoi(argv[i])));
@@ -494,6 +585,8 @@ int main(int argc, char** argv) {
                "       face_convergence_probe muscles [N] [seed] [frames]\n"
                "       face_convergence_probe mdetail [N] [seed] [frames]\n"
                "       face_convergence_probe resolution V1 V2 ...   (0 = the base mesh)\n"
+               "       face_convergence_probe passes SKIN MUSCLE   (the library's settled states)\n"
+               "       face_convergence_probe single [C]   (each muscle alone at C)\n"
                "       face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]\n");
   return 2;
 }

@@ -179,6 +179,38 @@ TEST(FaceStep, DeterministicBitForBit) {
   ASSERT_EQ(std::memcmp(a.skin_x.z.data(), b.skin_x.z.data(), a.skin_x.size() * sizeof(double)), 0);
 }
 
+// SolverPasses::skin stands in for the head's skin_iterations, bit for bit; muscle passes
+// repeat the muscles' frame update.
+TEST(FaceStep, SolverPassesOverrideTheHeadsIterations) {
+  const FaceModel& m = default_model();
+  HeadSpec spec2 = default_spec();
+  spec2.skin_iterations = 3;
+  const FaceModel m2 = build_face_model(spec2);
+  std::vector<double> c(m.spec.commanded.size(), 0.0);
+  for (std::size_t k = 0; k < c.size(); ++k) c[k] = 0.1 * static_cast<double>(k % 9);
+  FaceInput in;
+  in.contractions = c;
+  in.jaw = {6 * kDeg, -2 * kDeg, 0.001};
+  FaceData a = make_face_data(m), b = make_face_data(m2), one = make_face_data(m);
+  for (int f = 0; f < 40; ++f) {
+    step_face(m, a, in, {.skin = 3, .muscle = 1});
+    step_face(m2, b, in);
+    step_face(m, one, in);
+  }
+  const std::size_t bytes = a.skin_x.size() * sizeof(double);
+  EXPECT_EQ(std::memcmp(a.skin_x.x.data(), b.skin_x.x.data(), bytes), 0);
+  EXPECT_EQ(std::memcmp(a.skin_x.z.data(), b.skin_x.z.data(), bytes), 0);
+  EXPECT_NE(std::memcmp(a.skin_x.x.data(), one.skin_x.x.data(), bytes), 0);
+
+  // Two muscle passes in one frame are two frames of the muscles alone.
+  FaceData twice = make_face_data(m), apart = make_face_data(m);
+  step_face(m, twice, in, {.skin = 0, .muscle = 2});
+  step_skull_and_muscles(m, apart, in);
+  step_skull_and_muscles(m, apart, in);
+  const std::size_t mb = twice.muscles.size() * sizeof(double);
+  EXPECT_EQ(std::memcmp(twice.muscles.y.data(), apart.muscles.y.data(), mb), 0);
+}
+
 TEST(FaceStep, StepDoesNotAllocate) {
   const FaceModel& m = default_model();
   FaceData d = make_face_data(m);
@@ -190,6 +222,7 @@ TEST(FaceStep, StepDoesNotAllocate) {
   step_face(m, d, in);  // warm
   testing::arm_alloc_counter();
   for (int f = 0; f < 20; ++f) step_face(m, d, in);
+  step_face(m, d, in, {.skin = 4, .muscle = 4});
   EXPECT_EQ(testing::disarm_alloc_counter(), 0);
 }
 

@@ -116,13 +116,23 @@ struct FaceData {
 FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices = 0);
 FaceData make_face_data(const FaceModel& m);
 void reset_face_data(const FaceModel& m, FaceData& d);
-// One frame of §5.7: bones, muscles deepest first (one PBD iteration each), skin anchors,
-// teeth contacts, skin iterations, influence weights. Allocation-free.
-void step_face(const FaceModel& m, FaceData& d, const FaceInput& in);
+// Constraint passes a frame: the skin's (0: the head's solver.skin_iterations) and the
+// muscles'. Real-time runs keep the defaults. A steady-state solve may take more: a state
+// one frame leaves unchanged is unchanged by more passes too, so it reaches the same
+// settled state in fewer frames (docs/FACE_MODEL.md, "Passes a frame for steady states").
+struct SolverPasses {
+  int skin = 0;
+  int muscle = 1;
+};
+
+// One frame of §5.7: bones, muscles deepest first (one PBD iteration each per pass), skin
+// anchors, teeth contacts, skin iterations, influence weights. Allocation-free.
+void step_face(const FaceModel& m, FaceData& d, const FaceInput& in, SolverPasses passes = {});
 
 // Steps (2)–(11) alone: bones, eyelid drivers and muscles (the thesis's "skull +
 // muscles" row of Table 5.1). step_face() calls this first.
-void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in);
+void step_skull_and_muscles(const FaceModel& m, FaceData& d, const FaceInput& in,
+                            int muscle_passes = 1);
 
 // The closure the lids of `side` (0 left, 1 right) take under `in`: its eyelid closure
 // plus the palpebral orbicularis oculi's (AU 7) times the head's coupling, in [0, 1].

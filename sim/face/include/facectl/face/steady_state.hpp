@@ -11,6 +11,7 @@ struct SteadyStateOptions {
   int window = 20;
   int min_frames = 60;
   int max_frames = 2000;
+  SolverPasses passes;  // a frame's constraint passes (face_model.hpp)
 };
 
 struct SteadyStateResult {
