@@ -102,6 +102,14 @@ void build_muscle_constraints(Muscle& m, const Points& p, const MuscleStiffness&
   for (int i = 0; i < R * C; ++i) m.attach.add(m.first + i, k.position);
 }
 
+double sheet_length_scale(double c) {
+  if (c <= kSheetKnee) return 1 - c;
+  // 1 − c + a·(c − knee)², a chosen so that it ends at kSheetShortest; its slope 2a·(1 −
+  // knee) − 1 at c = 1 is then 0 (a·(1 − knee)² = kSheetShortest = (1 − knee)/2).
+  const double t = c - kSheetKnee, span = 1 - kSheetKnee;
+  return 1 - c + kSheetShortest / (span * span) * t * t;
+}
+
 void sample_polyline(const Points& poly, std::vector<double>& arc, bool closed, int n, double scale,
                      Points& out, int off) {
   const int np = static_cast<int>(poly.size());
@@ -145,7 +153,7 @@ void muscle_targets(const Muscle& m, double c, const Points& skull, const Points
     for (int col = 0; col < m.cols; ++col) {
       s.line_pos.resize(m.lines[col].size());
       eval_line(m.lines[col]);
-      sample_polyline(s.line_pos, s.arc, false, m.rows, 1 - c, s.column, 0);
+      sample_polyline(s.line_pos, s.arc, false, m.rows, sheet_length_scale(c), s.column, 0);
       for (int r = 0; r < m.rows; ++r) s.targets.set(r * m.cols + col, s.column.get(r));
     }
     return;

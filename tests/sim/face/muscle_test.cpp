@@ -162,6 +162,23 @@ double inner_radius(double c) {
   return r;
 }
 
+// The library's contractions (c <= 0.9) keep the thesis's 1 - c exactly; above, the scale
+// falls continuously and monotonically to the shortest share, flat at c = 1.
+TEST(SheetMuscle, LengthScaleIsTheThesisUpToTheKneeAndReachableAtOne) {
+  for (double c : {0.0, 0.25, 0.5, 0.7, 0.9}) EXPECT_EQ(sheet_length_scale(c), 1 - c) << c;
+  EXPECT_DOUBLE_EQ(sheet_length_scale(1.0), kSheetShortest);
+  double prev = sheet_length_scale(0.0);
+  for (int i = 1; i <= 1000; ++i) {
+    const double c = i / 1000.0, v = sheet_length_scale(c);
+    EXPECT_LE(v, prev) << c;
+    EXPECT_LT(prev - v, 1.0 / 1000 + 1e-12) << "no steeper than the thesis's slope at " << c;
+    prev = v;
+  }
+  const double h = 1e-6;
+  EXPECT_NEAR((sheet_length_scale(1.0) - sheet_length_scale(1.0 - h)) / h, 0.0, 1e-4);
+  EXPECT_NEAR(sheet_length_scale(kSheetKnee + h), 1 - kSheetKnee - h, 1e-9);
+}
+
 TEST(Sphincter, InnerContourClosesTowardItsCentre) {
   double prev = inner_radius(0.0);
   EXPECT_GT(prev, 0.009);

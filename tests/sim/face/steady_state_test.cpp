@@ -155,6 +155,30 @@ TEST(SteadyState, MorePassesSettleMoreRandomInputs) {
   EXPECT_GT(four, one) << "settled with one pass " << one << ", with four " << four;
 }
 
+// Sheets alone at full contraction settle now that their target stays reachable
+// (sheet_length_scale): with every row's target at the line's origin these moved by 0.5-2.4
+// mm in 20 frames after 2000 frames of four passes.
+TEST(SteadyState, SheetsAloneAtFullContractionSettle) {
+  if (facectl::testing::kSanitized) GTEST_SKIP() << "runs of up to 2000 frames of four passes";
+  const FaceModel& m = testing::default_model();
+  FaceData d = make_face_data(m);
+  SteadyStateOptions o;
+  o.passes = {.skin = kSteadyPasses, .muscle = kSteadyPasses};
+  for (const char* name :
+       {"frontalis_inner_r", "corrugator_supercilii_l", "depressor_labii_inferioris_r"}) {
+    const auto it = std::find(m.spec.commanded.begin(), m.spec.commanded.end(), name);
+    ASSERT_NE(it, m.spec.commanded.end()) << name;
+    std::vector<double> c(m.spec.commanded.size(), 0.0);
+    c[static_cast<std::size_t>(it - m.spec.commanded.begin())] = 1.0;
+    FaceInput in;
+    in.contractions = c;
+    reset_face_data(m, d);
+    const SteadyStateResult r = run_to_steady_state(m, d, in, o);
+    EXPECT_TRUE(r.converged) << name << ": residual " << r.residual_mm << " mm after " << r.frames
+                             << " frames";
+  }
+}
+
 TEST(SteadyState, ReportsAnUnsettledRunWhenFramesRunOut) {
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);

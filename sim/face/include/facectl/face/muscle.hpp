@@ -76,6 +76,13 @@ void build_muscle_constraints(Muscle& m, const Points& pos, const MuscleStiffnes
 // Computes the attachment goals for contraction c from the current support layers.
 void muscle_targets(const Muscle& m, double c, const Points& skull, const Points& muscles,
                     MuscleScratch& s);
+// The share of its line a sheet's rows are sampled over at contraction c: the thesis's
+// 1 − c up to kSheetKnee, then a parabola with the same slope there that ends flat at
+// kSheetShortest for c = 1. At 1 − c = 0 every row's target is the line's origin, which
+// fibres of their rest lengths cannot reach: 16 of 29 muscles alone at c = 1 never
+// settled (docs/FACE_MODEL.md, "Muscles alone near full contraction").
+constexpr double kSheetKnee = 0.9, kSheetShortest = 0.05;
+double sheet_length_scale(double c);
 // Samples `n` points at arc length i·step·scale (open) or evenly around a closed loop.
 void sample_polyline(const Points& poly, std::vector<double>& arc, bool closed, int n, double scale,
                      Points& out, int out_offset);
