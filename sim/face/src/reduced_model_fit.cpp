@@ -105,7 +105,7 @@ std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigne
   // muscle lifts could dip by a thousandth of a degree first, and verify's direction check
   // (every 1/64 of the range) refuses the model.
   for (std::size_t i = 0; i < (single_muscle_sweeps ? M : 0); ++i)
-    for (double c : {0.0625, 0.125, 0.25, 0.5, 0.75, 1.0}) {
+    for (double c : {0.03125, 0.0625, 0.125, 0.25, 0.5, 0.75, 1.0}) {
       ReducedSample s;
       s.contractions.assign(M, 0.0);
       s.contractions[i] = c;
@@ -244,6 +244,10 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   };
   Eigen::MatrixXd Xtr, Ytr, Xte, Yte;
   collect(training_samples(full.spec, o.train_samples, o.seed, true), Xtr, Ytr);
+  // The sweeps follow the mixes (training_samples): weight their rows.
+  const double sweep = std::sqrt(o.sweep_weight);
+  Xtr.bottomRows(Xtr.rows() - o.train_samples) *= sweep;
+  Ytr.bottomRows(Ytr.rows() - o.train_samples) *= sweep;
   r.coefficients.setZero(3 * P, F);
   for (int p = 0; p < P; ++p) {
     // Ridge-regularised normal equations on this point's columns, solved by LDLT.
@@ -260,7 +264,8 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   }
   if (report) {
     report->train_samples = static_cast<int>(Xtr.rows());
-    const Eigen::MatrixXd Etr = Xtr * r.coefficients.transpose() - Ytr;
+    Eigen::MatrixXd Etr = Xtr * r.coefficients.transpose() - Ytr;
+    Etr.bottomRows(Etr.rows() - o.train_samples) /= sweep;  // each sample's own error
     report->train_rms_mm =
         1e3 * std::sqrt(Etr.squaredNorm() / (static_cast<double>(Etr.rows() * Etr.cols()) / 3.0));
     if (o.test_samples > 0) {

@@ -25,6 +25,9 @@ struct ReduceOptions {
   bool random_eyelids = false;  // random_samples: each lid closed to U(0, 1), else open
   unsigned seed = 1;
   double ridge = 1e-6;
+  // Least-squares weight of each single-muscle and single-lid sweep against a mix's 1: the
+  // one-signal responses are what a rig's directions and calibration are checked on.
+  double sweep_weight = 10;
   double relevance_mm = 0.3;  // a muscle moves a point if c = 1 alone moves it this much
 };
 
