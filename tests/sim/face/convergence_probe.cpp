@@ -415,10 +415,11 @@ int single_study(double c) {
     for (std::size_t k = 0; k < mus.size(); ++k)
       mu = std::max(mu, 1e3 * (d.muscles.get(k) - mus.get(k)).norm());
     const Vec3 at = 1e3 * skin.get(v);
-    std::printf("%-28s %s after %4d frames, residual %.3f mm; next 20 frames: skin %.3f mm "
-                "(vertex %zu at %.0f, %.0f, %.0f mm), muscles %.3f mm\n",
-                spec.commanded[i].c_str(), r.converged ? "settled  " : "UNSETTLED", r.frames,
-                r.residual_mm, sk, v, at.x(), at.y(), at.z(), mu);
+    std::printf(
+        "%-28s %s after %4d frames, residual %.3f mm; next 20 frames: skin %.3f mm "
+        "(vertex %zu at %.0f, %.0f, %.0f mm), muscles %.3f mm\n",
+        spec.commanded[i].c_str(), r.converged ? "settled  " : "UNSETTLED", r.frames, r.residual_mm,
+        sk, v, at.x(), at.y(), at.z(), mu);
   }
   std::printf("%d of %zu muscles alone at %.2f settle\n", settled, spec.commanded.size(), c);
   return 0;

@@ -135,7 +135,10 @@ TEST(SteadyState, MorePassesReachTheSameStatesInFewerFrames) {
 // four passes a frame (0 and 4 of these 10 with the thesis's sheet target;
 // face_convergence_probe random 40 1, lids open: 10 and 23 of 40).
 TEST(SteadyState, MorePassesSettleMoreRandomInputs) {
-  if (facectl::testing::kSanitized) GTEST_SKIP() << "20 runs of up to 2000 frames";
+  if (facectl::testing::kSanitized)
+    GTEST_SKIP() << "sanitizer build: 20 full-model runs of up to 2000 frames take minutes "
+                    "there; the ordinary build runs this, and "
+                    "MorePassesReachTheSameStatesInFewerFrames runs the passes here";
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
   ReduceOptions ro;
@@ -159,7 +162,11 @@ TEST(SteadyState, MorePassesSettleMoreRandomInputs) {
 // (sheet_length_scale): with every row's target at the line's origin these moved by 0.5-2.4
 // mm in 20 frames after 2000 frames of four passes.
 TEST(SteadyState, SheetsAloneAtFullContractionSettle) {
-  if (facectl::testing::kSanitized) GTEST_SKIP() << "runs of up to 2000 frames of four passes";
+  if (facectl::testing::kSanitized)
+    GTEST_SKIP() << "sanitizer build: three runs of up to 2000 frames of four passes take "
+                    "minutes there; the ordinary build runs this, and "
+                    "SheetMuscle.LengthScaleIsTheThesisUpToTheKneeAndReachableAtOne runs the "
+                    "new target's code here";
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
   SteadyStateOptions o;
