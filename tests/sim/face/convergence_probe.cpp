@@ -18,6 +18,12 @@
 //   face_convergence_probe passes SKIN MUSCLE
 //     Every library expression at steady state under the head's solver and under SKIN skin
 //     iterations and MUSCLE muscle passes a frame: frames to settle, control-point differences.
+//   face_convergence_probe sensitivity [N] [seed] [eps]
+//     N dense inputs run to steady state at c and at c + eps (0.001): how far a small
+//     change of input moves the control points and the muscles (jumps between steady states).
+//   face_convergence_probe dump OUT.csv [samples] [shard] [shards]
+//     `face reduce`'s training inputs and check-reduced's sets with the full model's steady
+//     states, as CSV: a cache for trying forms of the reduced model offline.
 // Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
 // FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
 // FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
@@ -33,6 +39,7 @@
 
 #include "facectl/face/expression_library.hpp"
 #include "facectl/face/reduced_model_fit.hpp"
+#include "facectl/face/reduced_test_sets.hpp"
 #include "facectl/face/steady_state.hpp"
 
 using namespace facectl::face;
@@ -556,6 +563,104 @@ int trace(const std::string& what, int frames, int stride, bool teeth) {
 
 }  // namespace
 
+// How smooth the steady state is in its inputs: N dense inputs (every muscle c ~ U(0, 1),
+// jaw uniform), each run to steady state (four passes, as the fit) at c and at c + eps
+// (every contraction, clamped to 1). Per input the control points' largest difference and
+// the point it is at; a smooth response differs by about eps times its slope.
+int sensitivity(int n, unsigned seed, double eps) {
+  const HeadSpec spec = study_head();
+  const FaceModel m = build_face_model(spec);
+  const std::vector<int> cps = control_landmarks(m);
+  ReduceOptions ro;
+  ro.active_probability = 1.0;
+  ro.max_contraction = 1.0;
+  FaceData d = make_face_data(m);
+  std::vector<double> worst;
+  for (const ReducedSample& s : random_samples(spec, ro, n, seed)) {
+    ReducedSample t = s;
+    for (double& c : t.contractions) c = std::min(1.0, c + eps);
+    auto run = [&](const ReducedSample& x, SteadyStateResult& r) {
+      FaceInput in;
+      in.contractions = x.contractions;
+      in.jaw = x.jaw;
+      in.teeth_collision = study_teeth();
+      reset_face_data(m, d);
+      r = run_to_steady_state(m, d, in, ro.steady);
+      std::vector<double> y;
+      for (const Vec3& v : displacements(m, d, cps)) y.insert(y.end(), {v.x(), v.y(), v.z()});
+      return y;
+    };
+    SteadyStateResult ra, rb;
+    const std::vector<double> a = run(s, ra);
+    const Points muscles_a = d.muscles;
+    const std::vector<double> b = run(t, rb);
+    double mw = 0;  // the muscles' largest difference, and whose
+    std::string which;
+    for (const Muscle& mu : m.muscles)
+      for (int k = mu.first; k < mu.first + mu.particle_count(); ++k)
+        if (const double e = 1e3 * (d.muscles.get(k) - muscles_a.get(k)).norm(); e > mw)
+          mw = e, which = mu.name;
+    double w = 0;
+    std::size_t at = 0;
+    for (std::size_t p = 0; p < cps.size(); ++p)
+      if (const double e =
+              Vec3(a[3 * p] - b[3 * p], a[3 * p + 1] - b[3 * p + 1], a[3 * p + 2] - b[3 * p + 2])
+                  .norm();
+          e > w)
+        w = e, at = p;
+    worst.push_back(w);
+    std::printf(
+        "%s/%s  largest difference %.3f mm at %s (%.2f, %.2f, %.2f), muscles %.3f mm (%s)\n",
+        ra.converged ? "settled" : "UNSETTLED", rb.converged ? "settled" : "UNSETTLED", w,
+        spec.control_points[at].c_str(), b[3 * at] - a[3 * at], b[3 * at + 1] - a[3 * at + 1],
+        b[3 * at + 2] - a[3 * at + 2], mw, which.c_str());
+  }
+  std::printf("median %.3f mm, 90th percentile %.3f mm, max %.3f mm\n", percentile(worst, 0.5),
+              percentile(worst, 0.9), percentile(worst, 1.0));
+  return 0;
+}
+
+// The full model's steady-state responses on `face reduce`'s inputs (its training samples,
+// seed 1, and check-reduced's named sets, seed 1) as CSV rows: set, index, settled,
+// residual_mm, the inputs (contractions, pitch, yaw in rad, protrusion in m, lids) and the
+// control points' displacements (x, y, z in m each). Rows k with k % shards == shard, so
+// shards can run side by side; a cache for trying forms of the reduced model offline.
+int dump(const std::string& path, int samples, int shard, int shards) {
+  const HeadSpec spec = study_head();
+  const FaceModel m = build_face_model(spec);
+  const ExpressionLibrary lib =
+      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
+  const std::vector<int> cps = control_landmarks(m);
+  const ReduceOptions ro;
+  std::vector<NamedSampleSet> sets = {
+      {"train", "", training_samples(spec, samples, ro.seed, true)}};
+  for (NamedSampleSet& s : reduced_test_sets(spec, lib, 200, 1)) sets.push_back(std::move(s));
+  FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) {
+    std::perror(path.c_str());
+    return 1;
+  }
+  FaceData d = make_face_data(m);
+  int row = 0;
+  for (const NamedSampleSet& set : sets)
+    for (std::size_t k = 0; k < set.samples.size(); ++k, ++row) {
+      if (row % shards != shard) continue;
+      const ReducedSample& s = set.samples[k];
+      SteadyStateResult r;
+      const std::vector<double> y = full_model_response(m, d, cps, s, ro.steady, &r);
+      std::fprintf(out, "%s,%zu,%d,%.4f", set.name.c_str(), k, r.converged ? 1 : 0, r.residual_mm);
+      for (double c : s.contractions) std::fprintf(out, ",%.17g", c);
+      for (double v : {s.jaw.pitch_rad, s.jaw.yaw_rad, s.jaw.protrusion_m, s.eyelid_closure[0],
+                       s.eyelid_closure[1]})
+        std::fprintf(out, ",%.17g", v);
+      for (double v : y) std::fprintf(out, ",%.17g", v);
+      std::fprintf(out, "\n");
+      std::fflush(out);
+    }
+  std::fclose(out);
+  return 0;
+}
+
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "random")
@@ -576,6 +681,13 @@ int main(int argc, char** argv) {
                  !(argc > 5 && std::string(argv[5]) == "noteeth"));
   if (mode == "single") return single_study(argc > 2 ? std::atof(argv[2]) : 1.0);
   if (mode == "passes" && argc > 3) return passes_study(std::atoi(argv[2]), std::atoi(argv[3]));
+  if (mode == "sensitivity")
+    return sensitivity(argc > 2 ? std::atoi(argv[2]) : 20,
+                       argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
+                       argc > 4 ? std::atof(argv[4]) : 1e-3);
+  if (mode == "dump" && argc > 2)
+    return dump(argv[2], argc > 3 ? std::atoi(argv[3]) : 2000, argc > 4 ? std::atoi(argv[4]) : 0,
+                argc > 5 ? std::max(1, std::atoi(argv[5])) : 1);
   if (mode == "resolution" && argc > 2) {
     std::vector<std::size_t> sizes;
     for (int i = 2; i < argc; ++i) sizes.push_back(static_cast<std::size_t>(std::atoi(argv[i])));
@@ -588,6 +700,8 @@ int main(int argc, char** argv) {
                "       face_convergence_probe resolution V1 V2 ...   (0 = the base mesh)\n"
                "       face_convergence_probe passes SKIN MUSCLE   (the library's settled states)\n"
                "       face_convergence_probe single [C]   (each muscle alone at C)\n"
-               "       face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]\n");
+               "       face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]\n"
+               "       face_convergence_probe sensitivity [N] [seed] [eps]\n"
+               "       face_convergence_probe dump OUT.csv [samples] [shard] [shards]\n");
   return 2;
 }
