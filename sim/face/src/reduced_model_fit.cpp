@@ -132,13 +132,14 @@ namespace {
 using Triple = std::array<int, 3>;
 
 // The feature triples a control point moved by `muscles` and `lids` is fitted on: per
-// muscle c, c², c³ and c times each jaw variable; the jaw's full cubic; c_a·c_b for each
-// pair; per lid l, and for the lids of `lid_points` (those that carry the point) l², l³
-// and l times each of the muscles too (the orbicularis oculi adds to a lid's closure, the
-// brows carry it). Richer forms (c²·jaw, c·jaw², c_a²·c_b) fit 5-15% better but left verify's
-// branch and bound on a brow channel unconverged after 400 000 boxes (docs/FACE_MODEL.md).
+// muscle c, c², c³ and c times each jaw variable; the jaw's full cubic; c_a·c_b, c_a²·c_b
+// and c_a·c_b² for each pair; per lid l, and for the lids of `lid_points` (those that carry
+// the point) l², l³ and l times each of the muscles too (the orbicularis oculi adds to a
+// lid's closure, the brows carry it). Where the jaw moves the point (`jaw_point`), also
+// c²·jaw and c·(each product of two jaw variables) per muscle: at the brows they gained
+// nothing and made verify's proof six times as slow (docs/FACE_MODEL.md).
 std::vector<Triple> point_features(const std::vector<int>& muscles, const std::vector<int>& lids,
-                                   const std::vector<int>& lid_points, int n) {
+                                   const std::vector<int>& lid_points, int n, bool jaw_point) {
   const int P = n, Y = n + 1, T = n + 2, one = constant_variable(static_cast<std::size_t>(n));
   std::vector<Triple> f;
   // The jaw's cubic: every product of up to three of pitch, yaw and protrusion.
@@ -147,14 +148,27 @@ std::vector<Triple> point_features(const std::vector<int>& muscles, const std::v
     for (std::size_t b = a; b < jaw.size(); ++b)
       for (std::size_t c = b; c < jaw.size(); ++c)
         if (jaw[a] != one) f.push_back({jaw[a], jaw[b], jaw[c]});
-  for (int i : muscles)
+  for (int i : muscles) {
     for (const Triple& t : std::initializer_list<Triple>{
              {i, one, one}, {i, i, one}, {i, i, i}, {i, P, one}, {i, Y, one}, {i, T, one}})
       f.push_back(t);
+    if (jaw_point)
+      for (const Triple& t : std::initializer_list<Triple>{{i, i, P},
+                                                           {i, i, Y},
+                                                           {i, i, T},
+                                                           {i, P, P},
+                                                           {i, P, Y},
+                                                           {i, P, T},
+                                                           {i, Y, Y},
+                                                           {i, Y, T},
+                                                           {i, T, T}})
+        f.push_back(t);
+  }
   for (std::size_t x = 0; x < muscles.size(); ++x)
     for (std::size_t y = x + 1; y < muscles.size(); ++y) {
       const int a = std::min(muscles[x], muscles[y]), b = std::max(muscles[x], muscles[y]);
-      f.push_back({a, b, one});
+      for (const Triple& t : std::initializer_list<Triple>{{a, b, one}, {a, a, b}, {a, b, b}})
+        f.push_back(t);
     }
   for (int l : lids) f.push_back({l, one, one});
   for (int l : lid_points) {
@@ -216,13 +230,29 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
     s.eyelid_closure[side] = 1.0;
     probe(s, lid_variable(static_cast<std::size_t>(M), side), lids);
   }
+  // Points the jaw moves by more than kJawPointMm at a corner of its envelope get its
+  // couplings with the muscles (point_features). 0.4-0.5 mm at the brows, 2.5 mm and more
+  // at the lips, nose and cheeks, 0 at the lids.
+  constexpr double kJawPointMm = 1;
+  std::vector<bool> jaw_point(movers.size(), false);
+  for (int corner = 0; corner < 8; ++corner) {
+    ReducedSample s;
+    s.contractions.assign(static_cast<std::size_t>(M), 0.0);
+    s.jaw.pitch_rad = ((corner & 1) ? kJawPitchMaxDeg : kJawPitchMinDeg) * kDeg;
+    s.jaw.yaw_rad = ((corner & 2) ? kJawYawMaxDeg : -kJawYawMaxDeg) * kDeg;
+    s.jaw.protrusion_m = (corner & 4) ? kJawProtrusionMaxMm * 1e-3 : 0.0;
+    const std::vector<double> y = response(s);
+    for (int p = 0; p < P; ++p)
+      if (Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3 > kJawPointMm)
+        jaw_point[static_cast<std::size_t>(p)] = true;
+  }
   // Each point's columns in the model's shared, deduplicated feature list.
   std::map<Triple, int> index;
   std::vector<std::vector<int>> cols(static_cast<std::size_t>(P));
   for (int p = 0; p < P; ++p)
-    for (const Triple& t :
-         point_features(movers[static_cast<std::size_t>(p)], lids[static_cast<std::size_t>(p)],
-                        lid_points[static_cast<std::size_t>(p)], M)) {
+    for (const Triple& t : point_features(
+             movers[static_cast<std::size_t>(p)], lids[static_cast<std::size_t>(p)],
+             lid_points[static_cast<std::size_t>(p)], M, jaw_point[static_cast<std::size_t>(p)])) {
       const auto [it, added] = index.emplace(t, static_cast<int>(r.features.size()));
       if (added) r.features.push_back(t);
       cols[static_cast<std::size_t>(p)].push_back(it->second);
