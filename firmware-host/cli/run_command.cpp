@@ -342,6 +342,7 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
   bool shutdown = false;
   std::optional<double> fault_at;
   const char* fault_text = "";
+  bool audio_started = false;
   auto last_status = t0;
   while (true) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -349,20 +350,27 @@ void supervise(const RunOptions& options, RunSession& s, bool tty) {
     drain_events(s, tty, fault_text);
     fire_due_injections(s.injections, t, s.head.sim.get(), s.silence_input, s.head.loop.get());
     const SafetyState state = s.head.controller->state();
+    if ((state == SafetyState::kFault || state == SafetyState::kEstop) && !fault_at) fault_at = t;
     // The sound starts with the head's motion, not during the enable ramp;
     // until then its player holds the track's first pose.
-    if (s.audio && state == SafetyState::kRunning) s.audio->start();
+    if (s.audio && state == SafetyState::kRunning && !audio_started) {
+      s.audio->start();
+      audio_started = true;
+    }
     const bool played_out = !options.duration_s && !s.live && s.player && s.player->finished() &&
                             (!s.mixed_show || s.mixed_show->finished()) &&
                             (!s.audio || s.audio->stats().finished);
-    if (!shutdown && (g_signal.load() != 0 || t >= s.end_s || played_out)) {
+    // A head that faulted or stopped before it ran never starts the sound, and
+    // the track follows the sound: the run would wait for them for ever.
+    const bool never_played =
+        !options.duration_s && s.audio && !audio_started && fault_at.has_value();
+    if (!shutdown && (g_signal.load() != 0 || t >= s.end_s || played_out || never_played)) {
       shutdown = true;
       s.head.controller->request_shutdown();
       if (g_signal.load() != 0) {
         std::fprintf(stderr, "\nfacectl run: signal %d: easing to rest\n", g_signal.load());
       }
     }
-    if ((state == SafetyState::kFault || state == SafetyState::kEstop) && !fault_at) fault_at = t;
     // While FAULT holds or rests actuators the loop keeps commanding them,
     // until the run ends (duration, signal); even then it lets a moving one
     // come to a stop before the outputs are released (a second signal

@@ -182,6 +182,21 @@ TEST(AudioProcess, TheFaceLeadsTheSoundByTheConfiguredLead) {
   EXPECT_NEAR(onset[0] - onset[1], 0.150, 0.025);
 }
 
+// The sound starts when the head runs, and the track follows the sound: a head
+// that faults while it enables never starts either. The run ends with the
+// fault's exit code rather than waiting for them (it hung until a signal).
+TEST(AudioProcess, AFaultBeforeTheHeadRunsEndsTheRunWithoutTheSound) {
+  TempDir tmp;
+  write_tone(tmp / "tone.wav");
+  const std::string cfg = config_with_audio(tmp, "  device: \"null\"\n");
+  const auto r = run_facectl({"run", "--quiet", "--config", cfg, "--input", tmp / "tone.wav",
+                              "--audio", tmp / "tone.wav", "--inject", "bus_fault:modbus0@0.2"},
+                             tmp / "log.txt", 60);
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("ENABLING -> FAULT: bus fault"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("audio: 0.00 of 1.30 s played on 'null'"), std::string::npos) << r.output;
+}
+
 TEST(AudioProcess, NoDeviceOrNothingToTimeIsRefusedBeforeAnythingMoves) {
   TempDir tmp;
   write_tone(tmp / "tone.wav");

@@ -45,10 +45,12 @@ struct ProcessResult {
 };
 
 // Runs FACECTL_BINARY with `args` (no shell quoting needed: arguments are
-// single-quoted), stdin closed.
+// single-quoted), stdin closed. With `timeout_s`, coreutils' timeout ends a
+// run that hangs (exit code 124), so that the test fails rather than waits.
 inline ProcessResult run_facectl(const std::vector<std::string>& args,
-                                 const std::filesystem::path& log) {
-  std::string cmd = "'" + std::string(FACECTL_BINARY) + "'";
+                                 const std::filesystem::path& log, int timeout_s = 0) {
+  std::string cmd = timeout_s > 0 ? "timeout -k 5 " + std::to_string(timeout_s) + " " : "";
+  cmd += "'" + std::string(FACECTL_BINARY) + "'";
   for (const std::string& a : args) cmd += " '" + a + "'";
   cmd += " < /dev/null > '" + log.string() + "' 2>&1";
   const int status = std::system(cmd.c_str());
