@@ -100,6 +100,13 @@ int FaceModel::landmark_index(const std::string& name) const {
   return -1;
 }
 
+std::vector<int> FaceModel::landmark_indices(const std::vector<std::string>& names) const {
+  std::vector<int> indices;
+  indices.reserve(names.size());
+  for (const std::string& n : names) indices.push_back(landmark_index(n));
+  return indices;
+}
+
 Vec3 landmark_position(const FaceModel& m, const Points& skin, int l) {
   return mean_plus_offset(m.landmark_vertices[l], m.landmark_offset[l], skin);
 }

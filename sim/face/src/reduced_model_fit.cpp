@@ -54,9 +54,10 @@ ReducedInput reduced_input(const ReducedSample& s) {
 std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
                                         const std::vector<int>& cps, const ReducedSample& s,
                                         const SteadyStateOptions& steady,
-                                        SteadyStateResult* settled) {
+                                        SteadyStateResult* settled, bool teeth_collision) {
   reset_face_data(m, d);
   FaceInput in;
+  in.teeth_collision = teeth_collision;
   in.contractions = s.contractions;
   in.jaw = s.jaw;
   in.eyelid_closure[0] = s.eyelid_closure[0];
@@ -187,8 +188,7 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   r.muscles = full.spec.commanded;
   r.control_points = full.spec.control_points;
   r.fitted_to = head_file_digests(full.spec);
-  std::vector<int> cps;
-  for (const auto& n : r.control_points) cps.push_back(full.landmark_index(n));
+  const std::vector<int> cps = full.landmark_indices(r.control_points);
   const int M = static_cast<int>(r.muscles.size()), P = static_cast<int>(cps.size());
   FaceData d = make_face_data(full);
   ReduceReport counts;

@@ -79,8 +79,7 @@ std::vector<NamedSampleSet> reduced_test_sets(const HeadSpec& head,
 std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceModel& reduced,
                                      const std::vector<NamedSampleSet>& sets,
                                      const SteadyStateOptions& steady, bool settled_only) {
-  std::vector<int> cps;
-  for (const auto& name : reduced.control_points) cps.push_back(full.landmark_index(name));
+  const std::vector<int> cps = full.landmark_indices(reduced.control_points);
   FaceData d = make_face_data(full);
   ReducedFaceWorkspace w = make_reduced_workspace(reduced);
   std::vector<double> predicted(3 * cps.size());

@@ -47,9 +47,7 @@ using namespace facectl::face;
 namespace {
 
 std::vector<int> control_landmarks(const FaceModel& m) {
-  std::vector<int> cps;
-  for (const auto& n : m.spec.control_points) cps.push_back(m.landmark_index(n));
-  return cps;
+  return m.landmark_indices(m.spec.control_points);
 }
 
 std::vector<Vec3> displacements(const FaceModel& m, const FaceData& d,
@@ -580,14 +578,8 @@ int sensitivity(int n, unsigned seed, double eps) {
     ReducedSample t = s;
     for (double& c : t.contractions) c = std::min(1.0, c + eps);
     auto run = [&](const ReducedSample& x, SteadyStateResult& r) {
-      FaceInput in;
-      in.contractions = x.contractions;
-      in.jaw = x.jaw;
-      in.teeth_collision = study_teeth();
-      reset_face_data(m, d);
-      r = run_to_steady_state(m, d, in, ro.steady);
-      std::vector<double> y;
-      for (const Vec3& v : displacements(m, d, cps)) y.insert(y.end(), {v.x(), v.y(), v.z()});
+      std::vector<double> y = full_model_response(m, d, cps, x, ro.steady, &r, study_teeth());
+      for (double& v : y) v *= 1e3;  // mm
       return y;
     };
     SteadyStateResult ra, rb;

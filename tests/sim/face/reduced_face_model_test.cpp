@@ -107,8 +107,7 @@ TEST(ReducedFaceModel, ShippedCacheTracksTheFullModelOnAnExpression) {
   for (std::size_t k = 0; k < s.contractions.size(); ++k)
     if (m.spec.commanded[k].rfind("zygomaticus_major", 0) == 0) s.contractions[k] = 0.5;
   s.jaw.pitch_rad = 0.05;
-  std::vector<int> cps;
-  for (const auto& n : shipped().control_points) cps.push_back(m.landmark_index(n));
+  const std::vector<int> cps = m.landmark_indices(shipped().control_points);
   const std::vector<double> full = full_model_response(m, d, cps, s, SteadyStateOptions{});
   ReducedFaceWorkspace w = make_reduced_workspace(shipped());
   std::vector<double> out(full.size());

@@ -107,11 +107,7 @@ TEST(SteadyState, MusclesAloneDoNotCycleEveryOtherFrame) {
 TEST(SteadyState, MorePassesReachTheSameStatesInFewerFrames) {
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
-  const std::vector<int> cps = [&] {
-    std::vector<int> v;
-    for (const std::string& n : m.spec.control_points) v.push_back(m.landmark_index(n));
-    return v;
-  }();
+  const std::vector<int> cps = m.landmark_indices(m.spec.control_points);
   SteadyStateOptions many;
   many.passes = {.skin = kSteadyPasses, .muscle = kSteadyPasses};
   for (const char* name : {"surprise", "brow_raise", "sadness"}) {
@@ -200,8 +196,7 @@ TEST(SteadyState, DenseMixesMoveSmoothlyWithTheirInputs) {
                     "MorePassesReachTheSameStatesInFewerFrames runs the same code here";
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
-  std::vector<int> cps;
-  for (const auto& n : m.spec.control_points) cps.push_back(m.landmark_index(n));
+  const std::vector<int> cps = m.landmark_indices(m.spec.control_points);
   ReduceOptions ro;
   ro.active_probability = 1.0;
   ro.max_contraction = 1.0;

@@ -82,6 +82,8 @@ struct FaceModel {
   std::vector<std::vector<int>> landmark_vertices;
   std::vector<Vec3> landmark_offset;
   int landmark_index(const std::string& name) const;  // −1 if absent
+  // landmark_index of each name, in order (the control points' landmarks).
+  std::vector<int> landmark_indices(const std::vector<std::string>& names) const;
 };
 
 struct FaceInput {

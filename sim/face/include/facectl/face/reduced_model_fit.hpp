@@ -57,11 +57,13 @@ std::vector<ReducedSample> training_samples(const HeadSpec& head, int n, unsigne
 std::vector<ReducedSample> random_samples(const HeadSpec& head, const ReduceOptions& o, int n,
                                           unsigned seed);
 // Full-model steady-state control-point displacements (m) for one sample, run from rest
-// by run_to_steady_state(); `settled`, if given, receives how it ended.
+// by run_to_steady_state(); `settled`, if given, receives how it ended. Without
+// `teeth_collision` the lips pass through the teeth (a study knob).
 std::vector<double> full_model_response(const FaceModel& m, FaceData& d,
                                         const std::vector<int>& control_landmarks,
                                         const ReducedSample& s, const SteadyStateOptions& steady,
-                                        SteadyStateResult* settled = nullptr);
+                                        SteadyStateResult* settled = nullptr,
+                                        bool teeth_collision = true);
 
 ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions& o,
                                      ReduceReport* report);
