@@ -86,8 +86,8 @@ run_asan() {
 # Two lanes, one per core, each about half of the 200 s the binaries took
 # one after another: they mostly wait on their loops, sockets and timeouts,
 # and each took as long beside the other lane as alone. Not three: a third
-# instrumented program on the two cores starved a served loop at 1 kHz into
-# an overrun FAULT. The serve and the process tests, which run the loop in
+# instrumented program on the two cores starved the 1 kHz loop of an input
+# test's `facectl run` (the audio lead test) into an overrun FAULT at enable. The serve and the process tests, which run the loop in
 # `facectl`, start in different lanes, as ctest -j2 runs them in the ASan
 # suite.
 tsan_lanes=("facectl_serve_tests facectl_driver_tests facectl_fap_tests facectl_host_tests"
