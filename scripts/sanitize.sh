@@ -87,9 +87,9 @@ run_asan() {
 # one after another: they mostly wait on their loops, sockets and timeouts,
 # and each took as long beside the other lane as alone. Not three: a third
 # instrumented program on the two cores starved the 1 kHz loop of an input
-# test's `facectl run` (the audio lead test) into an overrun FAULT at enable. The serve and the process tests, which run the loop in
-# `facectl`, start in different lanes, as ctest -j2 runs them in the ASan
-# suite.
+# test's `facectl run` (the audio lead test) into an overrun FAULT at enable.
+# The serve and the process tests, which run the loop in `facectl`, start in
+# different lanes, as ctest -j2 runs them in the ASan suite.
 tsan_lanes=("facectl_serve_tests facectl_driver_tests facectl_fap_tests facectl_host_tests"
             "facectl_process_tests facectl_input_tests facectl_control_tests")
 # The FACS geometry runs the full face model 30 times on one thread: minutes
