@@ -20,6 +20,14 @@ const ExpressionLibrary& library() {
   return lib;
 }
 
+// Dense mixes: every muscle active at c ~ U(0, 1) (random_samples draws the jaw).
+ReduceOptions dense_mix_options() {
+  ReduceOptions ro;
+  ro.active_probability = 1.0;
+  ro.max_contraction = 1.0;
+  return ro;
+}
+
 TEST(SteadyState, EveryLibraryExpressionSettles) {
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
@@ -70,9 +78,7 @@ TEST(SteadyState, LibraryExpressionsSettleOnAFinerSkin) {
 TEST(SteadyState, MusclesAloneDoNotCycleEveryOtherFrame) {
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
-  ReduceOptions ro;
-  ro.active_probability = 1.0;
-  ro.max_contraction = 1.0;
+  const ReduceOptions ro = dense_mix_options();
   constexpr int kFrames = 2000;
   // Three inputs in the sanitizer trees: the twelve took 76 s under ASan.
   const int inputs = static_cast<int>(facectl::testing::sample_count(12, 3));
@@ -139,9 +145,7 @@ TEST(SteadyState, MorePassesSettleMoreRandomInputs) {
                     "MorePassesReachTheSameStatesInFewerFrames runs the passes here";
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
-  ReduceOptions ro;
-  ro.active_probability = 1.0;
-  ro.max_contraction = 1.0;
+  ReduceOptions ro = dense_mix_options();
   ro.random_eyelids = true;
   SteadyStateOptions many;
   many.passes = {.skin = kSteadyPasses, .muscle = kSteadyPasses};
@@ -197,9 +201,7 @@ TEST(SteadyState, DenseMixesMoveSmoothlyWithTheirInputs) {
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
   const std::vector<int> cps = m.landmark_indices(m.spec.control_points);
-  ReduceOptions ro;
-  ro.active_probability = 1.0;
-  ro.max_contraction = 1.0;
+  const ReduceOptions ro = dense_mix_options();
   int k = 0;
   for (const ReducedSample& s : random_samples(m.spec, ro, 10, 4)) {
     ReducedSample t = s;
