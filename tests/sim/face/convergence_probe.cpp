@@ -24,6 +24,8 @@
 //   face_convergence_probe dump OUT.csv [samples] [shard] [shards]
 //     `face reduce`'s training inputs and check-reduced's sets with the full model's steady
 //     states, as CSV: a cache for trying forms of the reduced model offline.
+//   face_convergence_probe muscle HEADDIR EXPRESSION MUSCLE
+//     One muscle of a head folder, its particles at rest and at the expression's steady state.
 // Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
 // FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
 // FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
@@ -653,8 +655,40 @@ int dump(const std::string& path, int samples, int shard, int shards) {
   return 0;
 }
 
+// One muscle's particles of head folder `dir`, at rest and at the steady state of a library
+// expression (up to 3000 frames), in mm: two fitted folders' muscles compared particle by
+// particle (docs/FACE_MODEL.md, "Bringing your own head").
+int muscle_state(const char* dir, const char* expr, const char* name) {
+  const HeadSpec spec = load_head_spec(dir);
+  const FaceModel m = build_face_model(spec);
+  const ExpressionLibrary lib =
+      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
+  const Expression* e = lib.find(expr);
+  if (e == nullptr) {
+    std::fprintf(stderr, "no expression '%s' in the library\n", expr);
+    return 2;
+  }
+  FaceData d = make_face_data(m);
+  reset_face_data(m, d);
+  SteadyStateOptions o;
+  o.max_frames = 3000;
+  const SteadyStateResult r = run_to_steady_state(m, d, face_input(*e), o);
+  std::printf("converged %d frames %d residual %.4f\n", r.converged, r.frames, r.residual_mm);
+  for (const Muscle& mu : m.muscles) {
+    if (mu.name != name) continue;
+    for (int k = 0; k < mu.particle_count(); ++k) {
+      const Vec3 a = m.muscle_rest.get(static_cast<std::size_t>(mu.first + k)) * 1e3;
+      const Vec3 b = d.muscles.get(static_cast<std::size_t>(mu.first + k)) * 1e3;
+      std::printf("%d %.2f %.2f %.2f -> %.2f %.2f %.2f\n", k, a.x(), a.y(), a.z(), b.x(), b.y(),
+                  b.z());
+    }
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "muscle" && argc > 4) return muscle_state(argv[2], argv[3], argv[4]);
   if (mode == "random")
     return random_study(argc > 2 ? std::atoi(argv[2]) : 100,
                         argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
@@ -694,6 +728,7 @@ int main(int argc, char** argv) {
                "       face_convergence_probe single [C]   (each muscle alone at C)\n"
                "       face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]\n"
                "       face_convergence_probe sensitivity [N] [seed] [eps]\n"
-               "       face_convergence_probe dump OUT.csv [samples] [shard] [shards]\n");
+               "       face_convergence_probe dump OUT.csv [samples] [shard] [shards]\n"
+               "       face_convergence_probe muscle HEADDIR EXPRESSION MUSCLE\n");
   return 2;
 }
