@@ -12,6 +12,8 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <numeric>
+#include <random>
 
 #include "default_head.hpp"
 #include "facectl/face/head_writer.hpp"
@@ -172,6 +174,64 @@ TEST_P(HeadFitOnTestHead, CarriesMuscleCornersNearTheWarpedTruth) {
       }
   RecordProperty("worst_muscle_corner_mm", std::to_string(worst));
   EXPECT_LT(worst, bounds(f.warp).muscle) << f.warp.name << ": " << worst_muscle;
+}
+
+// The same mesh with its vertices renumbered, each face's corners rotated (the winding
+// kept) and the faces reordered fits to the same head, to the last bit: before the fit ran
+// on a canonical numbering, four orders of broad_short gave muscle corners up to 0.31 mm
+// apart, and one of them smiled lopsidedly (docs/FACE_MODEL.md, "Known issues").
+TEST_P(HeadFitOnTestHead, TheMeshsNumberingDoesNotChangeTheFit) {
+  const Fitted& f = fitted(GetParam());
+  std::mt19937 rng(7);
+  const std::size_t n = f.target.v.size();
+  std::vector<int> old_of(n);  // the shuffled mesh's vertex k is the target's old_of[k]
+  std::iota(old_of.begin(), old_of.end(), 0);
+  std::shuffle(old_of.begin(), old_of.end(), rng);
+  std::vector<int> new_of(n);
+  TriMesh shuffled;
+  shuffled.v.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    new_of[static_cast<std::size_t>(old_of[k])] = static_cast<int>(k);
+    shuffled.v.set(k, f.target.v.get(static_cast<std::size_t>(old_of[k])));
+  }
+  for (const Tri& t : f.target.tris) {
+    Tri r{new_of[static_cast<std::size_t>(t[0])], new_of[static_cast<std::size_t>(t[1])],
+          new_of[static_cast<std::size_t>(t[2])]};
+    std::rotate(r.begin(), r.begin() + static_cast<long>(rng() % 3), r.end());
+    shuffled.tris.push_back(r);
+  }
+  std::shuffle(shuffled.tris.begin(), shuffled.tris.end(), rng);
+  const HeadFit g = fit_head(default_spec(), source_skin(), shuffled, HeadFitOptions{});
+  auto in_target = [&](std::vector<int> v) {
+    for (int& i : v) i = old_of[static_cast<std::size_t>(i)];
+    return v;
+  };
+  EXPECT_EQ(g.iterations, f.fit.iterations);
+  EXPECT_EQ(g.refined_pairs, f.fit.refined_pairs);
+  ASSERT_EQ(g.spec.landmarks.size(), f.fit.spec.landmarks.size());
+  for (std::size_t i = 0; i < g.spec.landmarks.size(); ++i) {
+    const LandmarkSpec &a = f.fit.spec.landmarks[i], &b = g.spec.landmarks[i];
+    EXPECT_EQ(in_target(b.vertices), a.vertices) << a.name;
+    EXPECT_EQ(b.offset, a.offset) << a.name;
+  }
+  ASSERT_EQ(g.spec.openings.size(), f.fit.spec.openings.size());
+  for (std::size_t i = 0; i < g.spec.openings.size(); ++i)
+    EXPECT_EQ(in_target(g.spec.openings[i].second), f.fit.spec.openings[i].second)
+        << f.fit.spec.openings[i].first;
+  ASSERT_EQ(g.spec.muscles.size(), f.fit.spec.muscles.size());
+  for (std::size_t m = 0; m < g.spec.muscles.size(); ++m) {
+    const MuscleSpec &a = f.fit.spec.muscles[m], &b = g.spec.muscles[m];
+    for (const auto& [ra, rb] : {std::pair{&a.origin, &b.origin},
+                                 {&a.insertion, &b.insertion},
+                                 {&a.inner, &b.inner},
+                                 {&a.outer, &b.outer}}) {
+      ASSERT_EQ(ra->size(), rb->size()) << a.name;
+      for (std::size_t k = 0; k < ra->size(); ++k) {
+        EXPECT_EQ((*rb)[k].landmark, (*ra)[k].landmark) << a.name;
+        EXPECT_EQ((*rb)[k].offset, (*ra)[k].offset) << a.name << ", corner " << k;
+      }
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(
