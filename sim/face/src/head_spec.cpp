@@ -2,10 +2,13 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <string>
+#include <string_view>
 #include <type_traits>
 
 #include "facectl/face/input_error.hpp"
@@ -36,6 +39,22 @@ Doc load(const std::string& file) {
   int line = n.IsDefined() ? n.Mark().line + 1 : 0, col = n.IsDefined() ? n.Mark().column + 1 : 0;
   throw InputError(d.file, line, col,
                    "key '" + key + "': expected " + expected + ", found " + found);
+}
+
+// A key the reader does not know is an error at its line, not a setting quietly ignored:
+// a misspelt stiffness or tooth size would otherwise build another face than the one
+// written, as the rig files refuse theirs (firmware-host/config/config_node.hpp).
+void expect_keys(const Doc& d, const YAML::Node& map,
+                 std::initializer_list<std::string_view> keys) {
+  if (!map.IsMap()) return;  // the reader of each value says what it expected
+  for (const auto& kv : map) {
+    const std::string key = kv.first.Scalar();
+    if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
+    std::string list;
+    for (std::string_view k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+    throw InputError(d.file, kv.first.Mark().line + 1, kv.first.Mark().column + 1,
+                     "expected one of: " + list + ", found unknown key '" + key + "'");
+  }
 }
 
 YAML::Node need(const Doc& d, const YAML::Node& parent, const std::string& key) {
@@ -86,6 +105,7 @@ std::vector<int> int_list(const Doc& d, const YAML::Node& n, const std::string& 
 PointRef point_ref(const Doc& d, const YAML::Node& n, const std::string& key,
                    const std::set<std::string>& names) {
   if (!n.IsMap()) fail(d, n, key, "{ at: LANDMARK, offset_mm: [x, y, z] }");
+  expect_keys(d, n, {"at", "offset_mm"});
   PointRef p;
   p.landmark = as<std::string>(d, need(d, n, "at"), "at", "a landmark name");
   if (!names.count(p.landmark)) fail(d, n["at"], "at", "a landmark defined in landmarks.yaml");
@@ -104,6 +124,9 @@ std::vector<PointRef> refs(const Doc& d, const YAML::Node& n, const std::string&
 
 void read_muscle_stiffness(const Doc& d, const YAML::Node& n, MuscleStiffness& k) {
   if (!n.IsDefined()) return;
+  expect_keys(d, n,
+              {"up_latitudinal", "up_longitudinal", "low_latitudinal", "low_longitudinal",
+               "connection", "up_shear", "low_shear", "bend", "volume", "position"});
   k.up_latitudinal = num(d, n, "up_latitudinal", 0);
   k.up_longitudinal = num(d, n, "up_longitudinal", 0);
   k.low_latitudinal = num(d, n, "low_latitudinal", 0);
@@ -128,7 +151,12 @@ HeadSpec load_head_spec(const std::string& dir) {
   Doc face = load(dir + "/face.yaml");
   h.files.push_back("face.yaml");
   YAML::Node f = need(face, face.root, "face");
+  expect_keys(face, face.root, {"face"});
+  expect_keys(face, f,
+              {"skin", "landmarks", "muscles", "openings", "skull", "teeth", "eyelids", "solver",
+               "variants", "control_points"});
   YAML::Node skin = need(face, f, "skin");
+  expect_keys(face, skin, {"file", "units"});
   h.files.push_back(as<std::string>(face, need(face, skin, "file"), "file", "a file name"));
   h.skin_file = dir + "/" + h.files.back();
   std::string units = as<std::string>(face, need(face, skin, "units"), "units", "m, cm or mm");
@@ -140,8 +168,10 @@ HeadSpec load_head_spec(const std::string& dir) {
       h.openings.push_back({kv.first.as<std::string>(), int_list(face, kv.second, "openings")});
   }
   YAML::Node skull = f["skull"];
+  expect_keys(face, skull, {"tissue_depth_mm"});
   if (skull.IsDefined()) h.tissue_depth = num(face, skull, "tissue_depth_mm", 8) * 1e-3;
   YAML::Node teeth = f["teeth"];
+  expect_keys(face, teeth, {"half_width_mm", "arch_depth_mm", "height_mm", "inset_mm", "gap_mm"});
   if (teeth.IsDefined()) {
     h.teeth_half_width = num(face, teeth, "half_width_mm", 22) * 1e-3;
     h.teeth_depth = num(face, teeth, "arch_depth_mm", 30) * 1e-3;
@@ -150,6 +180,8 @@ HeadSpec load_head_spec(const std::string& dir) {
     h.teeth_gap = num(face, teeth, "gap_mm", 0.5) * 1e-3;
   }
   YAML::Node lids = f["eyelids"];
+  expect_keys(face, lids,
+              {"band_mm", "eyeball_radius_mm", "upper_share", "orbicularis_oculi_coupling"});
   if (lids.IsDefined()) {
     h.eyelid_band = num(face, lids, "band_mm", 5) * 1e-3;
     h.eyeball_radius = num(face, lids, "eyeball_radius_mm", 12) * 1e-3;
@@ -157,6 +189,8 @@ HeadSpec load_head_spec(const std::string& dir) {
     h.oculi_lid_coupling = num(face, lids, "orbicularis_oculi_coupling", 0.3);
   }
   YAML::Node solver = f["solver"];
+  expect_keys(face, solver,
+              {"skin_iterations", "influence_falloff_mm", "skin", "sheet", "sphincter"});
   if (solver.IsDefined()) {
     // Each iteration is a full constraint sweep per frame; 100 is far past the
     // point where more change nothing (docs/FACE_MODEL.md, "Solver").
@@ -168,6 +202,9 @@ HeadSpec load_head_spec(const std::string& dir) {
     h.skin_iterations = static_cast<int>(iterations);
     h.influence_falloff = num(face, solver, "influence_falloff_mm", 25) * 1e-3;
     YAML::Node sk = solver["skin"];
+    expect_keys(
+        face, sk,
+        {"stretch", "bending", "area", "anchor", "volume", "damping", "min_projected_area"});
     if (sk.IsDefined()) {
       h.skin.stretch = num(face, sk, "stretch", h.skin.stretch);
       h.skin.bending = num(face, sk, "bending", h.skin.bending);
@@ -185,6 +222,7 @@ HeadSpec load_head_spec(const std::string& dir) {
   h.files.push_back(as<std::string>(face, need(face, f, "landmarks"), "landmarks", "a file name"));
   Doc lm = load(dir + "/" + h.files.back());
   YAML::Node lms = need(lm, lm.root, "landmarks");
+  expect_keys(lm, lm.root, {"landmarks"});
   if (!lms.IsMap())
     fail(lm, lms, "landmarks", "a mapping name -> { vertex | vertices, offset_mm }");
   std::set<std::string> names;
@@ -193,6 +231,7 @@ HeadSpec load_head_spec(const std::string& dir) {
     s.name = kv.first.as<std::string>();
     const YAML::Node& n = kv.second;
     if (!n.IsMap()) fail(lm, n, s.name, "{ vertex: N } or { vertices: [..] }");
+    expect_keys(lm, n, {"vertex", "vertices", "offset_mm"});
     const YAML::Node at = n["vertex"].IsDefined() ? n["vertex"] : need(lm, n, "vertices");
     if (n["vertex"].IsDefined())
       s.vertices = {as<int>(lm, at, "vertex", "a vertex index")};
@@ -216,11 +255,15 @@ HeadSpec load_head_spec(const std::string& dir) {
   h.files.push_back(as<std::string>(face, need(face, f, "muscles"), "muscles", "a file name"));
   Doc mu = load(dir + "/" + h.files.back());
   YAML::Node ms = need(mu, mu.root, "muscles");
+  expect_keys(mu, mu.root, {"muscles"});
   if (!ms.IsSequence()) fail(mu, ms, "muscles", "a list of muscles");
   std::map<std::string, int> first_line;  // a name is its command slot and, for
                                           // orbicularis_oculi_l/_r, the lid it closes
   for (const auto& n : ms) {
     MuscleSpec m;
+    expect_keys(
+        mu, n,
+        {"name", "kind", "layer", "grid", "thickness_mm", "origin", "insertion", "inner", "outer"});
     m.name = as<std::string>(mu, need(mu, n, "name"), "name", "a muscle name");
     const auto [first, fresh] = first_line.emplace(m.name, n["name"].Mark().line + 1);
     if (!fresh)

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <sstream>
 
@@ -93,25 +94,30 @@ std::string head_edited(const std::string& file, const std::string& from, const 
   return head_with(file, text);
 }
 
-TEST(HeadInput, NonFiniteNumbersAreRefusedWhereTheyAre) {
-  struct Case {
-    const char* file;
-    const char* from;
-    const char* to;
-    const char* expected;
-  };
-  for (const Case& c : {
-           Case{"face.yaml", "tissue_depth_mm: 8", "tissue_depth_mm: .nan",
-                "face.yaml:15:29: key 'tissue_depth_mm': expected a finite number, found '.nan'"},
-           Case{"face.yaml", "skin_iterations: 1 ", "skin_iterations: .inf ",
-                "face.yaml:25:22: key 'skin_iterations': expected a finite number"},
-           Case{"landmarks.yaml", "offset_mm: [-25, -5, 5]", "offset_mm: [.NaN, -5, 5]",
-                "landmarks.yaml:17:"},
-       }) {
+// One file of the default head edited, and what load_head_spec's error must contain.
+struct HeadEdit {
+  const char* file;
+  const char* from;
+  const char* to;
+  const char* expected;
+};
+void expect_refused(std::initializer_list<HeadEdit> edits) {
+  for (const HeadEdit& c : edits) {
     const std::string dir = head_edited(c.file, c.from, c.to);
     const std::string e = error_of([&] { load_head_spec(dir); });
     EXPECT_NE(e.find(c.expected), std::string::npos) << c.file << ": " << e;
   }
+}
+
+TEST(HeadInput, NonFiniteNumbersAreRefusedWhereTheyAre) {
+  expect_refused({
+      HeadEdit{"face.yaml", "tissue_depth_mm: 8", "tissue_depth_mm: .nan",
+               "face.yaml:15:29: key 'tissue_depth_mm': expected a finite number, found '.nan'"},
+      HeadEdit{"face.yaml", "skin_iterations: 1 ", "skin_iterations: .inf ",
+               "face.yaml:25:22: key 'skin_iterations': expected a finite number"},
+      HeadEdit{"landmarks.yaml", "offset_mm: [-25, -5, 5]", "offset_mm: [.NaN, -5, 5]",
+               "landmarks.yaml:17:"},
+  });
   const std::string dir =
       head_edited("landmarks.yaml", "offset_mm: [-25, -5, 5]", "offset_mm: [.NaN, -5, 5]");
   EXPECT_NE(
@@ -197,6 +203,26 @@ TEST(ReducedInput, FeaturesMustBeDistinctAndControlPointsTheHeads) {
   e = error_of([&] { load_reduced_model(p, spec); });
   EXPECT_NE(e.find(p + ":4: expected the control points of face.yaml in order"), std::string::npos)
       << e;
+}
+
+// A misspelt key would leave its value at the default and build another face than the one
+// written; each is refused at its line with the keys that place takes.
+TEST(HeadInput, UnknownKeysAreRefusedWhereTheyAre) {
+  expect_refused({
+      HeadEdit{"face.yaml", "gap_mm: 0.5 }", "gap_mm: 0.5, heigth_mm: 3 }",
+               "face.yaml:18:90: expected one of: half_width_mm, arch_depth_mm, height_mm, "
+               "inset_mm, gap_mm, found unknown key 'heigth_mm'"},
+      HeadEdit{"face.yaml", "anchor: 0.2,", "anchro: 0.2,",
+               "face.yaml:31:55: expected one of: stretch, bending, area, anchor, volume, "
+               "damping, min_projected_area, found unknown key 'anchro'"},
+      HeadEdit{"face.yaml", "  variants: [", "  variant: [", "face.yaml:40:3: expected one of: "},
+      HeadEdit{"landmarks.yaml", "offset_mm: [-25, -5, 5]", "ofset_mm: [-25, -5, 5]",
+               "landmarks.yaml:17:28: expected one of: vertex, vertices, offset_mm, found "
+               "unknown key 'ofset_mm'"},
+      HeadEdit{"muscles.yaml", "    grid: [4, 2]", "    gird: [4, 2]",
+               "muscles.yaml:68:5: expected one of: name, kind, layer, grid, thickness_mm, "
+               "origin, insertion, inner, outer, found unknown key 'gird'"},
+  });
 }
 
 TEST(HeadInput, BadMuscleKeyNamesFileLineAndKey) {
