@@ -230,7 +230,8 @@ TEST_F(DefaultRigOnDrivers, CanBusOff) {
 }
 
 TEST_F(DefaultRigOnDrivers, ALostCanBoardHeartbeat) {
-  expect_fault("can0 board 3: heartbeat lost", 0, 0, [&] { boards_[2]->faults().silent = true; });
+  ASSERT_NO_FATAL_FAILURE(expect_fault("can0 board 3: heartbeat lost", 0, 0,
+                                       [&] { boards_[2]->faults().silent = true; }));
   // The board answers every command, so the bus last heard it on the first
   // tick after it fell silent. The 100 ms timeout runs on the bus's clock, so
   // it is checked there: the fault comes on the first tick past it. (Counted
