@@ -7,7 +7,8 @@
 
 #include <algorithm>
 #include <numeric>
-#include <random>
+
+#include "test_heads.hpp"
 
 namespace facectl::face {
 namespace {
@@ -35,24 +36,8 @@ Vec3 normal(const Points& v, const Tri& t) {
 TEST(CanonicalMesh, AnyNumberingGivesTheSameMeshWithItsWinding) {
   const TriMesh m = grid();
   const CanonicalMesh c = canonical_mesh(m);
-  std::mt19937 rng(3);
-  for (int trial = 0; trial < 5; ++trial) {
-    std::vector<int> old_of(m.v.size());
-    std::iota(old_of.begin(), old_of.end(), 0);
-    std::shuffle(old_of.begin(), old_of.end(), rng);
-    std::vector<int> new_of(m.v.size());
-    TriMesh s;
-    for (std::size_t k = 0; k < old_of.size(); ++k) {
-      new_of[static_cast<std::size_t>(old_of[k])] = static_cast<int>(k);
-      s.v.push_back(m.v.get(static_cast<std::size_t>(old_of[k])));
-    }
-    for (const Tri& t : m.tris) {
-      Tri r{new_of[static_cast<std::size_t>(t[0])], new_of[static_cast<std::size_t>(t[1])],
-            new_of[static_cast<std::size_t>(t[2])]};
-      std::rotate(r.begin(), r.begin() + static_cast<long>(rng() % 3), r.end());
-      s.tris.push_back(r);
-    }
-    std::shuffle(s.tris.begin(), s.tris.end(), rng);
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const TriMesh s = testing::renumbered(m, seed, true).mesh;
     const CanonicalMesh d = canonical_mesh(s);
     EXPECT_EQ(d.mesh.v.x, c.mesh.v.x);
     EXPECT_EQ(d.mesh.v.y, c.mesh.v.y);

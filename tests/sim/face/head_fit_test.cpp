@@ -12,8 +12,6 @@
 #include <iterator>
 #include <limits>
 #include <map>
-#include <numeric>
-#include <random>
 
 #include "default_head.hpp"
 #include "facectl/face/head_writer.hpp"
@@ -186,26 +184,10 @@ TEST_P(HeadFitOnTestHead, CarriesMuscleCornersNearTheWarpedTruth) {
 // apart, and one of them smiled lopsidedly (docs/FACE_MODEL.md, "Known issues").
 TEST_P(HeadFitOnTestHead, TheMeshsNumberingDoesNotChangeTheFit) {
   const Fitted& f = fitted(GetParam());
-  std::mt19937 rng(7);
-  const std::size_t n = f.target.v.size();
-  std::vector<int> old_of(n);  // the shuffled mesh's vertex k is the target's old_of[k]
-  std::iota(old_of.begin(), old_of.end(), 0);
-  std::shuffle(old_of.begin(), old_of.end(), rng);
-  std::vector<int> new_of(n);
-  TriMesh shuffled;
-  shuffled.v.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    new_of[static_cast<std::size_t>(old_of[k])] = static_cast<int>(k);
-    shuffled.v.set(k, f.target.v.get(static_cast<std::size_t>(old_of[k])));
-  }
-  for (const Tri& t : f.target.tris) {
-    Tri r{new_of[static_cast<std::size_t>(t[0])], new_of[static_cast<std::size_t>(t[1])],
-          new_of[static_cast<std::size_t>(t[2])]};
-    std::rotate(r.begin(), r.begin() + static_cast<long>(rng() % 3), r.end());
-    shuffled.tris.push_back(r);
-  }
-  std::shuffle(shuffled.tris.begin(), shuffled.tris.end(), rng);
-  const HeadFit g = fit_head(default_spec(), source_skin(), shuffled, HeadFitOptions{});
+  // The renumbered mesh's vertex k is the target's old_of[k].
+  const testing::Renumbered r = testing::renumbered(f.target, 7, true);
+  const std::vector<int>& old_of = r.old_of;
+  const HeadFit g = fit_head(default_spec(), source_skin(), r.mesh, HeadFitOptions{});
   auto in_target = [&](std::vector<int> v) {
     for (int& i : v) i = old_of[static_cast<std::size_t>(i)];
     return v;

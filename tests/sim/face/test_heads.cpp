@@ -68,32 +68,38 @@ TriMesh resample_on_grid(const TriMesh& m, double h) {
   return out;
 }
 
-// The vertices in a random order (std::mt19937 is specified, so the order is reproducible).
-TriMesh shuffled(const TriMesh& m, unsigned seed) {
-  std::vector<int> order(m.v.size());
+}  // namespace
+
+// std::mt19937 and the swaps are specified, so the order is reproducible; the committed test
+// heads depend on it (TestHeads.CommittedMeshesMatchTheGenerator).
+Renumbered renumbered(const TriMesh& m, unsigned seed, bool reorder_faces) {
+  Renumbered out;
+  std::vector<int>& order = out.old_of;
+  order.resize(m.v.size());
   std::iota(order.begin(), order.end(), 0);
   std::mt19937 rng(seed);
   for (std::size_t i = order.size() - 1; i > 0; --i)
     std::swap(order[i], order[std::uniform_int_distribution<std::size_t>(0, i)(rng)]);
   std::vector<int> new_index(order.size());
-  TriMesh out;
   for (std::size_t k = 0; k < order.size(); ++k) {
     new_index[order[k]] = static_cast<int>(k);
-    out.v.push_back(m.v.get(order[k]));
+    out.mesh.v.push_back(m.v.get(order[k]));
   }
-  for (const Tri& t : m.tris)
-    out.tris.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
+  for (const Tri& t : m.tris) {
+    Tri r{new_index[t[0]], new_index[t[1]], new_index[t[2]]};
+    if (reorder_faces) std::rotate(r.begin(), r.begin() + static_cast<long>(rng() % 3), r.end());
+    out.mesh.tris.push_back(r);
+  }
+  if (reorder_faces) std::shuffle(out.mesh.tris.begin(), out.mesh.tris.end(), rng);
   return out;
 }
-
-}  // namespace
 
 TriMesh make_test_head(const HeadSpec& source, const HeadWarp& w) {
   TriMesh m = read_base_skin(source);
   if (w.grid <= 0) m = refine_to_vertex_count(m, static_cast<std::size_t>(w.vertices)).mesh;
   for (std::size_t i = 0; i < m.v.size(); ++i) m.v.set(i, w.apply(m.v.get(i)));
   if (w.grid > 0) m = resample_on_grid(m, w.grid);
-  return shuffled(m, w.shuffle_seed);
+  return renumbered(m, w.shuffle_seed, false).mesh;
 }
 
 Vec3 true_landmark(const HeadSpec&, const TriMesh& source_skin, const LandmarkSpec& l,

@@ -49,6 +49,15 @@ inline std::vector<HeadWarp> test_head_warps() {
   };
 }
 
+// A mesh renumbered: its vertices in a random order (old_of[k] is the input's index of
+// vertex k) and, with `reorder_faces`, each face's corners rotated (the winding kept) and
+// the faces in a random order.
+struct Renumbered {
+  TriMesh mesh;
+  std::vector<int> old_of;
+};
+Renumbered renumbered(const TriMesh& m, unsigned seed, bool reorder_faces);
+
 // The default skin with its openings cut, warped, refined to w.vertices (or resampled on
 // the grid) and shuffled.
 TriMesh make_test_head(const HeadSpec& source, const HeadWarp& w);
