@@ -26,6 +26,8 @@
 //     states, as CSV: a cache for trying forms of the reduced model offline.
 //   face_convergence_probe muscle HEADDIR EXPRESSION MUSCLE
 //     One muscle of a head folder, its particles at rest and at the expression's steady state.
+//   face_convergence_probe mirror HEADDIR
+//     Each muscle's rest particles against its mirror partner's reflected in x = 0.
 // Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
 // FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
 // FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
@@ -36,6 +38,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -686,9 +689,45 @@ int muscle_state(const char* dir, const char* expr, const char* name) {
   return 0;
 }
 
+// Each muscle's rest particles against its mirror partner's (a `_l` muscle against its
+// `_r`, a one-piece muscle against itself) reflected in x = 0: the largest distance from
+// a particle to the nearest reflected one. On a head mirror-symmetric about x = 0 (the
+// default is, to the bit) every gap should be 0.
+int mirror_gaps(const char* dir) {
+  const FaceModel m = build_face_model(load_head_spec(dir));
+  auto find = [&](const std::string& name) -> const Muscle* {
+    for (const Muscle& mu : m.muscles)
+      if (mu.name == name) return &mu;
+    return nullptr;
+  };
+  double worst = 0;
+  for (const Muscle& mu : m.muscles) {
+    if (mu.name.ends_with("_r")) continue;
+    const std::string other =
+        mu.name.ends_with("_l") ? mu.name.substr(0, mu.name.size() - 2) + "_r" : mu.name;
+    const Muscle* partner = find(other);
+    if (partner == nullptr) continue;
+    double gap = 0;
+    for (int i = 0; i < mu.particle_count(); ++i) {
+      Vec3 p = m.muscle_rest.get(static_cast<std::size_t>(mu.first + i));
+      p.x() = -p.x();
+      double nearest = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < partner->particle_count(); ++j)
+        nearest = std::min(
+            nearest, (m.muscle_rest.get(static_cast<std::size_t>(partner->first + j)) - p).norm());
+      gap = std::max(gap, nearest);
+    }
+    std::printf("%-40s %-40s %6.2f mm\n", mu.name.c_str(), other.c_str(), gap * 1e3);
+    worst = std::max(worst, gap);
+  }
+  std::printf("largest mirror gap %.2f mm\n", worst * 1e3);
+  return 0;
+}
+
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "muscle" && argc > 4) return muscle_state(argv[2], argv[3], argv[4]);
+  if (mode == "mirror" && argc > 2) return mirror_gaps(argv[2]);
   if (mode == "random")
     return random_study(argc > 2 ? std::atoi(argv[2]) : 100,
                         argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
@@ -729,6 +768,7 @@ int main(int argc, char** argv) {
                "       face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]\n"
                "       face_convergence_probe sensitivity [N] [seed] [eps]\n"
                "       face_convergence_probe dump OUT.csv [samples] [shard] [shards]\n"
-               "       face_convergence_probe muscle HEADDIR EXPRESSION MUSCLE\n");
+               "       face_convergence_probe muscle HEADDIR EXPRESSION MUSCLE\n"
+               "       face_convergence_probe mirror HEADDIR\n");
   return 2;
 }
