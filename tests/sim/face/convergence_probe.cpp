@@ -28,6 +28,9 @@
 //     One muscle of a head folder, its particles at rest and at the expression's steady state.
 //   face_convergence_probe mirror HEADDIR
 //     Each muscle's rest particles against its mirror partner's reflected in x = 0.
+//   face_convergence_probe fixed [N] [seed] [passes]
+//     Whether `passes`-pass steady states of dense inputs are the head solver's: how far its
+//     frames move them, and where it settles.
 // Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
 // FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
 // FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
@@ -180,13 +183,13 @@ FoldCount folds(const FaceModel& m, const Points& p) {
 // from the same state): whether the skin settles on still supports.
 SteadyStateResult run_frozen(const FaceModel& m, FaceData& d, const FaceInput& in,
                              const SteadyStateOptions& o, int freeze) {
-  for (int f = 0; f < freeze; ++f) step_face(m, d, in);
+  for (int f = 0; f < freeze; ++f) step_face(m, d, in, o.passes);
   const Points still = d.muscles;
   std::vector<Points> ring;
   SteadyStateResult r;
   for (r.frames = 1; r.frames <= o.max_frames; ++r.frames) {
     d.muscles = still;
-    step_face(m, d, in);
+    step_face(m, d, in, o.passes);
     if (static_cast<int>(ring.size()) == o.window) ring.erase(ring.begin());
     r.residual_mm = 0;
     for (const Points& h : ring)
@@ -230,10 +233,10 @@ int random_study(int n, unsigned seed, std::size_t vertices) {
     double muscle_motion = 0, one_frame = 0;
     if (!r.converged) {
       const Points before = d.skin_x, mus = d.muscles;
-      step_face(m, d, in);
+      step_face(m, d, in, o.passes);
       for (std::size_t i = 0; i < before.size(); ++i)
         one_frame = std::max(one_frame, 1e3 * (d.skin_x.get(i) - before.get(i)).norm());
-      step_face(m, d, in);
+      step_face(m, d, in, o.passes);
       for (std::size_t i = 0; i < mus.size(); ++i)
         muscle_motion = std::max(muscle_motion, 1e3 * (d.muscles.get(i) - mus.get(i)).norm());
       double w = 0;
@@ -724,10 +727,80 @@ int mirror_gaps(const char* dir) {
   return 0;
 }
 
+// N dense inputs (every muscle at c ~ U(0, 1), the jaw uniform) run to steady state under
+// `passes` skin iterations and muscle passes a frame, then on under the head's solver: the
+// skin's largest move in each of its first four frames (a period-2 cycle of the head's
+// frame alternates), and, after up to 2000 more frames of it, whether it settled and how
+// far the control points ended from the `passes` state. Per input, then the median and max.
+int passes_fixed_points(int n, unsigned seed, int passes) {
+  const HeadSpec spec = study_head_for(0);
+  const FaceModel m = study_model(0);
+  const std::vector<int> cps = control_landmarks(m);
+  ReduceOptions ro;
+  ro.active_probability = 1.0;
+  ro.max_contraction = 1.0;
+  FaceData d = make_face_data(m);
+  SteadyStateOptions o;
+  o.passes = {.skin = passes, .muscle = passes};
+  auto largest = [](const Points& a, const Points& b) {
+    double w = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) w = std::max(w, 1e3 * (a.get(i) - b.get(i)).norm());
+    return w;
+  };
+  std::vector<double> first, ended;
+  int settled = 0, alternating = 0, head_settled = 0;
+  for (const ReducedSample& s : random_samples(spec, ro, n, seed)) {
+    FaceInput in;
+    in.contractions = s.contractions;
+    in.jaw = s.jaw;
+    reset_face_data(m, d);
+    const SteadyStateResult r = run_to_steady_state(m, d, in, o);
+    const Points skin0 = d.skin_x;
+    const std::vector<Vec3> cp0 = displacements(m, d, cps);
+    double moved[4];
+    for (double& mv : moved) {
+      step_face(m, d, in);
+      mv = largest(d.skin_x, skin0);
+    }
+    const SteadyStateResult h = run_to_steady_state(m, d, in, SteadyStateOptions{});
+    const std::vector<Vec3> cp1 = displacements(m, d, cps);
+    double cp_far = 0;
+    for (std::size_t k = 0; k < cps.size(); ++k)
+      cp_far = std::max(cp_far, (cp1[k] - cp0[k]).norm());
+    const bool alt = moved[0] > 1 && moved[1] < 0.6 * moved[0];
+    std::printf(
+        "%s under %d | head's frames 1-4: skin %.3f %.3f %.3f %.3f mm | %s; control "
+        "points %.3f mm away\n",
+        r.converged ? "settled  " : "UNSETTLED", passes, moved[0], moved[1], moved[2], moved[3],
+        h.converged ? "settles  " : "UNSETTLED", cp_far);
+    if (!r.converged) continue;
+    ++settled;
+    alternating += alt;
+    head_settled += h.converged;
+    first.push_back(moved[0]);
+    ended.push_back(cp_far);
+  }
+  std::sort(first.begin(), first.end());
+  std::sort(ended.begin(), ended.end());
+  if (first.empty()) return 0;
+  std::printf(
+      "%d of %d settled under %d passes; from those, the head's first frame moves the "
+      "skin %.3f mm median, %.3f at most, and alternates in %d; the head's solver then "
+      "settles %d of them, its control points ending %.3f mm median and %.3f at most "
+      "from the %d-pass state\n",
+      settled, n, passes, first[first.size() / 2], first.back(), alternating, head_settled,
+      ended[ended.size() / 2], ended.back(), passes);
+  return 0;
+}
+
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "muscle" && argc > 4) return muscle_state(argv[2], argv[3], argv[4]);
   if (mode == "mirror" && argc > 2) return mirror_gaps(argv[2]);
+  if (mode == "fixed")
+    return passes_fixed_points(argc > 2 ? std::atoi(argv[2]) : 40,
+                               argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
+                               argc > 4 ? std::atoi(argv[4]) : 4);
   if (mode == "random")
     return random_study(argc > 2 ? std::atoi(argv[2]) : 100,
                         argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
@@ -769,6 +842,7 @@ int main(int argc, char** argv) {
                "       face_convergence_probe sensitivity [N] [seed] [eps]\n"
                "       face_convergence_probe dump OUT.csv [samples] [shard] [shards]\n"
                "       face_convergence_probe muscle HEADDIR EXPRESSION MUSCLE\n"
-               "       face_convergence_probe mirror HEADDIR\n");
+               "       face_convergence_probe mirror HEADDIR\n"
+               "       face_convergence_probe fixed [N] [seed] [passes]\n");
   return 2;
 }

@@ -137,7 +137,7 @@ TEST(SteadyState, MorePassesReachTheSameStatesInFewerFrames) {
 
 // Random inputs with every muscle active and the lids random: more of them settle with
 // four passes a frame (0 and 4 of these 10 with the thesis's sheet target;
-// face_convergence_probe random 40 1, lids open: 10 and 23 of 40).
+// face_convergence_probe random 40 1, lids open: 11 and 36 of 40).
 TEST(SteadyState, MorePassesSettleMoreRandomInputs) {
   if (facectl::testing::kSanitized)
     GTEST_SKIP() << "sanitizer build: 20 full-model runs of up to 2000 frames take minutes "
