@@ -135,9 +135,15 @@ void project_contacts(FaceData& d, Points& p) {
   for (int j = 0; j < d.hits; ++j) p.set(d.hit_particle[j], d.hit_target.get(j));
 }
 
-// The skin iterations. Each interior edge's stretch rides with its bending pair
-// (docs/FACE_MODEL.md, "Fused edge sweep").
+// The skin iterations (15), each ended by the influence weighting (16)–(17), the eyelid
+// drivers and the untangling. With one iteration, the head's default, this is the
+// thesis's frame. Ending each of several iterations the same way (SolverPasses) keeps
+// the head's steady states: run once after all of them, those steps settled dense mixes
+// 0.2–0.3 mm away from the head's (docs/FACE_MODEL.md, "Passes a frame for steady
+// states"). Each interior edge's stretch rides with its bending pair ("Fused edge sweep").
 void iterate_skin(const FaceModel& m, FaceData& d, Points& p, int iterations) {
+  const Points& x = d.skin_x;
+  const std::size_t ns = x.size();
   for (int it = 0; it < iterations; ++it) {
     project(m.skin_stretch, p, m.skin_w);  // border edges
     project_with_stretch(m.skin_bending, m.skin_pair_stretch, p, m.skin_w);
@@ -148,6 +154,17 @@ void iterate_skin(const FaceModel& m, FaceData& d, Points& p, int iterations) {
     project(m.lids, p, m.skin_w, d.lid_targets);
     project_contacts(d, p);
     apply_skin_pins(d.pins, p);
+    // A vertex moves by its influence's share of the way from where the frame found it;
+    // eyelid particles keep their drivers' motion.
+    for (std::size_t i = 0; i < ns; ++i) {
+      const double w = m.influence[i];
+      p.x[i] = x.x[i] + w * (p.x[i] - x.x[i]);
+      p.y[i] = x.y[i] + w * (p.y[i] - x.y[i]);
+      p.z[i] = x.z[i] + w * (p.z[i] - x.z[i]);
+    }
+    for (std::size_t j = 0; j < m.lids.size(); ++j) p.set(m.lids.particle[j], d.lid_targets.get(j));
+    untangle(m, d, p);
+    apply_skin_pins(d.pins, p);  // the weighting and untangling moved them off
   }
 }
 
@@ -196,22 +213,13 @@ void step_face(const FaceModel& m, FaceData& d, const FaceInput& in, SolverPasse
     p.y[i] = x.y[i] + keep * (x.y[i] - d.skin_prev.y[i]);
     p.z[i] = x.z[i] + keep * (x.z[i] - d.skin_prev.z[i]);
   }
-  // (14) teeth contacts, (15) skin iterations with the contacts included.
+  // (14) teeth contacts, (15)–(17) skin iterations with the contacts included, each
+  // weighted by the influence map.
   if (in.teeth_collision)
     detect_teeth(m, d, p);
   else
     d.hits = 0;
   iterate_skin(m, d, p, passes.skin > 0 ? passes.skin : m.spec.skin_iterations);
-  // (16)–(17) influence weights; eyelid particles keep their drivers' motion.
-  for (std::size_t i = 0; i < ns; ++i) {
-    const double w = m.influence[i];
-    p.x[i] = x.x[i] + w * (p.x[i] - x.x[i]);
-    p.y[i] = x.y[i] + w * (p.y[i] - x.y[i]);
-    p.z[i] = x.z[i] + w * (p.z[i] - x.z[i]);
-  }
-  for (std::size_t j = 0; j < m.lids.size(); ++j) p.set(m.lids.particle[j], d.lid_targets.get(j));
-  untangle(m, d, p);
-  apply_skin_pins(d.pins, p);  // the weighting and untangling moved them off
   // The weighting can move a contact back inside; re-detect so no vertex ends inside.
   if (in.teeth_collision) {
     detect_teeth(m, d, p);

@@ -108,8 +108,11 @@ TEST(SteadyState, MusclesAloneDoNotCycleEveryOtherFrame) {
 }
 
 // More passes a frame: the same settled states, in fewer frames. The slowest library
-// expressions under one pass; the difference left is what the tolerance allows a slow
-// mode to keep (face_convergence_probe passes 4 4: 0.24 mm at most over the library).
+// expressions under one pass, where four passes save least (12-13% of the frames); the
+// difference left is what the tolerance allows a slow mode to keep (face_convergence_probe
+// passes 4 4: 0.126 mm at most over the library). When the influence weighting and the
+// untangling ran once a frame rather than after every iteration it was 0.24 mm, and
+// dense mixes settled 0.2-0.3 mm apart (docs/FACE_MODEL.md).
 TEST(SteadyState, MorePassesReachTheSameStatesInFewerFrames) {
   const FaceModel& m = testing::default_model();
   FaceData d = make_face_data(m);
@@ -129,15 +132,15 @@ TEST(SteadyState, MorePassesReachTheSameStatesInFewerFrames) {
     const std::vector<double> y1 = full_model_response(m, d, cps, s, SteadyStateOptions{}, &r1);
     const std::vector<double> y4 = full_model_response(m, d, cps, s, many, &r4);
     ASSERT_TRUE(r1.converged && r4.converged) << name;
-    EXPECT_LT(r4.frames, r1.frames * 3 / 4) << name;
+    EXPECT_LT(r4.frames, r1.frames) << name;
     for (std::size_t k = 0; k < y1.size(); ++k)
-      EXPECT_NEAR(y4[k], y1[k], 0.3e-3) << name << ", coordinate " << k;
+      EXPECT_NEAR(y4[k], y1[k], 0.15e-3) << name << ", coordinate " << k;
   }
 }
 
 // Random inputs with every muscle active and the lids random: more of them settle with
 // four passes a frame (0 and 4 of these 10 with the thesis's sheet target;
-// face_convergence_probe random 40 1, lids open: 11 and 36 of 40).
+// face_convergence_probe random 40 1, lids open: 11 and 37 of 40).
 TEST(SteadyState, MorePassesSettleMoreRandomInputs) {
   if (facectl::testing::kSanitized)
     GTEST_SKIP() << "sanitizer build: 20 full-model runs of up to 2000 frames take minutes "

@@ -119,9 +119,10 @@ FaceModel build_face_model(const HeadSpec& spec, std::size_t skin_vertices = 0);
 FaceData make_face_data(const FaceModel& m);
 void reset_face_data(const FaceModel& m, FaceData& d);
 // Constraint passes a frame: the skin's (0: the head's solver.skin_iterations) and the
-// muscles'. Real-time runs keep the defaults. A steady-state solve may take more: a state
-// one frame leaves unchanged is unchanged by more passes too, so it reaches the same
-// settled state in fewer frames (docs/FACE_MODEL.md, "Passes a frame for steady states").
+// muscles'. Real-time runs keep the defaults. A steady-state solve may take more: every
+// skin iteration ends as the head's one-iteration frame does, so a state one frame leaves
+// unchanged is unchanged by more passes too, and more inputs reach the same settled
+// states, in fewer frames (docs/FACE_MODEL.md, "Passes a frame for steady states").
 struct SolverPasses {
   int skin = 0;
   int muscle = 1;

@@ -19,8 +19,8 @@ constexpr int kSteadyPasses = 4;
 struct ReduceOptions {
   int train_samples = 2000, test_samples = 200;
   // When a sample's full-model run counts as settled. Four skin and muscle passes a frame:
-  // more inputs settle, in fewer frames, to states within about 0.3 mm of the head
-  // solver's where both settle (docs/FACE_MODEL.md, "Passes a frame for steady states").
+  // the head solver's steady states, and more inputs settle, in fewer frames
+  // (docs/FACE_MODEL.md, "Passes a frame for steady states").
   SteadyStateOptions steady = {.passes = {.skin = kSteadyPasses, .muscle = kSteadyPasses}};
   double active_probability = 0.35, max_contraction = 0.7;
   bool random_eyelids = false;  // random_samples: each lid closed to U(0, 1), else open
