@@ -58,6 +58,19 @@ std::vector<int> control_landmarks(const FaceModel& m) {
   return m.landmark_indices(m.spec.control_points);
 }
 
+// The largest point-to-point distance of two point sets, in mm, and at which point.
+double largest(const Points& a, const Points& b, std::size_t& at) {
+  double w = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (const double e = (a.get(i) - b.get(i)).norm(); e > w) w = e, at = i;
+  return 1e3 * w;
+}
+
+double largest(const Points& a, const Points& b) {
+  std::size_t at = 0;
+  return largest(a, b, at);
+}
+
 std::vector<Vec3> displacements(const FaceModel& m, const FaceData& d,
                                 const std::vector<int>& cps) {
   std::vector<Vec3> out;
@@ -545,12 +558,6 @@ int trace(const std::string& what, int frames, int stride, bool teeth) {
   }
   in.teeth_collision = teeth;
   FaceData d = make_face_data(m);
-  auto largest = [](const Points& a, const Points& b, std::size_t& at) {
-    double w = 0;
-    for (std::size_t i = 0; i < a.size(); ++i)
-      if (const double e = (a.get(i) - b.get(i)).norm(); e > w) w = e, at = i;
-    return 1e3 * w;
-  };
   Points skin = d.skin_x, mus = d.muscles;
   for (int f = 1; f <= frames; ++f) {
     step_face(m, d, in);
@@ -753,11 +760,6 @@ int passes_fixed_points(int n, unsigned seed, int passes, double tolerance_mm) {
     o.tolerance_mm = head.tolerance_mm = tolerance_mm;
     o.max_frames = head.max_frames = 8000;
   }
-  auto largest = [](const Points& a, const Points& b) {
-    double w = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) w = std::max(w, 1e3 * (a.get(i) - b.get(i)).norm());
-    return w;
-  };
   std::vector<double> first, ended;  // without a cycle; and of those, where the head settled
   int settled = 0, cycles = 0;
   for (const ReducedSample& s : random_samples(spec, ro, n, seed)) {
