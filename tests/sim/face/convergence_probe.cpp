@@ -30,7 +30,7 @@
 //     Each muscle's rest particles against its mirror partner's reflected in x = 0.
 //   face_convergence_probe fixed [N] [seed] [passes] [tolerance_mm]
 //     Whether `passes`-pass steady states of dense inputs are the head solver's: how far its
-//     frames take them, and where it settles.
+//     frames take them, and where it settles; where they alternate, which vertex and anchor.
 // Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
 // FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
 // FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
@@ -66,9 +66,17 @@ double largest(const Points& a, const Points& b, std::size_t& at) {
   return 1e3 * w;
 }
 
-double largest(const Points& a, const Points& b) {
-  std::size_t at = 0;
-  return largest(a, b, at);
+// What skin vertex v's anchor rests on: a muscle's name, "jaw" or "skull".
+std::string anchor_support_name(const FaceModel& m, int v) {
+  const auto on = [v](const std::vector<int>& list) {
+    return std::find(list.begin(), list.end(), v) != list.end();
+  };
+  if (on(m.anchors_on_jaw)) return "jaw";
+  if (!on(m.anchors_on_muscles)) return "skull";
+  const int p = m.anchor_support[static_cast<std::size_t>(v)].i0;
+  for (const Muscle& mu : m.muscles)
+    if (p >= mu.first && p < mu.first + mu.particle_count()) return mu.name;
+  return "?";
 }
 
 std::vector<Vec3> displacements(const FaceModel& m, const FaceData& d,
@@ -745,7 +753,9 @@ int mirror_gaps(const char* dir) {
 // frames (a state on a period-2 cycle of the head's frame reads far, near, far, near), then, after
 // up to 2000 more frames of it, whether it settled and its farthest control point's distance from
 // the `passes` state. A tolerance (mm over 20 frames) tightens both criteria and allows 8000
-// frames. Per input, then a summary over the inputs settled under `passes`.
+// frames. Per input, then a summary over the inputs settled under `passes`. For an input that
+// alternates, also the vertex the head's first frame moves most, what its anchor rests on and
+// how far it is from its anchor's target, and the largest such distance over the skin.
 int passes_fixed_points(int n, unsigned seed, int passes, double tolerance_mm) {
   const HeadSpec spec = study_head_for(0);
   const FaceModel m = study_model(0);
@@ -770,10 +780,17 @@ int passes_fixed_points(int n, unsigned seed, int passes, double tolerance_mm) {
     const SteadyStateResult r = run_to_steady_state(m, d, in, o);
     const Points skin0 = d.skin_x;
     const std::vector<Vec3> cp0 = displacements(m, d, cps);
+    // How far each vertex is from its anchor's target in the `passes` state.
+    std::size_t gap_at = 0;
+    const double gap = largest(d.anchor_targets, skin0, gap_at);
+    const Points targets0 = d.anchor_targets;
     double away[4];
-    for (double& a : away) {
+    std::size_t mover = 0;  // the vertex the head's first frame moves most
+    for (int f = 0; f < 4; ++f) {
       step_face(m, d, in);
-      a = largest(d.skin_x, skin0);
+      std::size_t at = 0;
+      away[f] = largest(d.skin_x, skin0, at);
+      if (f == 0) mover = at;
     }
     const SteadyStateResult h = run_to_steady_state(m, d, in, head);
     const std::vector<Vec3> cp1 = displacements(m, d, cps);
@@ -787,6 +804,14 @@ int passes_fixed_points(int n, unsigned seed, int passes, double tolerance_mm) {
         "head %s; farthest control point %.3f mm away\n",
         r.converged ? "settled  " : "UNSETTLED", passes, away[0], away[1], away[2], away[3],
         cycle ? " (alternating)" : "", h.converged ? "settles  " : "UNSETTLED", cp_far);
+    const Vec3 at = 1e3 * m.skin.v.get(mover);
+    if (cycle)
+      std::printf(
+          "    moves most: vertex %zu (rest %.0f %.0f %.0f mm, on %s), %.2f mm from its anchor "
+          "target; largest anchor gap %.2f mm at vertex %zu (on %s)\n",
+          mover, at.x(), at.y(), at.z(), anchor_support_name(m, static_cast<int>(mover)).c_str(),
+          1e3 * (targets0.get(mover) - skin0.get(mover)).norm(), gap, gap_at,
+          anchor_support_name(m, static_cast<int>(gap_at)).c_str());
     if (!r.converged) continue;
     ++settled;
     if (cycle) {
