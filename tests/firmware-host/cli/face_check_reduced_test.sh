@@ -7,8 +7,8 @@ facectl=$1 src=$2 rms=$3 p99=$4 samples=$5 frames=$6
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# A regression bound on the shipped model (its measured errors are in docs/FACE_MODEL.md),
-# on few inputs with capped frames so that the sanitizer trees can afford it.
+# A regression bound on the shipped model (its measured errors are in docs/FACE_MODEL.md):
+# few inputs, and in the sanitizer trees few frames (tests/CMakeLists.txt sets both).
 "$facectl" face check-reduced --samples "$samples" --frames "$frames" --json "$tmp/errors.json" --rms-mm "$rms" \
   --p99-mm "$p99" > "$tmp/table.txt"
 python3 - "$tmp/errors.json" <<'PY'

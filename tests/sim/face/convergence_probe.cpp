@@ -58,7 +58,8 @@ std::vector<int> control_landmarks(const FaceModel& m) {
   return m.landmark_indices(m.spec.control_points);
 }
 
-// The largest point-to-point distance of two point sets, in mm, and at which point.
+// The largest distance between points of the same index in two equal-sized sets, in mm,
+// and at which index.
 double largest(const Points& a, const Points& b, std::size_t& at) {
   double w = 0;
   for (std::size_t i = 0; i < a.size(); ++i)
@@ -66,16 +67,12 @@ double largest(const Points& a, const Points& b, std::size_t& at) {
   return 1e3 * w;
 }
 
-// What skin vertex v's anchor rests on: a muscle's name, "jaw" or "skull".
-std::string anchor_support_name(const FaceModel& m, int v) {
-  const auto on = [v](const std::vector<int>& list) {
-    return std::find(list.begin(), list.end(), v) != list.end();
-  };
-  if (on(m.anchors_on_jaw)) return "jaw";
-  if (!on(m.anchors_on_muscles)) return "skull";
-  const int p = m.anchor_support[static_cast<std::size_t>(v)].i0;
+// What skin vertex v's anchor rests on: a muscle's name, or "skull" (the jaw included).
+std::string anchor_support_name(const FaceModel& m, std::size_t v) {
+  const SurfacePoint& sp = m.anchor_support[v];
+  if (sp.layer == Layer::kSkull) return "skull";
   for (const Muscle& mu : m.muscles)
-    if (p >= mu.first && p < mu.first + mu.particle_count()) return mu.name;
+    if (sp.i0 >= mu.first && sp.i0 < mu.first + mu.particle_count()) return mu.name;
   return "?";
 }
 
@@ -781,9 +778,9 @@ int passes_fixed_points(int n, unsigned seed, int passes, double tolerance_mm) {
     const Points skin0 = d.skin_x;
     const std::vector<Vec3> cp0 = displacements(m, d, cps);
     // How far each vertex is from its anchor's target in the `passes` state.
-    std::size_t gap_at = 0;
-    const double gap = largest(d.anchor_targets, skin0, gap_at);
-    const Points targets0 = d.anchor_targets;
+    std::vector<double> gaps(skin0.size());
+    for (std::size_t i = 0; i < gaps.size(); ++i)
+      gaps[i] = 1e3 * (d.anchor_targets.get(i) - skin0.get(i)).norm();
     double away[4];
     std::size_t mover = 0;  // the vertex the head's first frame moves most
     for (int f = 0; f < 4; ++f) {
@@ -804,14 +801,16 @@ int passes_fixed_points(int n, unsigned seed, int passes, double tolerance_mm) {
         "head %s; farthest control point %.3f mm away\n",
         r.converged ? "settled  " : "UNSETTLED", passes, away[0], away[1], away[2], away[3],
         cycle ? " (alternating)" : "", h.converged ? "settles  " : "UNSETTLED", cp_far);
-    const Vec3 at = 1e3 * m.skin.v.get(mover);
-    if (cycle)
+    if (cycle) {
+      const Vec3 rest_mm = 1e3 * m.skin.v.get(mover);
+      const std::size_t widest =
+          static_cast<std::size_t>(std::max_element(gaps.begin(), gaps.end()) - gaps.begin());
       std::printf(
           "    moves most: vertex %zu (rest %.0f %.0f %.0f mm, on %s), %.2f mm from its anchor "
           "target; largest anchor gap %.2f mm at vertex %zu (on %s)\n",
-          mover, at.x(), at.y(), at.z(), anchor_support_name(m, static_cast<int>(mover)).c_str(),
-          1e3 * (targets0.get(mover) - skin0.get(mover)).norm(), gap, gap_at,
-          anchor_support_name(m, static_cast<int>(gap_at)).c_str());
+          mover, rest_mm.x(), rest_mm.y(), rest_mm.z(), anchor_support_name(m, mover).c_str(),
+          gaps[mover], gaps[widest], widest, anchor_support_name(m, widest).c_str());
+    }
     if (!r.converged) continue;
     ++settled;
     if (cycle) {
