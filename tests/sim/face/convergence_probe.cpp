@@ -251,15 +251,12 @@ int random_study(int n, unsigned seed, std::size_t vertices) {
     double muscle_motion = 0, one_frame = 0;
     if (!r.converged) {
       const Points before = d.skin_x, mus = d.muscles;
+      std::size_t at = 0;
       step_face(m, d, in, o.passes);
-      for (std::size_t i = 0; i < before.size(); ++i)
-        one_frame = std::max(one_frame, 1e3 * (d.skin_x.get(i) - before.get(i)).norm());
+      one_frame = largest(d.skin_x, before, at);
       step_face(m, d, in, o.passes);
-      for (std::size_t i = 0; i < mus.size(); ++i)
-        muscle_motion = std::max(muscle_motion, 1e3 * (d.muscles.get(i) - mus.get(i)).norm());
-      double w = 0;
-      for (std::size_t i = 0; i < before.size(); ++i)
-        if (const double e = (d.skin_x.get(i) - before.get(i)).norm(); e > w) w = e, moving = i;
+      muscle_motion = largest(d.muscles, mus, at);
+      largest(d.skin_x, before, moving);
       muscles_moving += freeze == 0 && muscle_motion > 0.01;
     }
     frames.push_back(r.converged ? r.frames : o.max_frames + 1.0);
