@@ -170,5 +170,8 @@ if [ "$result" = "FACECTL-QEMU-RESULT: tests=0 candump=PASS" ]; then
   echo "PASS: SocketCAN tests on vcan0, the hidraw gamepad test on uhid, the ALSA sequencer MIDI test, the loopback audio test, the PCA9685 test on i2c-stub and the GPIO safety I/O tests on gpio-sim in a QEMU guest; candump saw the driver's frames"
   exit 0
 fi
+# The filter above shows progress only; a failing assertion's message and
+# the test's own figures are in the full log, so show them here.
+grep -a -B3 -A8 ": Failure" "$work/console.log" | tr -d '\r' || true
 echo "FAIL: ${result:-the guest did not report a result}"
 exit 1
