@@ -15,7 +15,9 @@
 #         source, the monitor, the HTTP workers and the OSC receiver
 #         (facectl_serve_tests), and the input layer's threads: the Live Link
 #         Face receiver, the mixer and its sources (facectl_input_tests; not
-#         its FACS geometry, which runs the face model on one thread).
+#         its FACS geometry, which runs the face model on one thread), and
+#         the face model's runs spread over threads for `face reduce` and
+#         `check-reduced` (face_thread_tests).
 #
 # Usage: scripts/sanitize.sh [asan|tsan|all]   (default all)
 # Build directories: build-asan and build-tsan (BUILD_ASAN, BUILD_TSAN).
@@ -91,7 +93,7 @@ run_asan() {
 # The serve and the process tests, which run the loop in `facectl`, start in
 # different lanes, as ctest -j2 runs them in the ASan suite.
 tsan_lanes=("facectl_serve_tests facectl_driver_tests facectl_fap_tests facectl_host_tests"
-            "facectl_process_tests facectl_input_tests facectl_control_tests")
+            "facectl_process_tests facectl_input_tests facectl_control_tests face_thread_tests")
 # The FACS geometry runs the full face model 30 times on one thread: minutes
 # under TSan and nothing a race could hide in.
 declare -A tsan_filter=([facectl_input_tests]='-ActionUnitGeometry.*')

@@ -36,6 +36,14 @@ bool print_set_errors(const std::vector<SetError>& errors, double rms_mm, double
   return ok;
 }
 
+// The full-model runs' threads; the results do not depend on it.
+void threads_option(CLI::App* app, int& threads) {
+  app->add_option("--threads", threads,
+                  "threads for the full-model runs (0: one per core; the results are the same)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+}
+
 }  // namespace
 
 void add_reduce_commands(CLI::App* face) {
@@ -51,6 +59,7 @@ void add_reduce_commands(CLI::App* face) {
   reduce->add_option("--samples", ro.train_samples, "training inputs")->capture_default_str();
   reduce->add_option("--test-samples", ro.test_samples, "held-out inputs")->capture_default_str();
   reduce->add_option("--seed", ro.seed)->capture_default_str();
+  threads_option(reduce, ro.threads);
   reduce->add_option("--check-rms-mm", max_rms_mm, "exit 1 if the held-out RMS error exceeds this");
   reduce
       ->add_option("--tolerance-mm", ro.steady.tolerance_mm,
@@ -87,8 +96,9 @@ void add_reduce_commands(CLI::App* face) {
           r.test_max_mm, r.unsettled_runs, r.worst_residual_mm, secs);
       // The same named sets as check-reduced, with its defaults.
       const ExpressionLibrary lib = load_expression_library(args.library, spec);
-      print_set_errors(reduced_errors(m, red, reduced_test_sets(spec, lib, 200, 1), ro.steady), 0.5,
-                       2.0);
+      print_set_errors(reduced_errors(m, red, reduced_test_sets(spec, lib, 200, 1), ro.steady,
+                                      false, ro.threads),
+                       0.5, 2.0);
       if (max_rms_mm > 0 && r.test_rms_mm > max_rms_mm) {
         std::fprintf(stderr, "facectl face reduce: held-out RMS %.3f mm exceeds %.3f mm\n",
                      r.test_rms_mm, max_rms_mm);
@@ -109,6 +119,8 @@ void add_reduce_commands(CLI::App* face) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   check->add_option("--seed", check_seed)->capture_default_str();
+  static int check_threads = 0;
+  threads_option(check, check_threads);
   check->add_option("--json", check_json, "also write the errors as JSON, keyed by set name");
   check->add_option("--rms-mm", target_rms_mm, "exit 1 if a set's RMS error exceeds this")
       ->capture_default_str();
@@ -131,8 +143,9 @@ void add_reduce_commands(CLI::App* face) {
       SteadyStateOptions steady;
       steady.passes = check_passes;
       if (check->count("--frames") > 0) steady.max_frames = args.frames;
-      const auto errors = reduced_errors(
-          m, red, reduced_test_sets(spec, lib, check_samples, check_seed), steady, settled_only);
+      const auto errors =
+          reduced_errors(m, red, reduced_test_sets(spec, lib, check_samples, check_seed), steady,
+                         settled_only, check_threads);
       const bool ok = print_set_errors(errors, target_rms_mm, target_p99_mm);
       if (!check_json.empty()) write_text_file(check_json, set_errors_json(errors));
       if (!ok) {

@@ -16,6 +16,7 @@
 #include "control/envelope/mandible_envelope.hpp"
 #include "control/units.hpp"
 #include "facectl/face/file_digest.hpp"
+#include "facectl/face/full_model_runs.hpp"
 #include "facectl/face/input_error.hpp"
 
 namespace facectl::face {
@@ -190,14 +191,20 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   r.fitted_to = head_file_digests(full.spec);
   const std::vector<int> cps = full.landmark_indices(r.control_points);
   const int M = static_cast<int>(r.muscles.size()), P = static_cast<int>(cps.size());
-  FaceData d = make_face_data(full);
   ReduceReport counts;
-  auto response = [&](const ReducedSample& s) {
-    SteadyStateResult settled;
-    std::vector<double> y = full_model_response(full, d, cps, s, o.steady, &settled);
-    counts.unsettled_runs += settled.converged ? 0 : 1;
-    counts.worst_residual_mm = std::max(counts.worst_residual_mm, settled.residual_mm);
-    return y;
+  // Every full-model run goes through here, a batch at a time, on o.threads threads.
+  auto responses = [&](const std::vector<ReducedSample>& set) {
+    FullModelRuns runs = run_full_model(full, cps, set, o.steady, o.threads);
+    for (const SteadyStateResult& settled : runs.settled) {
+      counts.unsettled_runs += settled.converged ? 0 : 1;
+      counts.worst_residual_mm = std::max(counts.worst_residual_mm, settled.residual_mm);
+    }
+    return std::move(runs.responses);
+  };
+  auto at_rest = [M] {
+    ReducedSample s;
+    s.contractions.assign(static_cast<std::size_t>(M), 0.0);
+    return s;
   };
 
   // Which muscles and lids move which control point: one full-model run per muscle alone
@@ -209,43 +216,48 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
   // times as long (measured before its Taylor form; docs/VERIFY.md).
   constexpr double kLidPointMm = 3;
   std::vector<std::vector<int>> lid_points(movers.size());
-  auto probe = [&](const ReducedSample& s, int variable, std::vector<std::vector<int>>& into) {
-    const std::vector<double> y = response(s);
-    for (int p = 0; p < P; ++p) {
-      const double mm = Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3;
-      if (mm > o.relevance_mm) into[static_cast<std::size_t>(p)].push_back(variable);
-      if (&into == &lids && mm > kLidPointMm)
-        lid_points[static_cast<std::size_t>(p)].push_back(variable);
-    }
-  };
+  std::vector<ReducedSample> probes;
   for (int i = 0; i < M; ++i) {
-    ReducedSample s;
-    s.contractions.assign(static_cast<std::size_t>(M), 0.0);
-    s.contractions[static_cast<std::size_t>(i)] = 1.0;
-    probe(s, i, movers);
+    probes.push_back(at_rest());
+    probes.back().contractions[static_cast<std::size_t>(i)] = 1.0;
   }
   for (int side = 0; side < 2; ++side) {
-    ReducedSample s;
-    s.contractions.assign(static_cast<std::size_t>(M), 0.0);
-    s.eyelid_closure[side] = 1.0;
-    probe(s, lid_variable(static_cast<std::size_t>(M), side), lids);
+    probes.push_back(at_rest());
+    probes.back().eyelid_closure[side] = 1.0;
   }
+  // The jaw at each corner of its envelope (below).
+  for (int corner = 0; corner < 8; ++corner) {
+    probes.push_back(at_rest());
+    ReducedSample& s = probes.back();
+    s.jaw.pitch_rad = ((corner & 1) ? kJawPitchMaxDeg : kJawPitchMinDeg) * kDeg;
+    s.jaw.yaw_rad = ((corner & 2) ? kJawYawMaxDeg : -kJawYawMaxDeg) * kDeg;
+    s.jaw.protrusion_m = (corner & 4) ? kJawProtrusionMaxMm * 1e-3 : 0.0;
+  }
+  const std::vector<std::vector<double>> probed = responses(probes);
+  auto moved_mm = [&](std::size_t run, int p) {
+    const std::vector<double>& y = probed[run];
+    return Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3;
+  };
+  for (int i = 0; i < M; ++i)
+    for (int p = 0; p < P; ++p)
+      if (moved_mm(static_cast<std::size_t>(i), p) > o.relevance_mm)
+        movers[static_cast<std::size_t>(p)].push_back(i);
+  for (int side = 0; side < 2; ++side)
+    for (int p = 0; p < P; ++p) {
+      const double mm = moved_mm(static_cast<std::size_t>(M + side), p);
+      const int lid = lid_variable(static_cast<std::size_t>(M), side);
+      if (mm > o.relevance_mm) lids[static_cast<std::size_t>(p)].push_back(lid);
+      if (mm > kLidPointMm) lid_points[static_cast<std::size_t>(p)].push_back(lid);
+    }
   // Points the jaw moves by more than kJawPointMm at a corner of its envelope get its
   // couplings with the muscles (point_features). 0.4-0.5 mm at the brows, 2.5 mm and more
   // at the lips, nose and cheeks, 0 at the lids.
   constexpr double kJawPointMm = 1;
   std::vector<bool> jaw_point(movers.size(), false);
-  for (int corner = 0; corner < 8; ++corner) {
-    ReducedSample s;
-    s.contractions.assign(static_cast<std::size_t>(M), 0.0);
-    s.jaw.pitch_rad = ((corner & 1) ? kJawPitchMaxDeg : kJawPitchMinDeg) * kDeg;
-    s.jaw.yaw_rad = ((corner & 2) ? kJawYawMaxDeg : -kJawYawMaxDeg) * kDeg;
-    s.jaw.protrusion_m = (corner & 4) ? kJawProtrusionMaxMm * 1e-3 : 0.0;
-    const std::vector<double> y = response(s);
+  for (int corner = 0; corner < 8; ++corner)
     for (int p = 0; p < P; ++p)
-      if (Vec3(y[3 * p], y[3 * p + 1], y[3 * p + 2]).norm() * 1e3 > kJawPointMm)
+      if (moved_mm(static_cast<std::size_t>(M + 2 + corner), p) > kJawPointMm)
         jaw_point[static_cast<std::size_t>(p)] = true;
-  }
   // Each point's columns in the model's shared, deduplicated feature list.
   std::map<Triple, int> index;
   std::vector<std::vector<int>> cols(static_cast<std::size_t>(P));
@@ -264,12 +276,12 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
     X.resize(static_cast<Eigen::Index>(set.size()), F);
     Y.resize(static_cast<Eigen::Index>(set.size()), 3 * P);
     Eigen::VectorXd v(constant_variable(static_cast<std::size_t>(M)) + 1), f(F);
+    const std::vector<std::vector<double>> ys = responses(set);
     for (std::size_t k = 0; k < set.size(); ++k) {
       fill_feature_variables(reduced_input(set[k]), std::span<double>(v.data(), v.size()));
       fill_features(std::span<const double>(v.data(), v.size()), r.features, f);
       X.row(static_cast<Eigen::Index>(k)) = f.transpose();
-      const std::vector<double> y = response(set[k]);
-      for (int j = 0; j < 3 * P; ++j) Y(static_cast<Eigen::Index>(k), j) = y[j];
+      for (int j = 0; j < 3 * P; ++j) Y(static_cast<Eigen::Index>(k), j) = ys[k][j];
     }
   };
   Eigen::MatrixXd Xtr, Ytr, Xte, Yte;

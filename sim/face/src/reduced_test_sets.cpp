@@ -7,6 +7,7 @@
 
 #include "control/envelope/mandible_envelope.hpp"
 #include "control/units.hpp"
+#include "facectl/face/full_model_runs.hpp"
 
 namespace facectl::face {
 
@@ -78,9 +79,9 @@ std::vector<NamedSampleSet> reduced_test_sets(const HeadSpec& head,
 
 std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceModel& reduced,
                                      const std::vector<NamedSampleSet>& sets,
-                                     const SteadyStateOptions& steady, bool settled_only) {
+                                     const SteadyStateOptions& steady, bool settled_only,
+                                     int threads) {
   const std::vector<int> cps = full.landmark_indices(reduced.control_points);
-  FaceData d = make_face_data(full);
   ReducedFaceWorkspace w = make_reduced_workspace(reduced);
   std::vector<double> predicted(3 * cps.size());
   std::vector<SetError> out;
@@ -90,14 +91,13 @@ std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceMod
     e.samples = static_cast<int>(set.samples.size());
     std::vector<double> errors;
     double sum = 0;
+    const FullModelRuns runs = run_full_model(full, cps, set.samples, steady, threads);
     for (std::size_t k = 0; k < set.samples.size(); ++k) {
-      const ReducedSample& s = set.samples[k];
-      SteadyStateResult settled;
-      const std::vector<double> truth = full_model_response(full, d, cps, s, steady, &settled);
-      e.unsettled += settled.converged ? 0 : 1;
-      if (settled_only && !settled.converged) continue;
+      const std::vector<double>& truth = runs.responses[k];
+      e.unsettled += runs.settled[k].converged ? 0 : 1;
+      if (settled_only && !runs.settled[k].converged) continue;
       ++e.measured;
-      evaluate(reduced, w, reduced_input(s), predicted);
+      evaluate(reduced, w, reduced_input(set.samples[k]), predicted);
       for (std::size_t p = 0; p < cps.size(); ++p) {
         const double dx = predicted[3 * p] - truth[3 * p];
         const double dy = predicted[3 * p + 1] - truth[3 * p + 1];

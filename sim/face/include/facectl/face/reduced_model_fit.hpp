@@ -30,6 +30,9 @@ struct ReduceOptions {
   // one-signal responses are what a rig's directions and calibration are checked on.
   double sweep_weight = 10;
   double relevance_mm = 0.3;  // a muscle moves a point if c = 1 alone moves it this much
+  // Threads for the full-model runs (run_full_model; <= 0: one per core). The model does
+  // not depend on it.
+  int threads = 0;
 };
 
 struct ReduceReport {

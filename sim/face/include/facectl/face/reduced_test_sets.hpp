@@ -40,10 +40,12 @@ struct SetError {
 // The reduced model against the full model's steady state on each set; each set
 // reports how many full-model runs did not settle. With `settled_only` the errors leave
 // those runs out: what the model's form misses where the truth is a steady state, apart
-// from the snapshots of a still-moving skin.
+// from the snapshots of a still-moving skin. The full-model runs go on `threads` threads
+// (run_full_model; <= 0: one per core); the errors do not depend on it.
 std::vector<SetError> reduced_errors(const FaceModel& full, const ReducedFaceModel& reduced,
                                      const std::vector<NamedSampleSet>& sets,
-                                     const SteadyStateOptions& steady, bool settled_only = false);
+                                     const SteadyStateOptions& steady, bool settled_only = false,
+                                     int threads = 0);
 
 // The sets' errors as a JSON object keyed by set name.
 std::string set_errors_json(const std::vector<SetError>& errors);
