@@ -1,0 +1,104 @@
+// `facectl face fit-head` on a real head mesh that nobody here made: the head of Debian's
+// libcgal-demo (tests/data/heads/cgal_head, CC0). A whole head, facing -x. The fit aligns
+// bounding boxes without turning the mesh, so such a head was fitted "converged" with the
+// default face's chin on its neck, or its face on a cheek. It is now refused, saying what
+// to do, and it fits once turned and cut to the face.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <utility>
+
+#include "default_head.hpp"
+#include "facectl/face/head_fit.hpp"
+#include "facectl/face/input_error.hpp"
+#include "facectl/face/obj_io.hpp"
+
+namespace facectl::face {
+namespace {
+
+using testing::default_spec;
+
+// Read as centimetres: its unit is not recorded, and the fit is scale-free.
+TriMesh cgal_head() {
+  return read_obj(FACECTL_CONFIG_DIR "/../tests/data/heads/cgal_head/head.obj", 0.01);
+}
+
+// A quarter turn about y: its face, looking along -x, then looks along +z.
+TriMesh turned_to_face_z(TriMesh m) {
+  for (std::size_t i = 0; i < m.v.size(); ++i) {
+    const Vec3 p = m.v.get(i);
+    m.v.set(i, Vec3(p.z(), p.y(), -p.x()));
+  }
+  return m;
+}
+
+// What a user would cut in a mesh editor: the front of the head from the forehead to
+// below the chin (y 5.5 to 16.5 and z over 1.2 in the file's unit, the nose tip at y 11.1,
+// z 7.3), without the neck and the back of the head.
+TriMesh cut_to_face(const TriMesh& m) {
+  TriMesh out;
+  out.v = m.v;  // vertices no triangle uses are left out of the fit
+  auto inside = [&](int i) { return m.v.y[i] >= 0.055 && m.v.y[i] <= 0.165 && m.v.z[i] > 0.012; };
+  for (const Tri& t : m.tris)
+    if (inside(t[0]) && inside(t[1]) && inside(t[2])) out.tris.push_back(t);
+  return out;
+}
+
+std::string refusal(const TriMesh& m) {
+  try {
+    check_head_mesh(m, "head.obj");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(HeadFitOnARealMesh, AsShippedItLooksAlongXAndIsRefused) {
+  const std::string why = refusal(cgal_head());
+  EXPECT_NE(why.find("head.obj: not mirror-symmetric about the plane x ="), std::string::npos)
+      << why;
+  EXPECT_NE(why.find("is it facing along x?"), std::string::npos) << why;
+}
+
+TEST(HeadFitOnARealMesh, TurnedItIsAWholeHeadAndIsRefused) {
+  const std::string why = refusal(turned_to_face_z(cgal_head()));
+  EXPECT_NE(why.find("head.obj: 91.3 mm wide (x) and 140.0 mm deep (z): a whole head, not a "
+                     "face"),
+            std::string::npos)
+      << why;
+}
+
+TEST(HeadFitOnARealMesh, CutToTheFaceItFits) {
+  const TriMesh face = cut_to_face(turned_to_face_z(cgal_head()));
+  ASSERT_EQ(refusal(face), "");
+  const TriMesh source = read_obj(default_spec().skin_file, default_spec().skin_scale);
+  const HeadFit fit = fit_head(default_spec(), source, face, HeadFitOptions{});
+  for (const std::string& p : fit.problems) ADD_FAILURE() << p;
+  EXPECT_TRUE(fit.converged);
+  // Its eye holes are found as the eye openings.
+  int own_holes = 0;
+  for (const std::string& n : fit.opening_notes)
+    own_holes += n.find("the mesh's own hole") != std::string::npos ? 1 : 0;
+  EXPECT_EQ(own_holes, 2);
+  std::map<std::string, Vec3> at;
+  for (const PlacedLandmark& l : fit.landmarks) at[l.name] = l.fitted;
+  // The nose tip is the frontmost point of this face.
+  int front = 0;
+  for (int i = 0; i < static_cast<int>(face.v.size()); ++i)
+    if (face.v.z[i] > face.v.z[front]) front = i;
+  const Vec3 nose = face.v.get(front);
+  EXPECT_LT((at.at("fdp_9_3") - nose).norm(), 0.003);
+  // The mouth corners and the outer eye corners sit either side of the nose, level with
+  // each other, and in the right order down the face.
+  for (const auto& [l, r] : {std::pair{"fdp_8_3", "fdp_8_4"}, {"fdp_3_7", "fdp_3_8"}}) {
+    EXPECT_NEAR(at.at(l).x() - nose.x(), nose.x() - at.at(r).x(), 0.003) << l;
+    EXPECT_NEAR(at.at(l).y(), at.at(r).y(), 0.003) << l;
+  }
+  EXPECT_GT(at.at("fdp_3_7").y(), nose.y());
+  EXPECT_LT(at.at("fdp_8_3").y(), nose.y());
+  EXPECT_LT(at.at("fdp_2_1").y(), at.at("fdp_8_3").y());
+}
+
+}  // namespace
+}  // namespace facectl::face
