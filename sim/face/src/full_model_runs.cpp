@@ -41,7 +41,13 @@ FullModelRuns run_full_model(const FaceModel& m, const std::vector<int>& control
   };
   const int n = std::min(worker_threads(threads), static_cast<int>(samples.size()));
   std::vector<std::thread> pool;
-  for (int t = 1; t < n; ++t) pool.emplace_back(work);
+  try {
+    for (int t = 1; t < n; ++t) pool.emplace_back(work);
+  } catch (...) {  // no more threads: stop the ones started before rethrowing
+    failed.store(true);
+    for (std::thread& t : pool) t.join();
+    throw;
+  }
   work();  // this thread is one of the n
   for (std::thread& t : pool) t.join();
   if (error) std::rethrow_exception(error);

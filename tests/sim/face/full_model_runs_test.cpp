@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
-#include <thread>
 
 #include "default_head.hpp"
 
@@ -49,7 +48,8 @@ TEST(FullModelRuns, AnyThreadCountGivesTheOneThreadRunsBitForBit) {
   ASSERT_GT(settled, 0);
   ASSERT_LT(settled, static_cast<int>(samples.size())) << "every run settled: make them longer";
 
-  for (int threads : {1, 2, 3}) {
+  // Not more than two: CI's TSan step runs this beside the serve tests' 1 kHz loops.
+  for (int threads : {1, 2}) {
     const FullModelRuns runs = run_full_model(m, cps, samples, steady, threads);
     ASSERT_EQ(runs.responses.size(), samples.size());
     for (std::size_t k = 0; k < samples.size(); ++k) {
@@ -64,8 +64,8 @@ TEST(FullModelRuns, AnyThreadCountGivesTheOneThreadRunsBitForBit) {
 TEST(FullModelRuns, ARunsErrorReachesTheCaller) {
   const FaceModel& m = default_model();
   SteadyStateOptions bad = short_runs();
-  bad.window = 0;  // run_to_steady_state refuses it in every run, on every thread
-  EXPECT_THROW(run_full_model(m, {}, mixed_inputs(), bad, 3), std::invalid_argument);
+  bad.window = 0;  // run_to_steady_state refuses it in every run, on both threads
+  EXPECT_THROW(run_full_model(m, {}, mixed_inputs(), bad, 2), std::invalid_argument);
 }
 
 TEST(FullModelRuns, NoSamplesNoRuns) {
@@ -74,9 +74,9 @@ TEST(FullModelRuns, NoSamplesNoRuns) {
   EXPECT_TRUE(runs.settled.empty());
 }
 
-TEST(FullModelRuns, ZeroThreadsMeansOnePerCore) {
+TEST(FullModelRuns, AThreadCountIsKeptAndNoneMeansAtLeastOne) {
   EXPECT_EQ(worker_threads(3), 3);
-  EXPECT_EQ(worker_threads(0), std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
+  EXPECT_GE(worker_threads(0), 1);
   EXPECT_EQ(worker_threads(-1), worker_threads(0));
 }
 
