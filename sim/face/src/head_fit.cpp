@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -268,13 +269,14 @@ void check_face_region(const TriMesh& m, const std::vector<char>& referenced,
                      "% of its width from the surface, at best; a face looking along +z "
                      "lands within 4%): expected a face looking along +z with y up; is it "
                      "looking along x?");
-  // The fit does not turn the mesh, and a face turned by 10 degrees fits worse.
-  if (std::abs(turn) > 5)
-    throw InputError(what + ": the face is turned " +
-                     std::to_string(static_cast<int>(std::abs(turn))) + "." +
-                     std::to_string(static_cast<int>(std::lround(std::abs(turn) * 10)) % 10) +
-                     " degrees about y (its nose toward " + (turn > 0 ? "+x" : "-x") +
+  // The fit does not turn the mesh: a turned face is fitted turned.
+  if (std::abs(turn) > 5) {
+    char degrees[16];
+    std::snprintf(degrees, sizeof degrees, "%.1f", std::abs(turn));
+    throw InputError(what + ": the face is turned " + degrees + " degrees about y (its nose " +
+                     "toward " + (turn > 0 ? "+x" : "-x") +
                      "): turn it to look along +z (up to 5 degrees is accepted)");
+  }
 }
 
 }  // namespace
