@@ -34,6 +34,13 @@ Box box_of(const Points& v) {
   return b;
 }
 
+// The box of the listed vertices only (a cut mesh keeps vertices no face uses).
+Box box_of(const Points& v, const std::vector<int>& subset) {
+  Box b;
+  for (int i : subset) b.add(v.get(i));
+  return b;
+}
+
 // Closest point on the target surface (all triangles; meshes here have a few thousand).
 Vec3 closest_on_mesh(const TriMesh& m, const Vec3& p) {
   Vec3 best = p;
@@ -218,14 +225,10 @@ namespace {
 // head of Debian's libcgal-demo (tests/data/heads/cgal_head).
 void check_face_region(const TriMesh& m, const std::vector<char>& referenced,
                        const std::string& what) {
-  Box box;
   std::vector<int> used;
   for (std::size_t i = 0; i < m.v.size(); ++i)
-    if (referenced[i]) {
-      box.add(m.v.get(i));
-      used.push_back(static_cast<int>(i));
-    }
-  const Vec3 s = box.size();
+    if (referenced[i]) used.push_back(static_cast<int>(i));
+  const Vec3 s = box_of(m.v, used).size();
   if (!(s.x() > 0)) throw InputError(what + ": the faces' vertices are flat along x");
   // A face is wider than it is deep (the default head: 155 x 100 mm); a whole head is not.
   if (s.z() >= s.x())
@@ -327,9 +330,8 @@ struct BoxAlignment {
 };
 
 BoxAlignment align_boxes(const Points& S, const Points& T, const std::vector<int>& surface) {
-  Box target;  // vertices no face uses are not the face's (a cut leaves them behind)
-  for (int i : surface) target.add(T.get(i));
-  BoxAlignment a{box_of(S), target, Vec3::Ones()};
+  // Vertices no face uses are not the face's (a cut leaves them behind).
+  BoxAlignment a{box_of(S), box_of(T, surface), Vec3::Ones()};
   a.scale = a.target.size().cwiseQuotient(a.source.size());
   return a;
 }

@@ -28,11 +28,14 @@ TriMesh cgal_head() {
   return read_obj(FACECTL_CONFIG_DIR "/../tests/data/heads/cgal_head/head.obj", 0.01);
 }
 
-// A quarter turn about y: its face, looking along -x, then looks along +z.
-TriMesh turned_to_face_z(TriMesh m) {
+// m turned about y by `degrees`, +z toward +x: the CGAL head, looking along -x, looks
+// along +z after a quarter turn (+90).
+TriMesh turned_about_y(TriMesh m, double degrees) {
+  const double a = degrees * std::numbers::pi / 180;
   for (std::size_t i = 0; i < m.v.size(); ++i) {
     const Vec3 p = m.v.get(i);
-    m.v.set(i, Vec3(p.z(), p.y(), -p.x()));
+    m.v.set(i, Vec3(std::cos(a) * p.x() + std::sin(a) * p.z(), p.y(),
+                    -std::sin(a) * p.x() + std::cos(a) * p.z()));
   }
   return m;
 }
@@ -68,7 +71,7 @@ TEST(HeadFitOnARealMesh, AsShippedItLooksAlongXAndIsRefused) {
 }
 
 TEST(HeadFitOnARealMesh, TurnedItIsAWholeHeadAndIsRefused) {
-  const std::string why = refusal(turned_to_face_z(cgal_head()));
+  const std::string why = refusal(turned_about_y(cgal_head(), 90));
   EXPECT_NE(why.find("head.obj: 91.3 mm wide (x) and 140.0 mm deep (z): a whole head, not a "
                      "face"),
             std::string::npos)
@@ -76,7 +79,7 @@ TEST(HeadFitOnARealMesh, TurnedItIsAWholeHeadAndIsRefused) {
 }
 
 TEST(HeadFitOnARealMesh, CutToTheFaceItFits) {
-  const TriMesh face = cut_to_face(turned_to_face_z(cgal_head()));
+  const TriMesh face = cut_to_face(turned_about_y(cgal_head(), 90));
   ASSERT_EQ(refusal(face), "");
   const TriMesh source = read_obj(default_spec().skin_file, default_spec().skin_scale);
   const HeadFit fit = fit_head(default_spec(), source, face, HeadFitOptions{});
@@ -121,16 +124,7 @@ TEST(HeadFitOnARealMesh, CutToTheFaceItFits) {
 // skin turned by 10 degrees is refused with the angle, by 2.5 accepted.
 TEST(HeadFitInput, RefusesAFaceTurnedMoreThanFiveDegrees) {
   const TriMesh source = read_obj(default_spec().skin_file, default_spec().skin_scale);
-  auto turned = [&](double degrees) {
-    TriMesh m = source;
-    const double a = degrees * std::numbers::pi / 180;
-    for (std::size_t i = 0; i < m.v.size(); ++i) {
-      const Vec3 p = m.v.get(i);
-      m.v.set(i, Vec3(std::cos(a) * p.x() + std::sin(a) * p.z(), p.y(),
-                      -std::sin(a) * p.x() + std::cos(a) * p.z()));
-    }
-    return m;
-  };
+  auto turned = [&](double degrees) { return turned_about_y(source, degrees); };
   EXPECT_EQ(refusal(turned(2.5)), "");
   EXPECT_NE(refusal(turned(10))
                 .find("head.obj: the face is turned 10.0 degrees about y (its "
