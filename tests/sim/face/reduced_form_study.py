@@ -3,14 +3,20 @@
 
 Fits the reduced model's least squares on a cache of full-model steady states written by
 `face_convergence_probe dump` and prints its errors on check-reduced's named sets, so a
-form can be tried in seconds instead of a 15-minute `facectl face reduce`. The `shipped`
-form repeats point_features() in sim/face/src/reduced_model_fit.cpp and reproduces `face
-reduce`'s table; `pair_cubes` adds c_a^2*c_b and c_a*c_b^2 for each pair of muscles
-that move a point.
+form can be tried in seconds instead of a 15-minute `facectl face reduce`. Forms:
+- `shipped` repeats point_features() in sim/face/src/reduced_model_fit.cpp and
+  reproduces `face reduce`'s table (its 99th percentiles to 0.03 mm): per muscle c,
+  c^2, c^3 and c times each jaw variable; the jaw's cubic; per pair of muscles c_a*c_b,
+  c_a^2*c_b and c_a*c_b^2; the lids; and, at points the jaw moves by more than 1 mm at
+  a corner of its envelope, c^2 times each jaw variable and c times each product of two;
+- `pair_cubes` is `shipped` without those jaw couplings, `plain` also without the pair
+  cubes;
+- `quartic` is `shipped` with c^4 for each muscle (features of four factors, which the
+  model's file and verify's bounds do not take yet).
 
     face_convergence_probe dump /tmp/d0.csv 2000 0 2 &   # two shards side by side
     face_convergence_probe dump /tmp/d1.csv 2000 1 2
-    python3 reduced_form_study.py '/tmp/d*.csv' [shipped|pair_cubes ...]
+    python3 reduced_form_study.py '/tmp/d*.csv' [shipped|pair_cubes|plain|quartic ...]
 
 Needs python3-numpy. Muscle and control-point counts come from the rows' widths
 (the default head: 29 and 19).
@@ -24,7 +30,8 @@ SETS = ["in_distribution", "sparse_uniform", "dense_uniform", "single_muscle_ful
         "jaw_corners", "library"]
 LIDS = 5  # pitch, yaw, protrusion and two lids follow the contractions
 TRAIN_MIXES = 2000  # the dump's mixes; the one-signal sweeps after them
-SWEEP_WEIGHT, RIDGE, RELEVANCE_MM, LID_POINT_MM = 10.0, 1e-6, 0.3, 3.0
+SWEEP_WEIGHT, RIDGE, RELEVANCE_MM, LID_POINT_MM, JAW_POINT_MM = 10.0, 1e-6, 0.3, 3.0, 1.0
+FORMS = ["shipped", "pair_cubes", "plain", "quartic"]
 MUSCLES = 29
 
 
@@ -51,22 +58,28 @@ def variables(x):
     return v
 
 
-def features(v, triples):
-    return np.stack([v[:, a] * v[:, b] * v[:, c] for a, b, c in triples], 1)
+def features(v, factors):
+    """One column per feature: the product of its factors' variables."""
+    return np.stack([np.prod(v[:, list(f)], axis=1) for f in factors], 1)
 
 
-def point_features(muscles, lids, lid_points, pair_cubes):
+def point_features(muscles, lids, lid_points, jaw_point, form):
     p, y, t, one = MUSCLES, MUSCLES + 1, MUSCLES + 2, MUSCLES + 5
     jaw = [p, y, t, one]
     f = [(jaw[a], jaw[b], jaw[c]) for a in range(4) for b in range(a, 4) for c in range(b, 4)
          if jaw[a] != one]
     for i in muscles:
         f += [(i, one, one), (i, i, one), (i, i, i), (i, p, one), (i, y, one), (i, t, one)]
+        if jaw_point and form in ("shipped", "quartic"):
+            f += [(i, i, j) for j in (p, y, t)]
+            f += [(i, a, b) for k, a in enumerate((p, y, t)) for b in (p, y, t)[k:]]
+        if form == "quartic":
+            f.append((i, i, i, i))
     for k, a in enumerate(muscles):
         for b in muscles[k + 1:]:
             a, b = min(a, b), max(a, b)
             f.append((a, b, one))
-            if pair_cubes:
+            if form != "plain":
                 f += [(a, a, b), (a, b, b)]
     f += [(lid, one, one) for lid in lids]
     for lid in lid_points:
@@ -92,7 +105,11 @@ def movers(data, points):
                 lids[q].append(MUSCLES + 3 + side)
             if mm > LID_POINT_MM:
                 lid_points[q].append(MUSCLES + 3 + side)
-    return mov, lids, lid_points
+    # The jaw probe: the first 8 of jaw_corners are the envelope's corners, relaxed.
+    corners = data["jaw_corners"]["y"][:8].reshape(8, points, 3)
+    jaw_points = [bool((np.linalg.norm(corners[:, q], axis=1) * 1e3 > JAW_POINT_MM).any())
+                  for q in range(points)]
+    return mov, lids, lid_points, jaw_points
 
 
 def errors(e):
@@ -101,22 +118,22 @@ def errors(e):
     return np.sqrt((d ** 2).mean()), d[min(len(d) - 1, int(0.99 * len(d)))], d[-1]
 
 
-def study(data, pair_cubes):
+def study(data, form):
     train = data["train"]
     points = train["y"].shape[1] // 3
-    mov, lids, lid_points = movers(data, points)
+    mov, lids, lid_points, jaw_points = movers(data, points)
     weight = np.ones(len(train["x"]))
     weight[TRAIN_MIXES:] = np.sqrt(SWEEP_WEIGHT)
     v = variables(train["x"])
     models, columns = [], set()
     for q in range(points):
-        triples = point_features(mov[q], lids[q], lid_points[q], pair_cubes)
+        triples = point_features(mov[q], lids[q], lid_points[q], jaw_points[q], form)
         columns.update(triples)
         x = features(v, triples) * weight[:, None]
         y = train["y"][:, 3 * q:3 * q + 3] * weight[:, None]
         w = np.linalg.solve(x.T @ x + RIDGE * np.eye(len(triples)), x.T @ y)
         models.append((triples, w))
-    print(f"{'pair_cubes' if pair_cubes else 'shipped'}: {len(columns)} features")
+    print(f"{form}: {len(columns)} features")
     for name in SETS:
         s = data[name]
         vs = variables(s["x"])
@@ -130,8 +147,10 @@ def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
     data = load(sys.argv[1])
-    for form in sys.argv[2:] or ["shipped", "pair_cubes"]:
-        study(data, form == "pair_cubes")
+    for form in sys.argv[2:] or ["shipped", "quartic"]:
+        if form not in FORMS:
+            sys.exit(f"unknown form '{form}'; forms: {', '.join(FORMS)}")
+        study(data, form)
 
 
 if __name__ == "__main__":
