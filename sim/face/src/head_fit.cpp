@@ -34,6 +34,22 @@ Box box_of(const Points& v) {
   return b;
 }
 
+// The vertices some triangle uses (used) or none does (!used), ascending.
+std::vector<int> vertices_by_use(const TriMesh& m, bool used) {
+  std::vector<char> in_face(m.v.size(), 0);
+  for (const Tri& t : m.tris)
+    for (int i : t) in_face[static_cast<std::size_t>(i)] = 1;
+  std::vector<int> out;
+  for (std::size_t i = 0; i < in_face.size(); ++i)
+    if ((in_face[i] != 0) == used) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+// The vertices some triangle uses, ascending (a cut mesh keeps the others).
+std::vector<int> surface_vertices(const TriMesh& m) {
+  return vertices_by_use(m, true);
+}
+
 // The box of the listed vertices only (a cut mesh keeps vertices no face uses).
 Box box_of(const Points& v, const std::vector<int>& subset) {
   Box b;
@@ -223,11 +239,7 @@ namespace {
 // ear, the front of the head), without rotating it: a mesh cut otherwise, or turned, fits
 // "converged" with the source's chin on the neck or its face on a cheek. Measured on the
 // head of Debian's libcgal-demo (tests/data/heads/cgal_head).
-void check_face_region(const TriMesh& m, const std::vector<char>& referenced,
-                       const std::string& what) {
-  std::vector<int> used;
-  for (std::size_t i = 0; i < m.v.size(); ++i)
-    if (referenced[i]) used.push_back(static_cast<int>(i));
+void check_face_region(const TriMesh& m, const std::vector<int>& used, const std::string& what) {
   const Vec3 s = box_of(m.v, used).size();
   if (!(s.x() > 0)) throw InputError(what + ": the faces' vertices are flat along x");
   // A face is wider than it is deep (the default head: 155 x 100 mm); a whole head is not.
@@ -289,20 +301,18 @@ void check_head_mesh(const TriMesh& m, const std::string& what) {
   if (m.v.size() < kMinVertices)
     throw InputError(what + ": expected a face mesh of at least " + std::to_string(kMinVertices) +
                      " vertices, found " + std::to_string(m.v.size()));
-  std::size_t used = 0, good = 0;
-  std::vector<char> referenced(m.v.size(), 0);
+  std::size_t good = 0;
   for (const Tri& t : m.tris) {
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
       throw InputError(what + ": a face uses vertex " + std::to_string(t[0] + 1) +
                        " twice (degenerate)");
-    for (int i : t) referenced[i] = 1;
     const Vec3 n = (m.v.get(t[1]) - m.v.get(t[0])).cross(m.v.get(t[2]) - m.v.get(t[0]));
     if (n.norm() > 0) ++good;
   }
-  for (char r : referenced) used += r;
-  if (used < kMinVertices)
+  const std::vector<int> used = surface_vertices(m);
+  if (used.size() < kMinVertices)
     throw InputError(what + ": expected faces over at least " + std::to_string(kMinVertices) +
-                     " vertices, found " + std::to_string(used));
+                     " vertices, found " + std::to_string(used.size()));
   check_manifold(m, what);
   if (good * 2 < m.tris.size())
     throw InputError(what + ": most triangles have zero area (degenerate mesh)");
@@ -314,7 +324,7 @@ void check_head_mesh(const TriMesh& m, const std::string& what) {
     if (s[k] < 0.05 * big)
       throw InputError(what + ": flat along " + std::string(1, axis[k]) + " (extent " + mm(s[k]) +
                        " of " + mm(big) + "): expected a face facing +z with y up");
-  check_face_region(m, referenced, what);
+  check_face_region(m, used, what);
 }
 
 namespace {
@@ -620,13 +630,7 @@ HeadFit fit_numbered(const HeadSpec& source, const TriMesh& source_skin, const T
   const Points& S = source_skin.v;
   // Vertices used by no face are left out: landmarks and contours snap to the surface.
   fit.loose_vertices = loose_vertices(target);
-  std::vector<int> surface;
-  for (int i = 0, k = 0; i < static_cast<int>(target.v.size()); ++i) {
-    if (k < static_cast<int>(fit.loose_vertices.size()) && fit.loose_vertices[k] == i)
-      ++k;
-    else
-      surface.push_back(i);
-  }
+  const std::vector<int> surface = surface_vertices(target);
 
   const BoxAlignment al = align_boxes(S, target.v, surface);
   fit.size_ratio = std::sqrt(al.scale.x() * al.scale.y());
@@ -649,13 +653,7 @@ HeadFit fit_numbered(const HeadSpec& source, const TriMesh& source_skin, const T
 }  // namespace
 
 std::vector<int> loose_vertices(const TriMesh& m) {
-  std::vector<char> used(m.v.size(), 0);
-  for (const Tri& t : m.tris)
-    for (int i : t) used[static_cast<std::size_t>(i)] = 1;
-  std::vector<int> loose;
-  for (std::size_t i = 0; i < used.size(); ++i)
-    if (!used[i]) loose.push_back(static_cast<int>(i));
-  return loose;
+  return vertices_by_use(m, false);
 }
 
 // Discrete choices in the fit (which pairs the refinement adds, when it stops) follow tiny

@@ -188,9 +188,9 @@ TEST(AudioInGuest, TheClockFollowsTheDeviceInRealTime) {
   // may put it up to a millisecond or two back (seen: 1.85 ms in the guest).
   EXPECT_LT(most_back, 0.003) << "the face must not jump back";
   // Seen here, by the card's frame count: heard 0.8 to 10.6 ms after the
-  // clock said (sixteen runs here and in CI, six beside busy loops). The loopback card moves
-  // both ends a timer tick (4 ms at HZ=250) at a time and the fitted start has
-  // a few ms of noise either way. Heard late means the face leads the sound:
+  // clock said (sixteen runs here and in CI, six beside busy loops). The
+  // loopback card moves both ends a timer tick (4 ms at HZ=250) at a time and
+  // the fitted start has a few ms of noise either way. Heard late means the face leads the sound:
   // on top of the configured lead (audio.lead_ms, 70 ms by default), 20 ms
   // keeps the face inside the 125 ms of lead at which viewers notice
   // (ITU-R BT.1359); heard early, the sound leads, which they notice at 45.
