@@ -4,7 +4,9 @@
 //   q = offset + Σ_k gain_k · (disp(point_k) · axis_k) + Σ_j gain_j · x_{variable_j}
 //
 // Variables (SI): 0..n−1 the muscle contractions in head.yaml order, n mandible pitch (rad),
-// n+1 yaw (rad), n+2 protrusion (m). disp() is the reduced model's control-point
+// n+1 yaw (rad), n+2 protrusion (m), n+3 and n+4 the eyelid closures: the reduced model's
+// variables without its constant and derived squares (face::feature_monomials writes a
+// square as its contraction to the power 2). disp() is the reduced model's control-point
 // displacement in metres, so a gain of 1000 gives millimetres.
 #pragma once
 
@@ -41,7 +43,7 @@ struct PolynomialTerm {
 };
 
 struct ChannelPolynomial {
-  int variable_count = 0;  // muscles + 3
+  int variable_count = 0;  // muscles + 5
   double constant = 0.0;
   // Distinct monomials, sorted by powers. A term whose contributions cancelled exactly keeps
   // coefficient 0 for its magnitude (the tick still evaluates and rounds them).

@@ -10,7 +10,7 @@ FeatureSubset select_features(const ReducedFaceModel& m, std::vector<int> column
   FeatureSubset s;
   for (int c : columns) s.factors.push_back(feature_factors(m, c));
   s.columns = std::move(columns);
-  s.variables = static_cast<std::size_t>(constant_variable(m.muscles.size())) + 1;
+  s.variables = static_cast<std::size_t>(variable_count(m.muscles.size()));
   return s;
 }
 

@@ -16,7 +16,7 @@ namespace facectl::face {
 struct FeatureSubset {
   std::vector<int> columns;                 // feature columns of the model, ascending
   std::vector<std::array<int, 3>> factors;  // per column, as feature_factors()
-  std::size_t variables = 0;                // n + 6, as fill_feature_variables()
+  std::size_t variables = 0;                // variable_count(n), as fill_feature_variables()
 };
 
 // Throws std::out_of_range for a column the model does not have.

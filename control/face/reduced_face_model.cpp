@@ -1,6 +1,7 @@
 #include "control/face/reduced_face_model.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +32,7 @@ std::array<int, 3> feature_factors(const ReducedFaceModel& m, int column) {
 
 void fill_feature_variables(const ReducedInput& in, std::span<double> v) {
   const std::size_t n = in.contractions.size();
+  assert(v.size() >= static_cast<std::size_t>(variable_count(n)));
   std::copy(in.contractions.begin(), in.contractions.end(), v.begin());
   v[n] = in.pitch_rad * kPitchScale;
   v[n + 1] = in.yaw_rad * kYawScale;
@@ -38,6 +40,7 @@ void fill_feature_variables(const ReducedInput& in, std::span<double> v) {
   v[n + 3] = in.eyelid_closure[0];
   v[n + 4] = in.eyelid_closure[1];
   v[n + 5] = 1.0;
+  for (std::size_t i = 0; i < n; ++i) v[n + 6 + i] = in.contractions[i] * in.contractions[i];
 }
 
 // The symbolic twin of fill_features over SI jaw variables (the drift guard in
@@ -48,13 +51,24 @@ std::vector<Monomial> feature_monomials(const ReducedFaceModel& m) {
   out.reserve(m.features.size());
   for (const auto& triple : m.features) {
     Monomial mono;
-    for (int var : triple) {
-      if (var == one) continue;
-      if (var >= n && var < n + 3) mono.coefficient *= kJawScale[static_cast<std::size_t>(var - n)];
-      if (!mono.powers.empty() && mono.powers.back()[0] == var)
-        ++mono.powers.back()[1];
+    for (int factor : triple) {
+      if (factor < 0 || factor >= variable_count(m.muscles.size()))
+        throw std::out_of_range("reduced face model: feature factor " + std::to_string(factor) +
+                                " is not a variable (0.." +
+                                std::to_string(variable_count(m.muscles.size()) - 1) + ")");
+      if (factor == one) continue;
+      if (factor >= n && factor < n + 3)
+        mono.coefficient *= kJawScale[static_cast<std::size_t>(factor - n)];
+      // A square variable is its muscle to the power 2.
+      // Plain variables, not a structured binding: clang 14 cannot capture one in a lambda.
+      const int var = factor > one ? factor - one - 1 : factor;
+      const int power = factor > one ? 2 : 1;
+      const auto at = std::find_if(mono.powers.begin(), mono.powers.end(),
+                                   [&](const auto& p) { return p[0] == var; });
+      if (at != mono.powers.end())
+        (*at)[1] += power;
       else
-        mono.powers.push_back({var, 1});
+        mono.powers.push_back({var, power});
     }
     std::sort(mono.powers.begin(), mono.powers.end());
     out.push_back(std::move(mono));
@@ -70,7 +84,7 @@ double evaluate_monomial(const Monomial& m, std::span<const double> variables) {
 }
 
 ReducedFaceWorkspace make_reduced_workspace(const ReducedFaceModel& m) {
-  return {Eigen::VectorXd::Zero(constant_variable(m.muscles.size()) + 1),
+  return {Eigen::VectorXd::Zero(variable_count(m.muscles.size())),
           Eigen::VectorXd::Zero(m.feature_count())};
 }
 

@@ -2,10 +2,10 @@
 // contractions, mandible pitch/yaw/protrusion, eyelid closures) to the steady-state
 // displacement of named skin control points. Its fit to the full model lives in sim/face
 // (reduced_model_fit.hpp). Features: products of up to three of the variables
-// v = (c_0 … c_{n−1}, pitch, yaw, protrusion in scaled units, lid_l, lid_r, 1), listed
-// per model (`features`), so the fit chooses the form: per muscle its powers and
-// couplings with the jaw, the jaw's cubic, the lids' powers and couplings, and products
-// of muscles that move the same control point.
+// v = (c_0 … c_{n−1}, pitch, yaw, protrusion in scaled units, lid_l, lid_r, 1,
+// c_0² … c_{n−1}²), listed per model (`features`), so the fit chooses the form: per
+// muscle its powers up to c⁴ (c_i²·c_i²) and couplings with the jaw, the jaw's cubic, the
+// lids' powers and couplings, and products of muscles that move the same control point.
 #pragma once
 
 #include <Eigen/Core>
@@ -31,7 +31,8 @@ struct ReducedFaceModel {
   std::vector<std::string> muscles;         // head.yaml order
   std::vector<std::string> control_points;  // landmark names
   // Feature k is v[a]·v[b]·v[c] for features[k] = {a, b, c} over fill_feature_variables()'s
-  // v; a factor n + 5 is the constant 1. Each triple ascending and listed once.
+  // v; a factor n + 5 is the constant 1, n + 6 + i is c_i². Each triple ascending and
+  // listed once.
   std::vector<std::array<int, 3>> features;
   // {file, SHA-256} of the head files the model was fitted to (sim/face checks them at load).
   std::vector<std::array<std::string, 2>> fitted_to;
@@ -61,11 +62,11 @@ double evaluate_monomial(const Monomial& m, std::span<const double> variables);
 // for bit (a factor of 1 is exact). For callers that need only a few columns (FeatureSubset).
 std::array<int, 3> feature_factors(const ReducedFaceModel& m, int column);
 // v = (c_0 … c_{n−1}, pitch, yaw and protrusion in the fit's scaled units, lid_l, lid_r,
-// 1): n + 6 values.
+// 1, c_0² … c_{n−1}²): variable_count(n) = 2n + 6 values.
 void fill_feature_variables(const ReducedInput& in, std::span<double> v);
 
 struct ReducedFaceWorkspace {
-  Eigen::VectorXd variables;  // n + 6, as fill_feature_variables()
+  Eigen::VectorXd variables;  // variable_count(n), as fill_feature_variables()
   Eigen::VectorXd features;
 };
 
@@ -87,6 +88,15 @@ inline int lid_variable(std::size_t muscles, int side) {
 // The index of the constant variable 1 for `muscles` muscles.
 inline int constant_variable(std::size_t muscles) {
   return static_cast<int>(muscles) + 5;
+}
+// The variable that holds c_i² (derived from c_i, so a triple of factors reaches c⁴: an
+// S-shaped response such as a nostril under its levator needs it).
+inline int square_variable(std::size_t muscles, int i) {
+  return constant_variable(muscles) + 1 + i;
+}
+// How many variables fill_feature_variables() writes for `muscles` muscles.
+inline int variable_count(std::size_t muscles) {
+  return square_variable(muscles, static_cast<int>(muscles));
 }
 // The feature vector f (one entry per triple) from the variables v.
 void fill_features(std::span<const double> v, const std::vector<std::array<int, 3>>& features,

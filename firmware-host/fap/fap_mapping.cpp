@@ -52,8 +52,8 @@ struct MuscleRouteSpec {
   int fap;
   const char* point;  // control point of the reduced model standing for the FAP's FDP
   std::vector<const char*> positive, negative;
-  // Where the reduced model shows the negative group no reach at the point,
-  // a stated nominal reach (m at c = 1) instead; 0: measured.
+  // Where the reduced model shows the negative group too little reach at the
+  // point, a stated nominal reach (m at c = 1) instead; 0: measured.
   double negative_nominal = 0.0;
 };
 
@@ -62,10 +62,9 @@ struct MuscleRouteSpec {
 // (docs/FAP.md). Where the model has no control point at the FAP's FDP the
 // nearest one stands in.
 const std::vector<MuscleRouteSpec>& muscle_route_specs() {
-  // The depressor anguli oris and depressor labii inferioris move no control
-  // point downwards in the reduced model; frowns and a lowered lower lip would
-  // be lost without them, so they get nominal reaches (docs/FAP.md).
-  constexpr double kCornerDown = 0.0045;  // the zygomaticus major's measured lift, mirrored
+  // The depressor labii inferioris moves the lower lip's middle (8.2) only 0.4 mm in
+  // the reduced model; a lowered lower lip would be lost without it, so it gets a
+  // nominal reach (docs/FAP.md).
   constexpr double kLowerLipDown = 0.003;
   const std::vector<const char*> lls = {"levator_labii_superioris_l", "levator_labii_superioris_r"};
   const std::vector<const char*> dli = {"depressor_labii_inferioris_l",
@@ -79,8 +78,8 @@ const std::vector<MuscleRouteSpec>& muscle_route_specs() {
       {9, "fdp_2_2", {"orbicularis_oris"}, {"levator_labii_superioris_r"}},
       {10, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_l"}, kLowerLipDown},
       {11, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_r"}, kLowerLipDown},
-      {12, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}, kCornerDown},
-      {13, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}, kCornerDown},
+      {12, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}},
+      {13, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}},
       {16, "fdp_8_2", {"orbicularis_oris"}, {}},
       {17, "fdp_8_1", {"orbicularis_oris"}, {}},
       {31, "fdp_4_1", {"frontalis_inner_l"}, {"procerus_l"}},
@@ -101,8 +100,8 @@ const std::vector<MuscleRouteSpec>& muscle_route_specs() {
       {56, "fdp_8_1", {"orbicularis_oris"}, {"levator_labii_superioris_r"}},
       {57, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_l"}, kLowerLipDown},
       {58, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_r"}, kLowerLipDown},
-      {59, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}, kCornerDown},
-      {60, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}, kCornerDown},
+      {59, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}},
+      {60, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}},
       {63,
        "fdp_9_1",
        {"levator_labii_superioris_alaeque_nasi_l", "levator_labii_superioris_alaeque_nasi_r"},

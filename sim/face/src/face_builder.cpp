@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "facectl/face/face_model.hpp"
+#include "facectl/face/head_fit.hpp"
 #include "facectl/face/input_error.hpp"
 #include "facectl/face/obj_io.hpp"
 #include "facectl/face/subdivision.hpp"
@@ -46,6 +47,36 @@ int nearest_vertex(const Points& v, const Vec3& p) {
     }
   }
   return best;
+}
+
+// The skin's normal at the point of the skin closest to p, interpolated across that
+// triangle from its vertex normals. The muscles are cast and thickened along it: the
+// nearest vertex's normal is constant around each vertex and jumps between them, and a
+// jump under a muscle line set its two mirror halves millimetres apart.
+Vec3 smooth_normal(const TriMesh& skin, const Points& normals, const Vec3& p) {
+  double bd = std::numeric_limits<double>::infinity();
+  Tri best{0, 0, 0};
+  Vec3 q = p;
+  for (const Tri& t : skin.tris) {
+    const Vec3 c =
+        closest_point_on_triangle(p, skin.v.get(t[0]), skin.v.get(t[1]), skin.v.get(t[2]));
+    const double d = (c - p).squaredNorm();
+    if (d < bd) {
+      bd = d;
+      best = t;
+      q = c;
+    }
+  }
+  const Vec3 a = skin.v.get(best[0]), e1 = skin.v.get(best[1]) - a, e2 = skin.v.get(best[2]) - a;
+  const Vec3 r = q - a;
+  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+  const double den = d11 * d22 - d12 * d12;
+  if (!(den > 0)) return normals.get(best[0]);
+  const double v = (d22 * r.dot(e1) - d12 * r.dot(e2)) / den;
+  const double w = (d11 * r.dot(e2) - d12 * r.dot(e1)) / den;
+  const Vec3 n =
+      (1 - v - w) * normals.get(best[0]) + v * normals.get(best[1]) + w * normals.get(best[2]);
+  return n.normalized();
 }
 
 // Nearest hit along the line p + t·dir over the supports, with t in [tmin, tmax],
@@ -190,7 +221,7 @@ std::vector<std::vector<Tri>> build_muscles(const HeadSpec& spec, const TriMesh&
   std::vector<std::vector<Tri>> tops;  // top triangles of each built muscle
   auto resolve = [&](const PointRef& r) -> Vec3 { return L(r.landmark) + r.offset; };
   auto project = [&](const Vec3& p, int layer) {
-    const Vec3 n = base_n.get(nearest_vertex(base.v, p));
+    const Vec3 n = smooth_normal(base, base_n, p);
     std::vector<Support> below{supports[0]};
     for (std::size_t k = 0; k < m.muscles.size(); ++k)
       if (m.muscles[k].layer < layer) below.push_back({Layer::kMuscle, &m.muscle_rest, tops[k]});
@@ -229,8 +260,8 @@ std::vector<std::vector<Tri>> build_muscles(const HeadSpec& spec, const TriMesh&
       }
     }
     place_muscle(
-        mu, ms.thickness, [&](const Vec3& p) { return base_n.get(nearest_vertex(base.v, p)); },
-        m.skull.v, m.muscle_rest, ms.kind == MuscleKind::kSheet ? spec.sheet : spec.sphincter);
+        mu, ms.thickness, [&](const Vec3& p) { return smooth_normal(base, base_n, p); }, m.skull.v,
+        m.muscle_rest, ms.kind == MuscleKind::kSheet ? spec.sheet : spec.sphincter);
     const int nb = mu.rows * mu.cols;
     std::vector<Tri> top;
     for (const Tri& t : mu.surface)

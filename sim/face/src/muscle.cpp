@@ -15,23 +15,17 @@ int top(const Muscle& m, int r, int c) {
   return m.first + m.rows * m.cols + r * m.cols + (c % m.cols);
 }
 
-// Adds quad (a,b,c,d) as two triangles oriented away from `inside`.
-void add_quad(std::vector<Tri>& out, const Points& p, int a, int b, int c, int d,
-              const Vec3& inside) {
-  for (Tri t : {Tri{a, b, c}, Tri{a, c, d}}) {
-    Vec3 n = (p.get(t[1]) - p.get(t[0])).cross(p.get(t[2]) - p.get(t[0]));
-    Vec3 centre = (p.get(t[0]) + p.get(t[1]) + p.get(t[2])) / 3;
-    if (n.dot(centre - inside) < 0) std::swap(t[1], t[2]);
-    out.push_back(t);
+// Adds quad (a,b,c,d), wound a→b→c→d, as two triangles of the same winding, split along
+// its shorter diagonal: a rule the mirror keeps, where one fixed diagonal gave a ring's
+// two halves (its columns run the other way round in the mirror) different surfaces.
+void add_quad(std::vector<Tri>& out, const Points& p, int a, int b, int c, int d) {
+  if ((p.get(a) - p.get(c)).squaredNorm() <= (p.get(b) - p.get(d)).squaredNorm()) {
+    out.push_back({a, b, c});
+    out.push_back({a, c, d});
+  } else {
+    out.push_back({a, b, d});
+    out.push_back({b, c, d});
   }
-}
-
-Vec3 cell_centre(const Muscle& m, const Points& p, int r, int c) {
-  Vec3 s = Vec3::Zero();
-  for (int dr = 0; dr < 2; ++dr)
-    for (int dc = 0; dc < 2; ++dc)
-      s += p.get(bot(m, r + dr, c + dc)) + p.get(top(m, r + dr, c + dc));
-  return s / 8;
 }
 
 }  // namespace
@@ -39,25 +33,35 @@ Vec3 cell_centre(const Muscle& m, const Points& p, int r, int c) {
 void build_muscle_constraints(Muscle& m, const Points& p, const MuscleStiffness& k) {
   const bool ring = m.kind == MuscleKind::kSphincter;
   const int R = m.rows, C = m.cols, ccells = ring ? C : C - 1;
+  // The box's faces are wound by the grid's own directions (column u, row v, bottom to
+  // top w) so that every face turns the same way, outward or all inward, then turned
+  // outward together by the sign of the enclosed volume. Deciding each triangle by its
+  // cell's centre got thin boxes wrong (a 2 mm sheet over cells a centimetre wide): the
+  // centre lies a millimetre from the top, and a top triangle tilted more than about 23°
+  // against the cell turned the wrong way, so the rest volumes came out with either sign
+  // and the volume constraint held an arbitrary function of the particles.
   m.surface.clear();
   for (int r = 0; r + 1 < R; ++r)
     for (int c = 0; c < ccells; ++c) {
-      Vec3 in = cell_centre(m, p, r, c);
-      add_quad(m.surface, p, bot(m, r, c), bot(m, r, c + 1), bot(m, r + 1, c + 1), bot(m, r + 1, c),
-               in);
-      add_quad(m.surface, p, top(m, r, c), top(m, r, c + 1), top(m, r + 1, c + 1), top(m, r + 1, c),
-               in);
+      add_quad(m.surface, p, bot(m, r, c), bot(m, r + 1, c), bot(m, r + 1, c + 1),
+               bot(m, r, c + 1));
+      add_quad(m.surface, p, top(m, r, c), top(m, r, c + 1), top(m, r + 1, c + 1),
+               top(m, r + 1, c));
       if (r == 0)
-        add_quad(m.surface, p, bot(m, 0, c), bot(m, 0, c + 1), top(m, 0, c + 1), top(m, 0, c), in);
+        add_quad(m.surface, p, bot(m, 0, c), bot(m, 0, c + 1), top(m, 0, c + 1), top(m, 0, c));
       if (r == R - 2)
-        add_quad(m.surface, p, bot(m, R - 1, c), bot(m, R - 1, c + 1), top(m, R - 1, c + 1),
-                 top(m, R - 1, c), in);
+        add_quad(m.surface, p, bot(m, R - 1, c), top(m, R - 1, c), top(m, R - 1, c + 1),
+                 bot(m, R - 1, c + 1));
       if (!ring && c == 0)
-        add_quad(m.surface, p, bot(m, r, 0), bot(m, r + 1, 0), top(m, r + 1, 0), top(m, r, 0), in);
+        add_quad(m.surface, p, bot(m, r, 0), top(m, r, 0), top(m, r + 1, 0), bot(m, r + 1, 0));
       if (!ring && c == C - 2)
         add_quad(m.surface, p, bot(m, r, C - 1), bot(m, r + 1, C - 1), top(m, r + 1, C - 1),
-                 top(m, r, C - 1), in);
+                 top(m, r, C - 1));
     }
+  VolumeConstraint enclosed;
+  enclosed.tris = m.surface;
+  if (volume_of(enclosed, p) < 0)
+    for (Tri& t : m.surface) std::swap(t[1], t[2]);
   auto dist = [&](int a, int b, double kk) {
     if (kk > 0) m.distances.add(a, b, (p.get(a) - p.get(b)).norm(), kk);
   };

@@ -134,7 +134,7 @@ namespace {
 using Triple = std::array<int, 3>;
 
 // The feature triples a control point moved by `muscles` and `lids` is fitted on: per
-// muscle c, c², c³ and c times each jaw variable; the jaw's full cubic; c_a·c_b, c_a²·c_b
+// muscle c, c², c³, c⁴ and c times each jaw variable; the jaw's full cubic; c_a·c_b, c_a²·c_b
 // and c_a·c_b² for each pair; per lid l, and for the lids of `lid_points` (those that carry
 // the point) l², l³ and l times each of the muscles too (the orbicularis oculi adds to a
 // lid's closure, the brows carry it). Where the jaw moves the point (`jaw_point`), also
@@ -151,8 +151,14 @@ std::vector<Triple> point_features(const std::vector<int>& muscles, const std::v
       for (std::size_t c = b; c < jaw.size(); ++c)
         if (jaw[a] != one) f.push_back({jaw[a], jaw[b], jaw[c]});
   for (int i : muscles) {
-    for (const Triple& t : std::initializer_list<Triple>{
-             {i, one, one}, {i, i, one}, {i, i, i}, {i, P, one}, {i, Y, one}, {i, T, one}})
+    const int sq = square_variable(static_cast<std::size_t>(n), i);
+    for (const Triple& t : std::initializer_list<Triple>{{i, one, one},
+                                                         {i, i, one},
+                                                         {i, i, i},
+                                                         {one, sq, sq},
+                                                         {i, P, one},
+                                                         {i, Y, one},
+                                                         {i, T, one}})
       f.push_back(t);
     if (jaw_point)
       for (const Triple& t : std::initializer_list<Triple>{{i, i, P},
@@ -275,7 +281,7 @@ ReducedFaceModel build_reduced_model(const FaceModel& full, const ReduceOptions&
                      Eigen::MatrixXd& Y) {
     X.resize(static_cast<Eigen::Index>(set.size()), F);
     Y.resize(static_cast<Eigen::Index>(set.size()), 3 * P);
-    Eigen::VectorXd v(constant_variable(static_cast<std::size_t>(M)) + 1), f(F);
+    Eigen::VectorXd v(variable_count(static_cast<std::size_t>(M))), f(F);
     const std::vector<std::vector<double>> ys = responses(set);
     for (std::size_t k = 0; k < set.size(); ++k) {
       fill_feature_variables(reduced_input(set[k]), std::span<double>(v.data(), v.size()));
@@ -350,7 +356,7 @@ void save_reduced_model(const ReducedFaceModel& m, const std::string& path) {
   for (const auto& n : m.control_points) check(n);
   std::ofstream out(path);
   if (!out) throw InputError(path + ": cannot open file for writing");
-  out << "facectl-reduced-face 3\n";
+  out << "facectl-reduced-face 4\n";
   out << "fitted_to " << m.fitted_to.size();
   for (const auto& [file, digest] : m.fitted_to) out << ' ' << file << ' ' << digest;
   out << "\nmuscles " << m.muscles.size();
@@ -383,17 +389,17 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
   };
   constexpr const char* kRebuild = " (rebuild with `facectl face reduce`)";
   {
-    auto s = next("the header 'facectl-reduced-face 3'");
+    auto s = next("the header 'facectl-reduced-face 4'");
     std::string tag;
     int v = 0;
     if (!(s >> tag) || tag != "facectl-reduced-face")
       throw InputError(path, ln, 0,
-                       "expected 'facectl-reduced-face 3', found '" + line.substr(0, 80) + "'");
-    if (!(s >> v) || v != 3)
+                       "expected 'facectl-reduced-face 4', found '" + line.substr(0, 80) + "'");
+    if (!(s >> v) || v != 4)
       throw InputError(path, ln, 0,
-                       "expected format 3, found '" + line.substr(0, 80) +
-                           "': an older model has another form (format 2: no eyelids; 1: no "
-                           "record of its head)" +
+                       "expected format 4, found '" + line.substr(0, 80) +
+                           "': an older model has another form (format 3: no squared "
+                           "contractions; 2: no eyelids; 1: no record of its head)" +
                            kRebuild);
   }
   // A line "key N" followed by N groups of `width` tokens; N is bounded by what the line holds.
@@ -462,15 +468,15 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
                          kRebuild);
   {
     auto [s, n] = counted("features", 3, "factor triples");
-    const int last = constant_variable(m.muscles.size());
+    const int last = variable_count(m.muscles.size()) - 1;
     // Distinct ascending triples over the last + 1 variables: C(last + 3, 3).
     const std::size_t v = static_cast<std::size_t>(last) + 1;
     const std::size_t most = v * (v + 1) * (v + 2) / 6;
     if (n > most)
       throw InputError(path, ln, 0,
                        "'features " + std::to_string(n) + "': expected at most " +
-                           std::to_string(most) + ", the distinct products of up to three of " +
-                           std::to_string(v - 1) + " variables");
+                           std::to_string(most) + ", the distinct factor triples of " +
+                           std::to_string(v) + " variables");
     m.features.resize(n);
     std::set<std::array<int, 3>> seen;
     for (auto& t : m.features)
@@ -480,6 +486,23 @@ ReducedFaceModel load_reduced_model(const std::string& path, const HeadSpec& hea
                          "expected " + std::to_string(n) +
                              " distinct ascending factor triples of variables 0.." +
                              std::to_string(last));
+    // Two triples of one product (c·c·1 and 1·1·c², say) would be two equal columns, and a
+    // degree above four is beyond what the fit writes and verify's rounding margin covers.
+    std::map<std::vector<std::array<int, 2>>, std::size_t> product;
+    const std::vector<Monomial> monomials = feature_monomials(m);
+    for (std::size_t k = 0; k < monomials.size(); ++k) {
+      int degree = 0;
+      for (const auto& [var, power] : monomials[k].powers) degree += power;
+      if (degree > 4)
+        throw InputError(path, ln, 0,
+                         "feature " + std::to_string(k) + " has degree " + std::to_string(degree) +
+                             ": expected at most 4");
+      const auto [at, added] = product.emplace(monomials[k].powers, k);
+      if (!added)
+        throw InputError(path, ln, 0,
+                         "features " + std::to_string(at->second) + " and " + std::to_string(k) +
+                             " are the same product of the variables");
+    }
   }
   auto s = next("'coefficients ROWS COLS'");
   std::string tag;

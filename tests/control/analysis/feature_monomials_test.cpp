@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "facectl/face/head_spec.hpp"
 #include "facectl/face/reduced_model_fit.hpp"
@@ -56,22 +57,36 @@ TEST(FeatureMonomials, DescribeAnyFeatureList) {
   ReducedFaceModel m = shipped();
   const int one = constant_variable(m.muscles.size());
   // A muscle cubed, a wide pair, the jaw's three variables, a muscle by pitch squared, the
-  // lids with each other, a muscle and the jaw.
+  // lids with each other, a muscle and the jaw; squared contractions: c⁴, c⁵, a square with
+  // another muscle and with the jaw.
   const int lid_l = lid_variable(m.muscles.size(), 0), lid_r = lid_variable(m.muscles.size(), 1);
-  m.features = {{5, 5, 5},     {0, 28, one},          {29, 30, 31},    {1, 29, 29},
-                {30, 30, one}, {lid_l, lid_r, lid_r}, {2, lid_l, one}, {29, lid_r, one}};
+  const int sq3 = square_variable(m.muscles.size(), 3), sq7 = square_variable(m.muscles.size(), 7);
+  m.features = {{5, 5, 5},       {0, 28, one},          {29, 30, 31},    {1, 29, 29},
+                {30, 30, one},   {lid_l, lid_r, lid_r}, {2, lid_l, one}, {29, lid_r, one},
+                {one, sq3, sq3}, {3, sq3, sq3},         {3, 5, sq7},     {29, one, sq7}};
   expect_monomials_match_features(m, 2);
 }
 
 TEST(FeatureMonomials, PowersAreAscendingAndPositive) {
-  for (const Monomial& mono : feature_monomials(shipped())) {
+  const ReducedFaceModel m = shipped();
+  for (const Monomial& mono : feature_monomials(m)) {
     for (std::size_t k = 0; k < mono.powers.size(); ++k) {
       EXPECT_GE(mono.powers[k][1], 1);
+      EXPECT_LT(mono.powers[k][0], constant_variable(m.muscles.size()));  // no square left
       if (k > 0) {
         EXPECT_LT(mono.powers[k - 1][0], mono.powers[k][0]);
       }
     }
   }
+}
+
+TEST(FeatureMonomials, AFactorBeyondTheVariablesIsRefused) {
+  ReducedFaceModel m = shipped();
+  const int one = constant_variable(m.muscles.size());
+  m.features = {{0, one, variable_count(m.muscles.size())}};
+  EXPECT_THROW(feature_monomials(m), std::out_of_range);
+  m.features = {{-1, one, one}};
+  EXPECT_THROW(feature_monomials(m), std::out_of_range);
 }
 
 }  // namespace

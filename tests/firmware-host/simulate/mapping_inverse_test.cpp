@@ -190,6 +190,8 @@ TEST(MappingInverse, ClampsToTheAdmissibleBox) {
 // The second start triggers on the worst actuator's misfit, not on an average: among the
 // default rig's ~20 fitted actuators one left 4x the 1e-4 threshold off keeps the RMS
 // under it. Such a face is searched for (a fixed seed), and must be fitted by the restart.
+// Such faces are rare (about one in 8000 random faces); a refit of the reduced model moves
+// them, so the seed may need to change with one (seed 2 finds face 954).
 TEST(MappingInverse, RestartsWhenOneActuatorAloneIsOff) {
   const ControllerModel& m = rig("default").built.model;
   const MappingInverse inv = make_mapping_inverse(m);
@@ -198,7 +200,7 @@ TEST(MappingInverse, RestartsWhenOneActuatorAloneIsOff) {
   MappingInverseWorkspace w = make_mapping_inverse_workspace(inv);
   const int rows = static_cast<int>(m.actuators.size());
   const double threshold = 1e-4;  // kRestartResidual
-  std::mt19937 rng(6);
+  std::mt19937 rng(2);
   int found = -1;
   for (int sample = 0; sample < 3000 && found < 0; ++sample) {
     Face face = random_face(inv, rng);

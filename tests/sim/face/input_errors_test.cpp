@@ -213,9 +213,9 @@ TEST(HeadInput, UnknownKeysAreRefusedWhereTheyAre) {
                "face.yaml:18:90: expected one of: half_width_mm, arch_depth_mm, height_mm, "
                "inset_mm, gap_mm, found unknown key 'heigth_mm'"},
       HeadEdit{"face.yaml", "anchor: 0.2,", "anchro: 0.2,",
-               "face.yaml:31:55: expected one of: stretch, bending, area, anchor, volume, "
+               "face.yaml:34:55: expected one of: stretch, bending, area, anchor, volume, "
                "damping, min_projected_area, found unknown key 'anchro'"},
-      HeadEdit{"face.yaml", "  variants: [", "  variant: [", "face.yaml:40:3: expected one of: "},
+      HeadEdit{"face.yaml", "  variants: [", "  variant: [", "face.yaml:43:3: expected one of: "},
       HeadEdit{"landmarks.yaml", "offset_mm: [-25, -5, 5]", "ofset_mm: [-25, -5, 5]",
                "landmarks.yaml:17:28: expected one of: vertex, vertices, offset_mm, found "
                "unknown key 'ofset_mm'"},

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -44,7 +45,8 @@ TEST(ReducedFaceModel, FitTracksTheFullModelOnHeldOutInputs) {
   // the shipped model's measured errors are in docs/FACE_MODEL.md, "Reduced model".
   if (!facectl::testing::kSanitized) {
     // Held out: mixes of the fit's distribution (c up to 1, up to every muscle), on which
-    // this fit measured 0.93 mm RMS (2026-11-28); the shipped fit 0.70 mm, 8 mm at most.
+    // this fit measured 0.68 mm RMS, 3.5 mm at most (2026-11-29); the shipped fit 0.44 mm,
+    // 7.4 mm at most.
     EXPECT_LT(rep.test_rms_mm, 1.5);
     EXPECT_LT(rep.test_max_mm, 20.0);
   }
@@ -145,7 +147,7 @@ TEST(ReducedFaceModel, MalformedFileNamesFileAndLine) {
   const std::string p = (std::filesystem::temp_directory_path() /
                          ("facectl_bad_reduced_" + std::to_string(getpid()) + ".txt"))
                             .string();
-  std::ofstream(p) << "facectl-reduced-face 3\nfitted_to 1 face.yaml\n";
+  std::ofstream(p) << "facectl-reduced-face 4\nfitted_to 1 face.yaml\n";
   try {
     load_reduced_model(p, testing::default_spec());
     FAIL() << "no error";
@@ -191,17 +193,48 @@ TEST(ReducedFaceModel, AModelFittedToOtherHeadFilesIsRefusedAsStale) {
 }
 
 TEST(ReducedFaceModel, AnOlderFormatIsRefusedWithTheReason) {
-  // Format 1 had no record of its head; format 2 took no eyelids.
-  for (int v : {1, 2}) {
+  // Format 1 had no record of its head; 2 took no eyelids; 3 no squared contractions.
+  for (int v : {1, 2, 3}) {
     const auto dir = copy_of_default_head("v" + std::to_string(v));
     std::ofstream(dir / "reduced_face.txt")
         << "facectl-reduced-face " << v << "\nfitted_to 0\nmuscles 0\n";
     const std::string e = load_error(dir);
     EXPECT_NE(e.find("reduced_face.txt:1:"), std::string::npos) << e;
-    EXPECT_NE(e.find("expected format 3"), std::string::npos) << e;
+    EXPECT_NE(e.find("expected format 4"), std::string::npos) << e;
     EXPECT_NE(e.find("facectl face reduce"), std::string::npos) << e;
     std::filesystem::remove_all(dir);
   }
+}
+
+// A file whose features repeat a product (two equal columns) or go beyond degree 4 is
+// refused: the fit writes neither, and verify's rounding margin assumes degree 4 at most.
+TEST(ReducedFaceModel, RepeatedProductsAndHighDegreesAreRefused) {
+  const auto dir = copy_of_default_head("products");
+  const HeadSpec spec = load_head_spec(dir.string());
+  const std::string file = (dir / "reduced_face.txt").string();
+  const ReducedFaceModel shipped = load_reduced_model(file, spec);
+  const std::size_t n = shipped.muscles.size();
+  const int one = constant_variable(n);
+  // A muscle whose c² the model holds ({c, c, 1}).
+  const auto c2 = std::find_if(shipped.features.begin(), shipped.features.end(), [&](auto t) {
+    return t[0] < static_cast<int>(n) && t[1] == t[0] && t[2] == one;
+  });
+  ASSERT_NE(c2, shipped.features.end());
+  const int c0 = (*c2)[0], sq = square_variable(n, c0);
+  for (const auto& [triple, message] :
+       {std::pair{std::array{one, one, sq}, "the same product"},  // c² again
+        std::pair{std::array{c0, sq, sq}, "has degree 5"}}) {
+    ReducedFaceModel m = shipped;
+    m.features.back() = triple;
+    save_reduced_model(m, file);
+    try {
+      load_reduced_model(file, spec);
+      ADD_FAILURE() << "accepted " << message;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -6,17 +6,18 @@ Fits the reduced model's least squares on a cache of full-model steady states wr
 form can be tried in seconds instead of a 15-minute `facectl face reduce`. Forms:
 - `shipped` repeats point_features() in sim/face/src/reduced_model_fit.cpp and
   reproduces `face reduce`'s table (its 99th percentiles to 0.03 mm): per muscle c,
-  c^2, c^3 and c times each jaw variable; the jaw's cubic; per pair of muscles c_a*c_b,
-  c_a^2*c_b and c_a*c_b^2; the lids; and, at points the jaw moves by more than 1 mm at
-  a corner of its envelope, c^2 times each jaw variable and c times each product of two;
-- `pair_cubes` is `shipped` without those jaw couplings, `plain` also without the pair
-  cubes;
-- `quartic` is `shipped` with c^4 for each muscle (features of four factors, which the
-  model's file and verify's bounds do not take yet).
+  c^2, c^3, c^4 and c times each jaw variable; the jaw's cubic; per pair of muscles
+  c_a*c_b, c_a^2*c_b and c_a*c_b^2; the lids; and, at points the jaw moves by more than
+  1 mm at a corner of its envelope, c^2 times each jaw variable and c times each product
+  of two. (The C++ writes c^4 as the triple 1*q*q over a derived variable q = c^2; here a
+  feature may simply have four factors.)
+- `cubic` is `shipped` without c^4 (the form before the muscle volumes were corrected);
+  `pair_cubes` is `cubic` without the jaw couplings, `plain` also without the pair
+  cubes.
 
     face_convergence_probe dump /tmp/d0.csv 2000 0 2 &   # two shards side by side
     face_convergence_probe dump /tmp/d1.csv 2000 1 2
-    python3 reduced_form_study.py '/tmp/d*.csv' [shipped|pair_cubes|plain|quartic ...]
+    python3 reduced_form_study.py '/tmp/d*.csv' [shipped|cubic|pair_cubes|plain ...]
 
 Needs python3-numpy. Muscle and control-point counts come from the rows' widths
 (the default head: 29 and 19).
@@ -31,7 +32,7 @@ SETS = ["in_distribution", "sparse_uniform", "dense_uniform", "single_muscle_ful
 LIDS = 5  # pitch, yaw, protrusion and two lids follow the contractions
 TRAIN_MIXES = 2000  # the dump's mixes; the one-signal sweeps after them
 SWEEP_WEIGHT, RIDGE, RELEVANCE_MM, LID_POINT_MM, JAW_POINT_MM = 10.0, 1e-6, 0.3, 3.0, 1.0
-FORMS = ["shipped", "pair_cubes", "plain", "quartic"]
+FORMS = ["shipped", "cubic", "pair_cubes", "plain"]
 MUSCLES = 29
 
 
@@ -70,10 +71,10 @@ def point_features(muscles, lids, lid_points, jaw_point, form):
          if jaw[a] != one]
     for i in muscles:
         f += [(i, one, one), (i, i, one), (i, i, i), (i, p, one), (i, y, one), (i, t, one)]
-        if jaw_point and form in ("shipped", "quartic"):
+        if jaw_point and form in ("shipped", "cubic"):
             f += [(i, i, j) for j in (p, y, t)]
             f += [(i, a, b) for k, a in enumerate((p, y, t)) for b in (p, y, t)[k:]]
-        if form == "quartic":
+        if form == "shipped":
             f.append((i, i, i, i))
     for k, a in enumerate(muscles):
         for b in muscles[k + 1:]:
@@ -147,7 +148,7 @@ def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
     data = load(sys.argv[1])
-    for form in sys.argv[2:] or ["shipped", "quartic"]:
+    for form in sys.argv[2:] or ["shipped", "cubic"]:
         if form not in FORMS:
             sys.exit(f"unknown form '{form}'; forms: {', '.join(FORMS)}")
         study(data, form)
