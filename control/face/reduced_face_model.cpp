@@ -40,7 +40,9 @@ void fill_feature_variables(const ReducedInput& in, std::span<double> v) {
   v[n + 3] = in.eyelid_closure[0];
   v[n + 4] = in.eyelid_closure[1];
   v[n + 5] = 1.0;
-  for (std::size_t i = 0; i < n; ++i) v[n + 6 + i] = in.contractions[i] * in.contractions[i];
+  for (std::size_t i = 0; i < n; ++i)
+    v[static_cast<std::size_t>(square_variable(n, static_cast<int>(i)))] =
+        in.contractions[i] * in.contractions[i];
 }
 
 // The symbolic twin of fill_features over SI jaw variables (the drift guard in
@@ -60,9 +62,9 @@ std::vector<Monomial> feature_monomials(const ReducedFaceModel& m) {
       if (factor >= n && factor < n + 3)
         mono.coefficient *= kJawScale[static_cast<std::size_t>(factor - n)];
       // A square variable is its muscle to the power 2.
-      // Plain variables, not a structured binding: clang 14 cannot capture one in a lambda.
-      const int var = factor > one ? factor - one - 1 : factor;
-      const int power = factor > one ? 2 : 1;
+      const int first_square = square_variable(m.muscles.size(), 0);
+      const int var = factor >= first_square ? factor - first_square : factor;
+      const int power = factor >= first_square ? 2 : 1;
       const auto at = std::find_if(mono.powers.begin(), mono.powers.end(),
                                    [&](const auto& p) { return p[0] == var; });
       if (at != mono.powers.end())

@@ -54,19 +54,9 @@ int nearest_vertex(const Points& v, const Vec3& p) {
 // nearest vertex's normal is constant around each vertex and jumps between them, and a
 // jump under a muscle line set its two mirror halves millimetres apart.
 Vec3 smooth_normal(const TriMesh& skin, const Points& normals, const Vec3& p) {
-  double bd = std::numeric_limits<double>::infinity();
-  Tri best{0, 0, 0};
-  Vec3 q = p;
-  for (const Tri& t : skin.tris) {
-    const Vec3 c =
-        closest_point_on_triangle(p, skin.v.get(t[0]), skin.v.get(t[1]), skin.v.get(t[2]));
-    const double d = (c - p).squaredNorm();
-    if (d < bd) {
-      bd = d;
-      best = t;
-      q = c;
-    }
-  }
+  const MeshPoint on = closest_on_mesh(skin, p);
+  const Tri& best = skin.tris[static_cast<std::size_t>(on.triangle)];
+  const Vec3 q = on.point;
   const Vec3 a = skin.v.get(best[0]), e1 = skin.v.get(best[1]) - a, e2 = skin.v.get(best[2]) - a;
   const Vec3 r = q - a;
   const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);

@@ -57,21 +57,6 @@ Box box_of(const Points& v, const std::vector<int>& subset) {
   return b;
 }
 
-// Closest point on the target surface (all triangles; meshes here have a few thousand).
-Vec3 closest_on_mesh(const TriMesh& m, const Vec3& p) {
-  Vec3 best = p;
-  double bd = kInf;
-  for (const Tri& t : m.tris) {
-    const Vec3 q = closest_point_on_triangle(p, m.v.get(t[0]), m.v.get(t[1]), m.v.get(t[2]));
-    const double d = (q - p).squaredNorm();
-    if (d < bd) {
-      bd = d;
-      best = q;
-    }
-  }
-  return best;
-}
-
 int nearest_of(const Points& v, const std::vector<int>& candidates, const Vec3& p) {
   int best = -1;
   double bd = kInf;
@@ -233,6 +218,21 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return a + ab * (vb / denom) + ac * (vc / denom);
 }
 
+MeshPoint closest_on_mesh(const TriMesh& m, const Vec3& p) {
+  MeshPoint best{p, -1};
+  double bd = kInf;
+  for (std::size_t k = 0; k < m.tris.size(); ++k) {
+    const Tri& t = m.tris[k];
+    const Vec3 q = closest_point_on_triangle(p, m.v.get(t[0]), m.v.get(t[1]), m.v.get(t[2]));
+    const double d = (q - p).squaredNorm();
+    if (d < bd) {
+      bd = d;
+      best = {q, static_cast<int>(k)};
+    }
+  }
+  return best;
+}
+
 namespace {
 
 // The fit aligns the mesh's bounding box with the source face's (forehead to chin, ear to
@@ -263,7 +263,7 @@ void check_face_region(const TriMesh& m, const std::vector<int>& used, const std
     for (std::size_t k = 0; k < used.size(); k += step) {
       const Vec3 p = m.v.get(used[k]);
       const Vec3 q = p - 2 * (p - c).dot(n) * n;
-      off.push_back((closest_on_mesh(m, q) - q).norm() / s.x());
+      off.push_back((closest_on_mesh(m, q).point - q).norm() / s.x());
     }
     std::sort(off.begin(), off.end());
     return off[off.size() * 9 / 10];
@@ -359,7 +359,7 @@ std::vector<OpeningLoops> find_holes(const HeadSpec& source, const TriMesh& sour
     std::vector<Vec3> mapped;
     Box mb;
     for (int v : verts) {
-      mapped.push_back(closest_on_mesh(target, al.apply(source_skin.v.get(v))));
+      mapped.push_back(closest_on_mesh(target, al.apply(source_skin.v.get(v))).point);
       mb.add(mapped.back());
     }
     const double span = mb.size().norm();
@@ -458,7 +458,7 @@ void fit_morph(const Points& S, const TriMesh& target, const std::vector<Opening
   fit.converged = false;
   for (int it = 0; it < o.max_iterations; ++it) {
     for (std::size_t k = 0; k < c.vertex.size(); ++k)
-      to[k] = closest_on_mesh(target, morph(c.from[k]));
+      to[k] = closest_on_mesh(target, morph(c.from[k])).point;
     for (const OpeningLoops& h : holes) {
       if (h.target.empty()) continue;
       std::vector<Vec3> mapped;
@@ -479,7 +479,7 @@ void fit_morph(const Points& S, const TriMesh& target, const std::vector<Opening
     for (int v = 0; v < static_cast<int>(S.size()); ++v) {
       if (c.index.count(v) || near_rim(v)) continue;
       const Vec3 p = fit.morph.apply(S.get(v));
-      const double d = (closest_on_mesh(target, p) - p).norm();
+      const double d = (closest_on_mesh(target, p).point - p).norm();
       if (d * 1e3 > o.refine_above_mm) gap.push_back({d, v});
     }
     std::sort(gap.rbegin(), gap.rend());
@@ -513,7 +513,7 @@ std::vector<std::pair<std::string, std::vector<int>>> place_openings(
     } else {
       std::vector<int> snapped;
       for (int v : verts) {
-        const Vec3 p = closest_on_mesh(target, fit.morph.apply(S.get(v)));
+        const Vec3 p = closest_on_mesh(target, fit.morph.apply(S.get(v))).point;
         snapped.push_back(nearest_of(target.v, surface, p));
       }
       contour = join_contour(target.v, adj, snapped);
@@ -553,7 +553,7 @@ LandmarkPositions place_landmarks(const HeadSpec& source, const Points& S, const
     const Vec3 src = landmark_position(l, S);
     pos.source[l.name] = src;
     p.fitted = G.apply(src);
-    p.initial_mm = (closest_on_mesh(target, al.apply(src)) - al.apply(src)).norm() * 1e3;
+    p.initial_mm = (closest_on_mesh(target, al.apply(src)).point - al.apply(src)).norm() * 1e3;
     nl.vertices.clear();
     Vec3 mean = Vec3::Zero();
     for (int v : l.vertices) {

@@ -77,4 +77,12 @@ HeadFit fit_head(const HeadSpec& source, const TriMesh& source_skin, const TriMe
 // Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
+// The closest point to p on mesh m and the triangle it lies on (every triangle is tried:
+// the meshes here have a few thousand). `triangle` is -1 for a mesh without triangles.
+struct MeshPoint {
+  Vec3 point;
+  int triangle = -1;
+};
+MeshPoint closest_on_mesh(const TriMesh& m, const Vec3& p);
+
 }  // namespace facectl::face
