@@ -40,3 +40,8 @@ cp "$tmp/simulate/plots/jaw_digastric.svg" docs/images/simulate/
 # test's screenshot (tests/firmware-host/serve/console_browser_test.py, chromium).
 python3 tests/firmware-host/serve/console_browser_test.py "$facectl" config/facectl.yaml \
   docs/images/console.png > /dev/null
+
+# fit-head on the whole CGAL head (looking along -x): the face it finds, with the
+# landmarks it places.
+"$facectl" face fit-head --obj tests/data/heads/cgal_head/head.obj --out "$tmp/cgal" \
+  --picture docs/images/fit_head_cgal.png > /dev/null

@@ -3,12 +3,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 
 #include "face_command_support.hpp"
 #include "facectl/face/bitmap_font.hpp"
+#include "facectl/face/face_finder.hpp"
 #include "facectl/face/face_renderer.hpp"
 #include "facectl/face/head_fit.hpp"
 #include "facectl/face/head_writer.hpp"
@@ -26,7 +28,8 @@ struct FitHeadArgs {
   std::string from = facectl::shipped_dirs().config + "/heads/default";
 };
 
-nlohmann::ordered_json json_report(const HeadFit& f, const FitHeadArgs& a) {
+nlohmann::ordered_json json_report(const HeadFit& f, const FitHeadArgs& a,
+                                   const std::optional<FoundFace>& found) {
   nlohmann::ordered_json landmarks = nlohmann::ordered_json::array();
   for (const PlacedLandmark& l : f.landmarks)
     landmarks.push_back({{"name", l.name},
@@ -40,6 +43,10 @@ nlohmann::ordered_json json_report(const HeadFit& f, const FitHeadArgs& a) {
           {"last_change_mm", f.last_change_mm},
           {"loose_vertices", f.loose_vertices},
           {"size_ratio", f.size_ratio},
+          {"found_face", found ? nlohmann::ordered_json{{"turn_degrees", found->turn_degrees},
+                                                        {"kept_vertices", found->kept_vertices},
+                                                        {"head_vertices", found->head_vertices}}
+                               : nlohmann::ordered_json(nullptr)},
           {"landmarks", landmarks},
           {"problems", f.problems}};
 }
@@ -78,8 +85,25 @@ int run(const FitHeadArgs& a) {
                                 "overwrite its skin, landmarks and muscles");
   const HeadSpec source = load_head_spec(a.from);
   const TriMesh source_skin = read_obj(source.skin_file, source.skin_scale);
-  const TriMesh target = read_obj(a.obj, metres_per_unit(a.units));
-  check_head_mesh(target, a.obj);
+  TriMesh target = read_obj(a.obj, metres_per_unit(a.units));
+  check_mesh_basics(target, a.obj);
+  // A whole head, or a face looking another way about y: find the face, turn and cut it.
+  std::optional<FoundFace> found;
+  try {
+    check_face_region(target, a.obj);
+  } catch (const InputError& e) {
+    try {
+      found = find_face(target, source_skin, a.obj);
+      check_face_region(found->mesh, a.obj + " (the face found on it)");
+    } catch (const InputError& f) {
+      throw InputError(std::string(e.what()) + "; finding the face on it failed: " + f.what());
+    }
+    std::printf(
+        "%s is not a face looking along +z (%s); found the face on it: turned %.1f degrees "
+        "about y and cut to the region the --from face covers, %zu of %zu vertices kept\n",
+        a.obj.c_str(), e.what(), found->turn_degrees, found->kept_vertices, found->head_vertices);
+    target = found->mesh;
+  }
   HeadFit f = fit_head(source, source_skin, target, HeadFitOptions{});
   // The alignment is scale-free, so a mesh read in the wrong unit still fits; only the
   // size says so (and every size in face.yaml would be scaled with it).
@@ -115,11 +139,17 @@ int run(const FitHeadArgs& a) {
       a.out, f.spec,
       {a.obj, a.units, a.from,
        "Head fitted by `facectl face fit-head --obj " + a.obj + " --from " + a.from + "`"});
+  // The found face replaces the copy of the input: the folder's skin is what was fitted.
+  if (found) {
+    write_obj(a.out + "/skin.obj", target, metres_per_unit(a.units));
+    std::printf("skin.obj is the face found on %s (turned %.1f degrees about y, cut)\n",
+                a.obj.c_str(), found->turn_degrees);
+  }
   std::printf(
       "wrote %s (skin.obj, face.yaml, landmarks.yaml, muscles.yaml, head.yaml); "
       "`facectl face reduce --head %s` fits its reduced model\n",
       a.out.c_str(), a.out.c_str());
-  if (!a.report.empty()) write_text_file(a.report, json_report(f, a).dump(2) + "\n");
+  if (!a.report.empty()) write_text_file(a.report, json_report(f, a, found).dump(2) + "\n");
   if (!f.problems.empty()) {
     for (const std::string& p : f.problems)
       std::fprintf(stderr, "facectl face fit-head: %s: %s\n", a.obj.c_str(), p.c_str());
@@ -156,7 +186,10 @@ void add_fit_head_command(CLI::App* face) {
   static FitHeadArgs a;
   CLI::App* c = face->add_subcommand(
       "fit-head", "place the landmarks and muscle map on a new head mesh; write a head folder");
-  c->add_option("--obj", a.obj, "the new skin: OBJ, facing +z, y up, neutral face")->required();
+  c->add_option("--obj", a.obj,
+                "the new skin: OBJ, y up, neutral face; a face looking along +z, or a whole "
+                "head whose face is then found")
+      ->required();
   c->add_option("--out", a.out, "head folder to write")->required();
   c->add_option("--from", a.from, "head folder whose landmarks and muscles are carried over")
       ->capture_default_str();

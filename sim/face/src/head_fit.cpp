@@ -233,14 +233,32 @@ MeshPoint closest_on_mesh(const TriMesh& m, const Vec3& p) {
   return best;
 }
 
-namespace {
+double mirror_asymmetry(const TriMesh& m, double turn) {
+  const std::vector<int> used = surface_vertices(m);
+  if (used.empty()) return kInf;
+  const Vec3 s = box_of(m.v, used).size();
+  int nose = used.front();
+  for (int i : used)
+    if (m.v.z[i] > m.v.z[nose]) nose = i;
+  const Vec3 c = m.v.get(nose);
+  const std::size_t step = std::max<std::size_t>(1, used.size() / 200);
+  const Vec3 n(std::cos(turn), 0, -std::sin(turn));  // the plane's normal, turned
+  std::vector<double> off;
+  for (std::size_t k = 0; k < used.size(); k += step) {
+    const Vec3 p = m.v.get(used[k]);
+    const Vec3 q = p - 2 * (p - c).dot(n) * n;
+    off.push_back((closest_on_mesh(m, q).point - q).norm() / s.x());
+  }
+  std::sort(off.begin(), off.end());
+  return off[off.size() * 9 / 10];
+}
 
 // The fit aligns the mesh's bounding box with the source face's (forehead to chin, ear to
 // ear, the front of the head), without rotating it: a mesh cut otherwise, or turned, fits
 // "converged" with the source's chin on the neck or its face on a cheek. Measured on the
 // head of Debian's libcgal-demo (tests/data/heads/cgal_head).
-void check_face_region(const TriMesh& m, const std::vector<int>& used, const std::string& what) {
-  const Vec3 s = box_of(m.v, used).size();
+void check_face_region(const TriMesh& m, const std::string& what) {
+  const Vec3 s = box_of(m.v, surface_vertices(m)).size();
   if (!(s.x() > 0)) throw InputError(what + ": the faces' vertices are flat along x");
   // A face is wider than it is deep (the default head: 155 x 100 mm); a whole head is not.
   if (s.z() >= s.x())
@@ -250,31 +268,14 @@ void check_face_region(const TriMesh& m, const std::vector<int>& used, const std
                      "front of the head)");
   // A face looking along +z is mirror-symmetric about the plane x = x(nose tip), the
   // frontmost point. Turned by an angle about y, it is symmetric about that plane turned
-  // as much; looking along x, about none. Measure: the 90th percentile of the mirrored
-  // points' distances to the surface, over the mesh's width.
-  int nose = used.front();
-  for (int i : used)
-    if (m.v.z[i] > m.v.z[nose]) nose = i;
-  const Vec3 c = m.v.get(nose);
-  const std::size_t step = std::max<std::size_t>(1, used.size() / 200);
-  auto asymmetry = [&](double turn) {
-    const Vec3 n(std::cos(turn), 0, -std::sin(turn));  // the plane's normal, turned
-    std::vector<double> off;
-    for (std::size_t k = 0; k < used.size(); k += step) {
-      const Vec3 p = m.v.get(used[k]);
-      const Vec3 q = p - 2 * (p - c).dot(n) * n;
-      off.push_back((closest_on_mesh(m, q).point - q).norm() / s.x());
-    }
-    std::sort(off.begin(), off.end());
-    return off[off.size() * 9 / 10];
-  };
+  // as much; looking along x, about none (mirror_asymmetry).
   // Turns of up to 12.5 degrees either way, 2.5 apart. Facing +z, at 0: 0 on the default
   // head, 0.022 on the resampled grid_narrow, 0.034 on a 299-vertex bust (libcgal-demo's
   // nefertiti). Facing -x, the CGAL head: 0.120 at best (0.22 at 0). The default head
   // turned by 10 degrees: 0 at 10, 0.165 at 0.
   double best = kInf, turn = 0;
   for (int k = -5; k <= 5; ++k) {
-    const double a = asymmetry(k * 2.5 * std::numbers::pi / 180);
+    const double a = mirror_asymmetry(m, k * 2.5 * std::numbers::pi / 180);
     if (a < best) best = a, turn = k * 2.5;
   }
   if (best > 0.07)
@@ -294,9 +295,7 @@ void check_face_region(const TriMesh& m, const std::vector<int>& used, const std
   }
 }
 
-}  // namespace
-
-void check_head_mesh(const TriMesh& m, const std::string& what) {
+void check_mesh_basics(const TriMesh& m, const std::string& what) {
   constexpr std::size_t kMinVertices = 100;
   if (m.v.size() < kMinVertices)
     throw InputError(what + ": expected a face mesh of at least " + std::to_string(kMinVertices) +
@@ -324,7 +323,11 @@ void check_head_mesh(const TriMesh& m, const std::string& what) {
     if (s[k] < 0.05 * big)
       throw InputError(what + ": flat along " + std::string(1, axis[k]) + " (extent " + mm(s[k]) +
                        " of " + mm(big) + "): expected a face facing +z with y up");
-  check_face_region(m, used, what);
+}
+
+void check_head_mesh(const TriMesh& m, const std::string& what) {
+  check_mesh_basics(m, what);
+  check_face_region(m, what);
 }
 
 namespace {

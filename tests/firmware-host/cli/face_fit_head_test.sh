@@ -81,6 +81,24 @@ grep -q "note: 1 vertices used by no face (the first is vertex $((n + 1)) of the
   "$tmp/loose.out" || { cat "$tmp/loose.out"; exit 1; }
 python3 -c 'import json, sys; r = json.load(open(sys.argv[1])); assert r["loose_vertices"] == [int(sys.argv[2])], r' \
   "$tmp/loose.json" "$n"
+# A whole head looking along -x (libcgal-demo's, CC0): its face is found, turned and cut.
+"$facectl" face fit-head --obj "$src/tests/data/heads/cgal_head/head.obj" --out "$tmp/cgal" \
+  --report "$tmp/cgal.json" > "$tmp/cgal.out"
+grep -q "found the face on it: turned 90.0 degrees about y" "$tmp/cgal.out" \
+  || { cat "$tmp/cgal.out"; exit 1; }
+python3 - "$tmp/cgal.json" "$tmp/cgal/skin.obj" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["problems"] == [] and r["converged"] is True, r
+f = r["found_face"]
+assert f["turn_degrees"] == 90 and f["head_vertices"] == 1487, f
+assert f["kept_vertices"] == sum(1 for l in open(sys.argv[2]) if l.startswith("v ")), f
+PY
+[ -s "$tmp/cgal/NOTICE.md" ] || { echo "the CGAL head's notice was not copied"; exit 1; }
+# Nowhere mirror-symmetric (the default skin with its left half pushed 3 cm back): no face.
+awk '$1 == "v" && $2 > 0.5 { $4 -= 3 } { print }' "$src/config/heads/default/skin.obj" \
+  > "$tmp/skewed.obj"
+expect_2 skewed "finding the face on it failed: .*no face found" --obj "$tmp/skewed.obj"
 # A mesh in mm read as cm is ten times the default head's size.
 expect_2 units "times the size of the --from head: is --units cm" \
   --obj "$src/tests/data/heads/broad_short/skin.obj"

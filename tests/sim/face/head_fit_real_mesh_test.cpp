@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "default_head.hpp"
+#include "facectl/face/face_finder.hpp"
 #include "facectl/face/head_fit.hpp"
 #include "facectl/face/head_writer.hpp"
 #include "facectl/face/input_error.hpp"
@@ -78,8 +79,9 @@ TEST(HeadFitOnARealMesh, TurnedItIsAWholeHeadAndIsRefused) {
       << why;
 }
 
-TEST(HeadFitOnARealMesh, CutToTheFaceItFits) {
-  const TriMesh face = cut_to_face(turned_about_y(cgal_head(), 90));
+// The fit of a face cut from the CGAL head, by hand or by find_face: nothing reported,
+// its own eye holes found, the landmarks where a face has them, and a folder that builds.
+void expect_fits_as_a_face(const TriMesh& face, const std::string& name) {
   ASSERT_EQ(refusal(face), "");
   const TriMesh source = read_obj(default_spec().skin_file, default_spec().skin_scale);
   const HeadFit fit = fit_head(default_spec(), source, face, HeadFitOptions{});
@@ -109,15 +111,44 @@ TEST(HeadFitOnARealMesh, CutToTheFaceItFits) {
   EXPECT_LT(at.at("fdp_8_3").y(), nose.y());
   EXPECT_LT(at.at("fdp_2_1").y(), at.at("fdp_8_3").y());
   // The folder it writes builds, as `face render` and `face reduce` build it.
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "cgal_head_fitted";
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / name;
   std::filesystem::remove_all(dir);
-  const std::string obj = (dir.parent_path() / "cgal_face.obj").string();
+  const std::string obj = (dir.parent_path() / (name + ".obj")).string();
   write_obj(obj, face, 0.01);
-  write_head_folder(dir.string(), fit.spec,
-                    {obj, "cm", FACECTL_DEFAULT_HEAD_DIR, "cgal_head cut to the face"});
+  write_head_folder(dir.string(), fit.spec, {obj, "cm", FACECTL_DEFAULT_HEAD_DIR, name});
   const FaceModel m = build_face_model(load_head_spec(dir.string()));
   EXPECT_EQ(m.skin.v.size(), face.v.size());
+}
+
+TEST(HeadFitOnARealMesh, CutToTheFaceItFits) {
+  expect_fits_as_a_face(cut_to_face(turned_about_y(cgal_head(), 90)), "cgal_head_cut");
+}
+
+// As shipped (a whole head looking along -x) and turned to look along +x: find_face turns
+// it back and cuts the face, which then fits as the hand-cut face does.
+TEST(HeadFitOnARealMesh, AsShippedItsFaceIsFoundAndFits) {
+  const TriMesh source = read_obj(default_spec().skin_file, default_spec().skin_scale);
+  for (const double extra : {0.0, 180.0}) {
+    const TriMesh head = turned_about_y(cgal_head(), extra);
+    const FoundFace f = find_face(head, source, "head.obj");
+    RecordProperty("turn_" + std::to_string(static_cast<int>(extra)),
+                   std::to_string(f.turn_degrees) + " kept " + std::to_string(f.kept_vertices) +
+                       " of " + std::to_string(f.head_vertices) + " asymmetry " +
+                       std::to_string(f.asymmetry));
+    EXPECT_NEAR(std::remainder(f.turn_degrees + extra - 90, 360.0), 0, 5) << extra;
+    EXPECT_LT(f.kept_vertices, f.head_vertices * 3 / 4);
+    expect_fits_as_a_face(f.mesh, "cgal_head_found_" + std::to_string(static_cast<int>(extra)));
+  }
+}
+
+// A face that already looks along +z is neither turned nor cut.
+TEST(HeadFitOnARealMesh, TheDefaultFaceIsFoundAsItIs) {
+  const TriMesh source = read_obj(default_spec().skin_file, default_spec().skin_scale);
+  const FoundFace f = find_face(source, source, "skin.obj");
+  EXPECT_EQ(f.turn_degrees, 0);
+  EXPECT_EQ(f.kept_vertices, source.v.size());
+  const FoundFace g = find_face(turned_about_y(source, -10), source, "skin.obj");
+  EXPECT_NEAR(g.turn_degrees, 10, 2.5);
 }
 
 // A face turned about y is mirror-symmetric about a plane turned as much: the default

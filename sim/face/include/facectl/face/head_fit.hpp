@@ -64,6 +64,16 @@ struct HeadFit {
 // triangles referencing a vertex twice, an edge shared by more than two triangles
 // (non-manifold; open borders are fine).
 void check_head_mesh(const TriMesh& m, const std::string& what);
+// The two halves of check_head_mesh: the mesh itself, and whether it covers a face
+// looking along +z with y up (neither a whole head nor turned; find_face() can make it so).
+void check_mesh_basics(const TriMesh& m, const std::string& what);
+void check_face_region(const TriMesh& m, const std::string& what);
+
+// How far m is from mirror-symmetric about the upright plane through its frontmost (+z)
+// used vertex, that plane turned `turn` radians about y: the 90th percentile of the
+// mirrored vertices' distances to the surface, over the mesh's width (x). 0 for the
+// default head; a face looking along x gives over 0.1.
+double mirror_asymmetry(const TriMesh& m, double turn);
 
 // Vertices no triangle uses (ascending). fit_head leaves them out (never snaps to them);
 // they keep their indices, so the mesh file stays valid as it is.

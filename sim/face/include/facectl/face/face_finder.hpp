@@ -1,0 +1,27 @@
+// Finding the face on a head mesh that is not already a face looking along +z: a whole
+// head (with the back of the skull and the neck), or a face looking along another
+// direction about y. fit-head aligns bounding boxes, so it needs the face alone.
+#pragma once
+
+#include <cstddef>
+
+#include "facectl/face/mesh.hpp"
+
+namespace facectl::face {
+
+struct FoundFace {
+  TriMesh mesh;             // turned, cut, and without the vertices the cut left unused
+  double turn_degrees = 0;  // about y, +z toward +x, applied before the cut
+  double asymmetry = 0;     // mirror_asymmetry() of the turned head, before the cut
+  std::size_t kept_vertices = 0, head_vertices = 0;
+};
+
+// Turns `head` about y (y must be up) to look along +z, then keeps the region that
+// `source_face` (a face looking along +z, e.g. the default mask) covers around its nose
+// tip, scaled by the two meshes' widths at the nose. The facing axis is the one about whose
+// upright plane the head is mirror-symmetric; front and back by the nose, the frontmost
+// point that stands out most from the surface beside it. Throws InputError naming `what`
+// when no turn makes the head mirror-symmetric, or the cut keeps too little to fit.
+FoundFace find_face(const TriMesh& head, const TriMesh& source_face, const std::string& what);
+
+}  // namespace facectl::face

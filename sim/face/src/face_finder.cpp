@@ -1,0 +1,162 @@
+#include "facectl/face/face_finder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "facectl/face/head_fit.hpp"
+#include "facectl/face/input_error.hpp"
+
+namespace facectl::face {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180;
+
+TriMesh turned_about_y(TriMesh m, double degrees) {
+  const double c = std::cos(degrees * kDegree), s = std::sin(degrees * kDegree);
+  for (std::size_t i = 0; i < m.v.size(); ++i) {
+    const Vec3 p = m.v.get(i);
+    m.v.set(i, Vec3(c * p.x() + s * p.z(), p.y(), -s * p.x() + c * p.z()));
+  }
+  return m;
+}
+
+std::vector<char> used_mask(const TriMesh& m) {
+  std::vector<char> used(m.v.size(), 0);
+  for (const Tri& t : m.tris)
+    for (int i : t) used[static_cast<std::size_t>(i)] = 1;
+  return used;
+}
+
+// The frontmost used vertex, and the used vertices' extent in x and y.
+struct Front {
+  Vec3 tip;
+  double width = 0, height = 0;
+};
+Front front_of(const TriMesh& m) {
+  const std::vector<char> used = used_mask(m);
+  Front f;
+  f.tip = Vec3::Constant(-std::numeric_limits<double>::infinity());
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t i = 0; i < m.v.size(); ++i) {
+    if (!used[i]) continue;
+    const Vec3 p = m.v.get(i);
+    lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    if (p.z() > f.tip.z()) f.tip = p;
+  }
+  f.width = hi.x() - lo.x(), f.height = hi.y() - lo.y();
+  return f;
+}
+
+// Width (x extent) of the used vertices level with the tip (within 5% of the height).
+double width_at_tip(const TriMesh& m, const Front& f) {
+  const std::vector<char> used = used_mask(m);
+  double lo = f.tip.x(), hi = f.tip.x();
+  for (std::size_t i = 0; i < m.v.size(); ++i)
+    if (used[i] && std::abs(m.v.y[i] - f.tip.y()) < 0.05 * f.height)
+      lo = std::min(lo, m.v.x[i]), hi = std::max(hi, m.v.x[i]);
+  return hi - lo;
+}
+
+// How far the tip stands out of the surface beside it, over the width: level with it and
+// 15% of the width to either side, the surface is that much further back. A nose stands
+// out (0.18 on the default head); the back of a skull is round (under 0.05).
+double protrusion(const TriMesh& m) {
+  const Front f = front_of(m);
+  const std::vector<char> used = used_mask(m);
+  double beside = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < m.v.size(); ++i)
+    if (used[i] && std::abs(m.v.y[i] - f.tip.y()) < 0.05 * f.height &&
+        std::abs(m.v.x[i] - f.tip.x()) > 0.15 * f.width)
+      beside = std::max(beside, m.v.z[i]);
+  return std::isfinite(beside) ? (f.tip.z() - beside) / f.width : 0;
+}
+
+// The turn (degrees) in [from, to] by `step` at which the turned head is most nearly
+// mirror-symmetric, and that asymmetry.
+std::pair<double, double> most_symmetric(const TriMesh& head, double from, double to, double step) {
+  std::pair<double, double> best{from, std::numeric_limits<double>::infinity()};
+  for (double a = from; a <= to + 1e-9; a += step) {
+    const double asym = mirror_asymmetry(turned_about_y(head, a), 0);
+    if (asym < best.second) best = {a, asym};
+  }
+  return best;
+}
+
+// Keeps the triangles whose vertices all lie in `keep`, then drops the vertices no kept
+// triangle uses (renumbering the rest in order).
+TriMesh cut(const TriMesh& m, const std::vector<char>& keep) {
+  TriMesh out;
+  std::vector<int> index(m.v.size(), -1);
+  for (const Tri& t : m.tris) {
+    if (!keep[t[0]] || !keep[t[1]] || !keep[t[2]]) continue;
+    Tri u;
+    for (int k = 0; k < 3; ++k) {
+      int& j = index[static_cast<std::size_t>(t[k])];
+      if (j < 0) {
+        j = static_cast<int>(out.v.size());
+        out.v.push_back(m.v.get(t[k]));
+      }
+      u[k] = j;
+    }
+    out.tris.push_back(u);
+  }
+  return out;
+}
+
+}  // namespace
+
+FoundFace find_face(const TriMesh& head, const TriMesh& source_face, const std::string& what) {
+  FoundFace found;
+  found.head_vertices = head.v.size();
+  // The facing axis: the most symmetric of 24 turns, refined to 2.5 degrees. Facing +z and
+  // facing -z are both symmetric (the plane passes through the nose or the back of the
+  // skull); facing along x, the plane through an ear is not.
+  const auto coarse = most_symmetric(head, 0, 345, 15);
+  auto [turn, asym] = most_symmetric(head, coarse.first - 7.5, coarse.first + 7.5, 2.5);
+  constexpr double kSymmetric = 0.07;  // check_face_region's bound
+  if (!(asym <= kSymmetric))
+    throw InputError(what + ": no face found: turned about y, the mesh is nowhere " +
+                     "mirror-symmetric about an upright plane (at best a tenth of its " +
+                     "mirrored points land over " +
+                     std::to_string(static_cast<int>(std::lround(100 * asym))) +
+                     "% of its width from the surface): expected a head with y up");
+  // Front or back: the nose stands out, the back of the skull does not.
+  const auto back = most_symmetric(head, turn + 180 - 7.5, turn + 180 + 7.5, 2.5);
+  if (back.second <= kSymmetric &&
+      protrusion(turned_about_y(head, back.first)) > protrusion(turned_about_y(head, turn)))
+    turn = back.first, asym = back.second;
+  turn = std::remainder(turn, 360.0);
+  const TriMesh turned = turned_about_y(head, turn);
+  found.turn_degrees = turn;
+  found.asymmetry = asym;
+
+  // The source face's extent around its nose tip, scaled by the widths level with the tips.
+  const Front sf = front_of(source_face), hf = front_of(turned);
+  const double k = width_at_tip(turned, hf) / width_at_tip(source_face, sf);
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  const std::vector<char> source_used = used_mask(source_face);
+  for (std::size_t i = 0; i < source_face.v.size(); ++i)
+    if (source_used[i]) {
+      const Vec3 d = k * (source_face.v.get(i) - sf.tip);
+      lo = lo.cwiseMin(d), hi = hi.cwiseMax(d);
+    }
+  std::vector<char> keep(turned.v.size(), 0);
+  for (std::size_t i = 0; i < turned.v.size(); ++i) {
+    const Vec3 d = turned.v.get(i) - hf.tip;
+    keep[i] =
+        d.y() >= lo.y() && d.y() <= hi.y() && d.z() >= lo.z() && d.x() >= lo.x() && d.x() <= hi.x();
+  }
+  found.mesh = cut(turned, keep);
+  found.kept_vertices = found.mesh.v.size();
+  if (found.mesh.tris.empty())
+    throw InputError(what + ": no face found: the region in front of its frontmost point is " +
+                     "empty");
+  return found;
+}
+
+}  // namespace facectl::face
