@@ -44,6 +44,7 @@ nlohmann::ordered_json json_report(const HeadFit& f, const FitHeadArgs& a,
           {"loose_vertices", f.loose_vertices},
           {"size_ratio", f.size_ratio},
           {"found_face", found ? nlohmann::ordered_json{{"turn_degrees", found->turn_degrees},
+                                                        {"cut", found->cut},
                                                         {"kept_vertices", found->kept_vertices},
                                                         {"head_vertices", found->head_vertices}}
                                : nlohmann::ordered_json(nullptr)},
@@ -99,9 +100,11 @@ int run(const FitHeadArgs& a) {
       throw InputError(std::string(e.what()) + "; finding the face on it failed: " + f.what());
     }
     std::printf(
-        "%s is not a face looking along +z (%s); found the face on it: turned %.1f degrees "
-        "about y and cut to the region the --from face covers, %zu of %zu vertices kept\n",
-        a.obj.c_str(), e.what(), found->turn_degrees, found->kept_vertices, found->head_vertices);
+        "%s is not a face looking along +z (%s); found the face on it: turned %.1f "
+        "degrees about y%s, %zu of %zu vertices kept\n",
+        a.obj.c_str(), e.what(), found->turn_degrees,
+        found->cut ? " and cut to the region the --from face covers" : "", found->kept_vertices,
+        found->head_vertices);
     target = found->mesh;
   }
   HeadFit f = fit_head(source, source_skin, target, HeadFitOptions{});
@@ -142,8 +145,8 @@ int run(const FitHeadArgs& a) {
   // The found face replaces the copy of the input: the folder's skin is what was fitted.
   if (found) {
     write_obj(a.out + "/skin.obj", target, metres_per_unit(a.units));
-    std::printf("skin.obj is the face found on %s (turned %.1f degrees about y, cut)\n",
-                a.obj.c_str(), found->turn_degrees);
+    std::printf("skin.obj is the face found on %s (turned %.1f degrees about y%s)\n", a.obj.c_str(),
+                found->turn_degrees, found->cut ? ", cut" : "");
   }
   std::printf(
       "wrote %s (skin.obj, face.yaml, landmarks.yaml, muscles.yaml, head.yaml); "

@@ -134,6 +134,15 @@ FoundFace find_face(const TriMesh& head, const TriMesh& source_face, const std::
   const TriMesh turned = turned_about_y(head, turn);
   found.turn_degrees = turn;
   found.asymmetry = asym;
+  // A face mask that was only turned is kept whole: the cut below is for whole heads, and
+  // on a face longer than the source's in proportion it would cut off the chin.
+  try {
+    check_face_region(turned, what);
+    found.mesh = turned;
+    found.kept_vertices = turned.v.size();
+    return found;
+  } catch (const InputError&) {
+  }
 
   // The source face's extent around its nose tip, scaled by the widths level with the tips.
   const Front sf = front_of(source_face), hf = front_of(turned);
@@ -152,6 +161,7 @@ FoundFace find_face(const TriMesh& head, const TriMesh& source_face, const std::
         d.y() >= lo.y() && d.y() <= hi.y() && d.z() >= lo.z() && d.x() >= lo.x() && d.x() <= hi.x();
   }
   found.mesh = cut(turned, keep);
+  found.cut = true;
   found.kept_vertices = found.mesh.v.size();
   if (found.mesh.tris.empty())
     throw InputError(what + ": no face found: the region in front of its frontmost point is " +

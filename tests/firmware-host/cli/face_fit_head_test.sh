@@ -91,7 +91,7 @@ import json, sys
 r = json.load(open(sys.argv[1]))
 assert r["problems"] == [] and r["converged"] is True, r
 f = r["found_face"]
-assert f["turn_degrees"] == 90 and f["head_vertices"] == 1487, f
+assert f["turn_degrees"] == 90 and f["cut"] is True and f["head_vertices"] == 1487, f
 assert f["kept_vertices"] == sum(1 for l in open(sys.argv[2]) if l.startswith("v ")), f
 PY
 [ -s "$tmp/cgal/NOTICE.md" ] || { echo "the CGAL head's notice was not copied"; exit 1; }

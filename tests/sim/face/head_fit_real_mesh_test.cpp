@@ -141,7 +141,8 @@ TEST(HeadFitOnARealMesh, AsShippedItsFaceIsFoundAndFits) {
   }
 }
 
-// A face that already looks along +z is neither turned nor cut.
+// A face that already looks along +z is neither turned nor cut; a turned one is turned
+// back and kept whole.
 TEST(HeadFitOnARealMesh, TheDefaultFaceIsFoundAsItIs) {
   const TriMesh source = read_obj(default_spec().skin_file, default_spec().skin_scale);
   const FoundFace f = find_face(source, source, "skin.obj");
@@ -149,6 +150,7 @@ TEST(HeadFitOnARealMesh, TheDefaultFaceIsFoundAsItIs) {
   EXPECT_EQ(f.kept_vertices, source.v.size());
   const FoundFace g = find_face(turned_about_y(source, -10), source, "skin.obj");
   EXPECT_NEAR(g.turn_degrees, 10, 2.5);
+  EXPECT_EQ(g.kept_vertices, source.v.size());  // turned back, not cut
 }
 
 // A face turned about y is mirror-symmetric about a plane turned as much: the default

@@ -12,13 +12,15 @@ namespace facectl::face {
 struct FoundFace {
   TriMesh mesh;             // turned, cut, and without the vertices the cut left unused
   double turn_degrees = 0;  // about y, +z toward +x, applied before the cut
+  bool cut = false;         // a whole head, cut to the face
   double asymmetry = 0;     // mirror_asymmetry() of the turned head, before the cut
   std::size_t kept_vertices = 0, head_vertices = 0;
 };
 
-// Turns `head` about y (y must be up) to look along +z, then keeps the region that
+// Turns `head` about y (y must be up) to look along +z. If that makes it a face
+// (check_face_region), it is returned whole; otherwise (a whole head) only the region that
 // `source_face` (a face looking along +z, e.g. the default mask) covers around its nose
-// tip, scaled by the two meshes' widths at the nose. The facing axis is the one about whose
+// tip is kept, scaled by the two meshes' widths at the nose. The facing axis is the one about whose
 // upright plane the head is mirror-symmetric; front and back by the nose, the frontmost
 // point that stands out most from the surface beside it. Throws InputError naming `what`
 // when no turn makes the head mirror-symmetric, or the cut keeps too little to fit.
