@@ -95,6 +95,28 @@ assert f["turn_degrees"] == 90 and f["cut"] is True and f["head_vertices"] == 14
 assert f["kept_vertices"] == sum(1 for l in open(sys.argv[2]) if l.startswith("v ")), f
 PY
 [ -s "$tmp/cgal/NOTICE.md" ] || { echo "the CGAL head's notice was not copied"; exit 1; }
+# A face mask turned 20 degrees about y: turned back, not cut.
+python3 - "$src/config/heads/default/skin.obj" "$tmp/turned.obj" <<'PY'
+import math, sys
+a = math.radians(20)
+with open(sys.argv[2], "w") as o:
+    for line in open(sys.argv[1]):
+        p = line.split()
+        if p and p[0] == "v":
+            x, y, z = map(float, p[1:4])
+            line = "v %.6f %.6f %.6f\n" % (math.cos(a) * x + math.sin(a) * z, y,
+                                          -math.sin(a) * x + math.cos(a) * z)
+        o.write(line)
+PY
+"$facectl" face fit-head --obj "$tmp/turned.obj" --out "$tmp/turned" --report "$tmp/turned.json" \
+  > "$tmp/turned.out"
+python3 - "$tmp/turned.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+f = r["found_face"]
+assert r["problems"] == [] and abs(abs(f["turn_degrees"]) - 20) <= 2.5, r
+assert f["cut"] is False and f["kept_vertices"] == f["head_vertices"], f
+PY
 # Nowhere mirror-symmetric (the default skin with its left half pushed 3 cm back): no face.
 awk '$1 == "v" && $2 > 0.5 { $4 -= 3 } { print }' "$src/config/heads/default/skin.obj" \
   > "$tmp/skewed.obj"

@@ -4,16 +4,18 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include "facectl/face/mesh.hpp"
 
 namespace facectl::face {
 
 struct FoundFace {
-  TriMesh mesh;             // turned, cut, and without the vertices the cut left unused
-  double turn_degrees = 0;  // about y, +z toward +x, applied before the cut
+  TriMesh mesh;             // turned; a whole head also cut, without the vertices left unused
+  double turn_degrees = 0;  // about y, +z toward +x, applied before any cut
   bool cut = false;         // a whole head, cut to the face
-  double asymmetry = 0;     // mirror_asymmetry() of the turned head, before the cut
+  double asymmetry = 0;     // mirror_asymmetry() of the turned head, before any cut
+  double protrusion = 0;    // how far the nose stands out, over the width
   std::size_t kept_vertices = 0, head_vertices = 0;
 };
 
@@ -23,7 +25,8 @@ struct FoundFace {
 // tip is kept, scaled by the two meshes' widths at the nose. The facing axis is the one about whose
 // upright plane the head is mirror-symmetric; front and back by the nose, the frontmost
 // point that stands out most from the surface beside it. Throws InputError naming `what`
-// when no turn makes the head mirror-symmetric, or the cut keeps too little to fit.
+// when no turn makes the head mirror-symmetric, nothing stands out in front like a nose,
+// or what the cut keeps fails check_mesh_basics (too few vertices, say).
 FoundFace find_face(const TriMesh& head, const TriMesh& source_face, const std::string& what);
 
 }  // namespace facectl::face
