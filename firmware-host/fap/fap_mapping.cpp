@@ -52,9 +52,6 @@ struct MuscleRouteSpec {
   int fap;
   const char* point;  // control point of the reduced model standing for the FAP's FDP
   std::vector<const char*> positive, negative;
-  // Where the reduced model shows the negative group too little reach at the
-  // point, a stated nominal reach (m at c = 1) instead; 0: measured.
-  double negative_nominal = 0.0;
 };
 
 // Which muscles move each FAP's feature point, for positive and negative
@@ -62,22 +59,18 @@ struct MuscleRouteSpec {
 // (docs/FAP.md). Where the model has no control point at the FAP's FDP the
 // nearest one stands in.
 const std::vector<MuscleRouteSpec>& muscle_route_specs() {
-  // The depressor labii inferioris moves the lower lip's middle (8.2) only 0.4 mm in
-  // the reduced model; a lowered lower lip would be lost without it, so it gets a
-  // nominal reach (docs/FAP.md).
-  constexpr double kLowerLipDown = 0.003;
   const std::vector<const char*> lls = {"levator_labii_superioris_l", "levator_labii_superioris_r"};
   const std::vector<const char*> dli = {"depressor_labii_inferioris_l",
                                         "depressor_labii_inferioris_r"};
   static const std::vector<MuscleRouteSpec> specs = {
       {4, "fdp_2_2", {"orbicularis_oris"}, lls},
-      {5, "fdp_8_2", {"orbicularis_oris"}, dli, kLowerLipDown},
+      {5, "fdp_8_2", {"orbicularis_oris"}, dli},
       {6, "fdp_8_3", {"risorius_l"}, {"orbicularis_oris"}},
       {7, "fdp_8_4", {"risorius_r"}, {"orbicularis_oris"}},
       {8, "fdp_2_2", {"orbicularis_oris"}, {"levator_labii_superioris_l"}},
       {9, "fdp_2_2", {"orbicularis_oris"}, {"levator_labii_superioris_r"}},
-      {10, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_l"}, kLowerLipDown},
-      {11, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_r"}, kLowerLipDown},
+      {10, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_l"}},
+      {11, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_r"}},
       {12, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}},
       {13, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}},
       {16, "fdp_8_2", {"orbicularis_oris"}, {}},
@@ -93,13 +86,13 @@ const std::vector<MuscleRouteSpec>& muscle_route_specs() {
       {41, "fdp_5_1", {"zygomaticus_major_l"}, {}},
       {42, "fdp_5_2", {"zygomaticus_major_r"}, {}},
       {51, "fdp_8_1", {"orbicularis_oris"}, lls},
-      {52, "fdp_8_2", {"orbicularis_oris"}, dli, kLowerLipDown},
+      {52, "fdp_8_2", {"orbicularis_oris"}, dli},
       {53, "fdp_8_3", {"risorius_l"}, {"orbicularis_oris"}},
       {54, "fdp_8_4", {"risorius_r"}, {"orbicularis_oris"}},
       {55, "fdp_8_1", {"orbicularis_oris"}, {"levator_labii_superioris_l"}},
       {56, "fdp_8_1", {"orbicularis_oris"}, {"levator_labii_superioris_r"}},
-      {57, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_l"}, kLowerLipDown},
-      {58, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_r"}, kLowerLipDown},
+      {57, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_l"}},
+      {58, "fdp_8_2", {"orbicularis_oris"}, {"depressor_labii_inferioris_r"}},
       {59, "fdp_8_3", {"zygomaticus_major_l"}, {"depressor_anguli_oris_l"}},
       {60, "fdp_8_4", {"zygomaticus_major_r"}, {"depressor_anguli_oris_r"}},
       {63,
@@ -215,7 +208,7 @@ FapMapping FapMapping::build(const HeadConfig& head, const FeaturePoints& points
   std::vector<double> c(reduced.muscles.size());
   std::vector<double> disp(3 * reduced.control_points.size());
   auto response = [&](const std::vector<const char*>& names, std::size_t point,
-                      const face::Vec3& dir, double nominal) {
+                      const face::Vec3& dir) {
     Response r;
     for (const char* n : names) {
       const auto i = L.find(n);
@@ -224,13 +217,6 @@ FapMapping FapMapping::build(const HeadConfig& head, const FeaturePoints& points
                           "', which this head lacks");
       }
       r.muscles.push_back(*i);
-    }
-    if (nominal > 0.0) {
-      r.nominal = true;
-      for (std::size_t k = 0; k < r.along.size(); ++k) {
-        r.along[k] = nominal * 0.1 * static_cast<double>(k);
-      }
-      return r;
     }
     for (std::size_t k = 0; k < r.along.size(); ++k) {
       std::fill(c.begin(), c.end(), 0.0);
@@ -260,9 +246,9 @@ FapMapping FapMapping::build(const HeadConfig& head, const FeaturePoints& points
     MuscleRoute route;
     route.fap = spec.fap;
     route.point = spec.point;
-    route.positive = response(spec.positive, point, dir, 0.0);
+    route.positive = response(spec.positive, point, dir);
     if (!spec.negative.empty()) {
-      route.negative = response(spec.negative, point, -dir, spec.negative_nominal);
+      route.negative = response(spec.negative, point, -dir);
     }
     m.muscle_routes_.push_back(std::move(route));
     m.supported_.set(static_cast<std::size_t>(spec.fap - 1));
@@ -436,8 +422,7 @@ std::vector<FapRouteInfo> FapMapping::describe_routes() const {
     std::string gain = buf;
     if (!r.negative.muscles.empty()) {
       target += " / - " + names(r.negative.muscles);
-      std::snprintf(buf, sizeof buf, " / %.2f mm%s", r.negative.along.back() * 1e3,
-                    r.negative.nominal ? " (nominal)" : "");
+      std::snprintf(buf, sizeof buf, " / %.2f mm", r.negative.along.back() * 1e3);
       gain += buf;
     }
     out.push_back({r.fap, target, gain});

@@ -73,7 +73,6 @@ class FapMapping {
   struct Response {  // one muscle group's displacement of a point along the FAP's direction
     std::vector<std::size_t> muscles;
     std::array<double, 11> along{};  // m at c = 0, 0.1, .., 1
-    bool nominal = false;            // a stated reach, not the reduced model's
   };
   struct MuscleRoute {
     int fap = 0;

@@ -105,9 +105,9 @@ TEST(ActionUnitGeometry, Au15PullsTheCornersDown) {
 }
 
 TEST(ActionUnitGeometry, Au16LowersTheLowerLipAu25PartsTheLips) {
-  EXPECT_LE(au(16).lower_lip_rise, -0.25);  // -0.30 mm, the lips 0.26 apart
-  EXPECT_GE(au(16).lip_gap, 0.2);
-  EXPECT_GE(au(25).lip_gap, 1.0);
+  EXPECT_LE(au(16).lower_lip_rise, -1.5);  // -2.0 mm, the lips 2.1 apart
+  EXPECT_GE(au(16).lip_gap, 1.5);
+  EXPECT_GE(au(25).lip_gap, 1.5);  // 2.0 mm
 }
 
 TEST(ActionUnitGeometry, Au17PushesTheLowerLipUp) {

@@ -246,7 +246,7 @@ def drive_jog(browser, base):
         raise Failure(f"the picker greys out {offered}, the rig's struts are {struts}")
 
     # Each actuator picked: the slider and the number box span its jog range
-    # (lip_corner_down_l's is 0..35 deg, narrower than its soft range), in its unit.
+    # (lip_pucker's is 0..35 deg, narrower than its soft range), in its unit.
     for index, actuator in enumerate(rig["actuators"]):
         if actuator["jog"] is None:
             continue

@@ -107,19 +107,19 @@ TEST(FaceGeometry, AConstantDisplacementOfAllPointsMovesEveryVertexByIt) {
 
 TEST(FaceGeometry, AHeadWithoutAReducedModelHasNone) {
   testing::TempDir dir;
-  const LoadedConfig config =
-      load_config(testing::copied_head_config(dir, "hobby.yaml", /*with_reduced_model=*/false));
+  const LoadedConfig config = load_config(
+      testing::copied_head_config(dir, testing::kTermsOnlyRig, /*with_reduced_model=*/false));
   const FaceGeometryLoad load = load_face_geometry(config);
   EXPECT_EQ(load.geometry, nullptr);
   EXPECT_NE(load.why_not.find("reduced_face.txt"), std::string::npos) << load.why_not;
 }
 
-// The hobby rig reads no control points, so its model carries no reduced model: the
-// geometry loads it from the head's folder.
+// A rig that reads no control points (linear terms only) carries no reduced model in its
+// controller model: the geometry loads it from the head's folder.
 TEST(FaceGeometry, LoadsTheReducedModelForARigThatReadsNoPoints) {
   testing::TempDir dir;
-  const LoadedConfig config =
-      load_config(testing::copied_head_config(dir, "hobby.yaml", /*with_reduced_model=*/true));
+  const LoadedConfig config = load_config(
+      testing::copied_head_config(dir, testing::kTermsOnlyRig, /*with_reduced_model=*/true));
   ASSERT_EQ(config.built.model.mapping.reduced, nullptr);
   const FaceGeometryLoad load = load_face_geometry(config);
   ASSERT_NE(load.geometry, nullptr) << load.why_not;

@@ -215,15 +215,15 @@ void start_jog(ServedHead& h) {
 TEST(HeadService, JogStaysWhereSomeAdmissibleFaceTakesTheActuator) {
   ServedHead h;
   const ControllerModel& m = h.session().head.model();
-  const std::size_t corner = actuator_index(m, "lip_corner_down_l");
-  // Soft range -40..40 deg, but no admissible face lowers the corner servo below 0.
+  const std::size_t corner = actuator_index(m, "lip_pucker");
+  // Soft range -40..40 deg, but no admissible face takes the pucker servo below 0.
   EXPECT_NEAR(h.service().jog_ranges()[corner].lo, 0.0, 1e-6);
   EXPECT_NEAR(h.service().jog_ranges()[corner].hi, 35.0, 1e-6);
   start_jog(h);
-  const HeadService::Result low = h.service().jog("test", "lip_corner_down_l", -10);
+  const HeadService::Result low = h.service().jog("test", "lip_pucker", -10);
   EXPECT_EQ(low.status, 422);
   EXPECT_NE(low.error.find("expected 0..35"), std::string::npos) << low.error;
-  EXPECT_EQ(h.service().jog("test", "lip_corner_down_l", 20).status, 200);
+  EXPECT_EQ(h.service().jog("test", "lip_pucker", 20).status, 200);
 }
 
 TEST(HeadService, JoggingAnotherActuatorStopsTheFirstWhereItIs) {

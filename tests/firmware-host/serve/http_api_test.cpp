@@ -243,8 +243,8 @@ TEST(HttpApi, TheRigGivesTheJogRangeThatJogKeepsTo) {
     EXPECT_EQ(jog(a, hi + 0.01), 422) << a;
     EXPECT_EQ(jog(a, hi), 200) << a;
     EXPECT_EQ(jog(a, lo), 200) << a;
-    if (name == "lip_corner_down_l") {  // soft range -40..40 deg; no admissible face lowers
-      EXPECT_NEAR(lo, 0.0, 1e-6);       // it below 0 or takes it past 35 deg
+    if (name == "lip_pucker") {    // soft range -40..40 deg; no admissible face takes
+      EXPECT_NEAR(lo, 0.0, 1e-6);  // it below 0 or past 35 deg
       EXPECT_NEAR(hi, 35.0, 1e-6);
     }
   }
@@ -315,7 +315,7 @@ TEST(HttpApi, TheFaceGeometryIsTheReducedModelsPointsAndTheSkin) {
 // and the console keeps its schematic face.
 TEST(HttpApi, TheFaceGeometryIs404ForAHeadWithoutAReducedModel) {
   testing::TempDir dir;
-  ServedApi api("", testing::copied_head_config(dir, "hobby.yaml", false));
+  ServedApi api("", testing::copied_head_config(dir, testing::kTermsOnlyRig, false));
   const auto r = api.client().Get("/api/v1/face/geometry");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 404);

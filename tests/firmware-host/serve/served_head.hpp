@@ -57,8 +57,12 @@ class ServedHead {
 };
 
 // A runtime file in `dir` for a copy of the default head (with or without its reduced
-// face model, reduced_face.txt) on the shipped rig `rig` (e.g. "hobby.yaml", which reads
-// no control points, so the head needs no reduced model).
+// face model, reduced_face.txt) on the shipped rig `rig` ("hobby.yaml"), or on the rig
+// file at the absolute path `rig` (kTermsOnlyRig reads no control points, so the head
+// needs no reduced model).
+inline const std::string kTermsOnlyRig =
+    std::string(FACECTL_SOURCE_DIR) + "/tests/data/rigs/hobby_terms.yaml";
+
 inline std::string copied_head_config(const TempDir& dir, const std::string& rig,
                                       bool with_reduced_model) {
   namespace fs = std::filesystem;
@@ -68,9 +72,10 @@ inline std::string copied_head_config(const TempDir& dir, const std::string& rig
     if (!with_reduced_model && f.path().filename() == "reduced_face.txt") continue;
     fs::copy_file(f.path(), fs::path(dir.file("head")) / f.path().filename());
   }
-  dir.write("facectl.yaml", "head: " + dir.file("head/head.yaml") + "\nrig: " + src + "rigs/" +
-                                rig + "\nexpressions: " + src +
-                                "expressions/library.yaml\nshow: " + src + "shows/demo.yaml\n");
+  const std::string rig_path = rig.starts_with('/') ? rig : src + "rigs/" + rig;
+  dir.write("facectl.yaml", "head: " + dir.file("head/head.yaml") + "\nrig: " + rig_path +
+                                "\nexpressions: " + src + "expressions/library.yaml\nshow: " + src +
+                                "shows/demo.yaml\n");
   return dir.file("facectl.yaml");
 }
 
