@@ -1,7 +1,5 @@
 #include "fit_head_command.hpp"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -141,20 +139,19 @@ int run(const FitHeadArgs& a) {
                 l.initial_mm, l.snap_mm);
 
   // The found face replaces the copy of the input: the folder's skin is what was fitted. It
-  // is written first, beside nothing, so that a failed write leaves no folder whose
-  // landmarks index a skin it does not hold.
-  const std::filesystem::path found_skin =
-      std::filesystem::temp_directory_path() /
-      ("facectl-found-face-" + std::to_string(::getpid()) + ".obj");
-  if (found) write_obj(found_skin.string(), target, metres_per_unit(a.units));
+  // is written into the folder first and renamed over the copy last (one atomic step), so
+  // no failure leaves landmarks beside a skin they do not index.
+  const std::filesystem::path found_skin = std::filesystem::path(a.out) / "skin.found.obj";
+  if (found) {
+    std::filesystem::create_directories(a.out);
+    write_obj(found_skin.string(), target, metres_per_unit(a.units));
+  }
   write_head_folder(
       a.out, f.spec,
       {a.obj, a.units, a.from,
        "Head fitted by `facectl face fit-head --obj " + a.obj + " --from " + a.from + "`"});
   if (found) {
-    std::filesystem::copy_file(found_skin, std::filesystem::path(a.out) / "skin.obj",
-                               std::filesystem::copy_options::overwrite_existing);
-    std::filesystem::remove(found_skin);
+    std::filesystem::rename(found_skin, std::filesystem::path(a.out) / "skin.obj");
     std::printf("skin.obj is the face found on %s (turned %.1f degrees about y%s)\n", a.obj.c_str(),
                 found->turn_degrees, found->cut ? ", cut" : "");
   }

@@ -187,8 +187,10 @@ void check_capability(const LoadedConfig& cfg, std::vector<Finding>& findings) {
 // default rig's outer brows, 0.14 and 0.17 deg of 90 as frontalis_outer goes from
 // 0.95 to 1, 0.06-0.07 mm of brow, under the fit's 0.14 mm RMS for one muscle). A
 // turn back, from the best so far, smaller than kDirectionSlack of the actuator's
-// hardware range (about a hobby servo's deadband) is a warning, not a failure; a
-// flipped or miswired mapping turns back over most of its range.
+// hardware range (about a hobby servo's deadband), beside a real move the expected
+// way (at least that slack and ten times the turn back), is a warning, not a failure;
+// a flipped or miswired mapping turns back over most of its range, and a signal that
+// only stirs fit noise makes no real move.
 constexpr double kDirectionSlack = 2.5e-3;
 
 void check_directions(const LoadedConfig& cfg, const Polytope& set,
@@ -209,8 +211,9 @@ void check_directions(const LoadedConfig& cfg, const Polytope& set,
       const double lo = set.lo[e.signal], hi = set.hi[e.signal];
       const double to_file = 1.0 / yaml_to_si(m.layout.signal(e.signal).kind);
       constexpr int kSteps = 64;
-      // fell: the largest distance the command comes back below its best so far.
-      double prev = 0.0, moved = 0.0, fell = 0.0, best = 0.0;
+      // fell: the largest distance the command comes back below its best so far; rise:
+      // how far that best lies beyond the start.
+      double prev = 0.0, moved = 0.0, fell = 0.0, best = 0.0, start = 0.0;
       std::optional<std::pair<double, double>> wrong;  // signal values, SI
       double wrong_from = 0.0, wrong_to = 0.0;
       for (int s = 0; s <= kSteps; ++s) {
@@ -226,7 +229,8 @@ void check_directions(const LoadedConfig& cfg, const Polytope& set,
           }
           if (d > tol) moved = 1.0;
         }
-        best = s == 0 ? out[i] * e.sign : std::max(best, out[i] * e.sign);
+        if (s == 0) start = out[i] * e.sign;
+        best = s == 0 ? start : std::max(best, out[i] * e.sign);
         fell = std::max(fell, best - out[i] * e.sign);
         prev = out[i];
       }
@@ -234,21 +238,21 @@ void check_directions(const LoadedConfig& cfg, const Polytope& set,
           std::string(e.sign > 0 ? "expected to rise" : "expected to fall") + " with " + e.key +
           " (expect_direction " + (e.sign > 0 ? "+1" : "-1") + ")";
       const double range = ac.model.limits.position_max - ac.model.limits.position_min;
-      // Slight only beside a real move the expected way: a mapping that never rises
-      // fails below whatever it does.
-      const bool slight = fell < kDirectionSlack * range && moved != 0.0;
+      const double slack = kDirectionSlack * range, rise = best - start;
+      const bool slight = fell < slack && rise >= std::max(slack, 10 * fell);
       if (wrong) {
-        findings.push_back({slight ? Severity::kWarn : Severity::kFail, "direction", ac.model.name,
-                            expected + ", but it " + (e.sign > 0 ? "falls" : "rises") +
-                                (slight ? " slightly (by at most " + fmt("%.3g", fell * scale) +
-                                              " " + unit + ", under 0.25% of its hardware range)"
-                                        : std::string()) +
-                                ": " + fmt("%.4g", wrong_from * scale) + " -> " +
-                                fmt("%.4g", wrong_to * scale) + " " + unit + " as " + e.key +
-                                " goes " + fmt("%.4g", wrong->first * to_file) + " -> " +
-                                fmt("%.4g", wrong->second * to_file) +
-                                ", the other signals at neutral (" + e.where + ")",
-                            ""});
+        findings.push_back(
+            {slight ? Severity::kWarn : Severity::kFail, "direction", ac.model.name,
+             expected + ", but it " + (e.sign > 0 ? "falls" : "rises") +
+                 (slight ? " slightly (by at most " + fmt("%.3g", fell * scale) + " " + unit +
+                               ", under " + fmt("%.2g", 100 * kDirectionSlack) +
+                               "% of its hardware range)"
+                         : std::string()) +
+                 ": " + fmt("%.4g", wrong_from * scale) + " -> " + fmt("%.4g", wrong_to * scale) +
+                 " " + unit + " as " + e.key + " goes " + fmt("%.4g", wrong->first * to_file) +
+                 " -> " + fmt("%.4g", wrong->second * to_file) +
+                 ", the other signals at neutral (" + e.where + ")",
+             ""});
       } else if (moved == 0.0) {
         findings.push_back({Severity::kFail, "direction", ac.model.name,
                             expected + ", but it does not move with it over " +

@@ -102,10 +102,13 @@ TEST(Verify, PassesBothShippedRigs) {
   o.shows = {kSource + "/config/shows/demo.yaml"};
   EXPECT_EQ(verify_command(o), 0);
   o.shows.clear();
-  for (const char* hobby_rig : {"hobby", "hobby_pca9685", "hobby_maestro"}) {
+  for (const char* hobby_rig :
+       {"hobby", "hobby_pca9685", "hobby_maestro", "hobby_dynamixel", "hobby_feetech"}) {
     o.rig = kSource + "/config/rigs/" + hobby_rig + ".yaml";
     EXPECT_EQ(verify_command(o), 0) << hobby_rig;
   }
+  o.rig = kSource + "/tests/data/rigs/hobby_terms.yaml";  // the fixture of the tests below
+  EXPECT_EQ(verify_command(o), 0);
 }
 
 TEST(Verify, ARigWithActuatorCoupledLimitsPassesItsAdversarialSearch) {
@@ -621,6 +624,20 @@ TEST(Verify, AFitsSlightTurnBackIsAWarning) {
     slight += f.subject == "brow_outer_l" || f.subject == "brow_outer_r";
   }
   EXPECT_EQ(slight, 2);
+}
+
+// The slack is small: with three times the gain, the same turn back (0.41 deg of 90) is
+// past it, and the outer brow fails its expected direction.
+TEST(Verify, ATurnBackPastTheSlackFails) {
+  const auto rig = default_rig()
+                       .replace("- { point: fdp_4_5, axis: [0, 1, 0], gain: 2.4 }",
+                                "- { point: fdp_4_5, axis: [0, 1, 0], gain: 7.2 }")
+                       .write();
+  const auto proof = verify::prove(load_rig(rig.path()));
+  const auto* f = find_failure(proof.findings, "direction");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->subject, "brow_outer_l");
+  EXPECT_EQ(f->message.find("slightly"), std::string::npos) << f->message;
 }
 
 // A coupled face limit over an eyelid and a brow muscle: the inner brow may not
