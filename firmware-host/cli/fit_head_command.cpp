@@ -43,6 +43,12 @@ nlohmann::ordered_json json_report(const HeadFit& f, const FitHeadArgs& a,
           {"last_change_mm", f.last_change_mm},
           {"loose_vertices", f.loose_vertices},
           {"size_ratio", f.size_ratio},
+          {"vertex_area_ratio", f.vertex_area_ratio},
+          {"skin_stiffness",
+           {{"stretch", f.spec.skin.stretch},
+            {"bending", f.spec.skin.bending},
+            {"area", f.spec.skin.area},
+            {"anchor", f.spec.skin.anchor}}},
           {"found_face", found ? nlohmann::ordered_json{{"turn_degrees", found->turn_degrees},
                                                         {"cut", found->cut},
                                                         {"kept_vertices", found->kept_vertices},
@@ -120,6 +126,11 @@ int run(const FitHeadArgs& a) {
       "%.3f mm, size ratio %.3f\n",
       a.obj.c_str(), target.v.size(), target.tris.size(), a.from.c_str(), f.iterations,
       f.refined_pairs, f.last_change_mm, f.size_ratio);
+  std::printf(
+      "skin area per vertex %.3f times the --from head's: skin stiffness stretch %.4g, bending "
+      "%.4g, area %.4g, anchor %.4g (docs/FACE_MODEL.md, \"Skin stiffness per unit area\")\n",
+      f.vertex_area_ratio, f.spec.skin.stretch, f.spec.skin.bending, f.spec.skin.area,
+      f.spec.skin.anchor);
   if (f.converged)
     std::printf("converged: the correspondences stopped moving\n");
   else

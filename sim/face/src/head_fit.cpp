@@ -12,6 +12,7 @@
 #include "facectl/face/edge_paths.hpp"
 #include "facectl/face/face_model.hpp"
 #include "facectl/face/input_error.hpp"
+#include "facectl/face/skin_density.hpp"
 
 namespace facectl::face {
 namespace {
@@ -650,6 +651,9 @@ HeadFit fit_numbered(const HeadSpec& source, const TriMesh& source_skin, const T
   check_orientation(pos, fit.problems);
   carry_muscles(pos, fit.morph, fit.spec);
   scale_sizes(pos, fit.size_ratio, fit.spec);
+  // Step 8: the skin's stiffnesses, tuned on the source's vertex density, for the target's.
+  fit.vertex_area_ratio = mean_vertex_area(target) / mean_vertex_area(source_skin);
+  fit.spec.skin = stiffness_for_vertex_area(source.skin, fit.vertex_area_ratio);
   return fit;
 }
 

@@ -16,9 +16,16 @@ done
 [ ! -e "$tmp/head/reduced_face.txt" ] || { echo "reduced_face.txt should not be written"; exit 1; }
 grep -q "face reduce --head $tmp/head" "$tmp/out.txt" || { cat "$tmp/out.txt"; exit 1; }
 grep -q "^converged" "$tmp/out.txt" || { cat "$tmp/out.txt"; exit 1; }
-python3 - "$tmp/report.json" "$tmp/landmarks.png" <<'PY'
-import json, sys
+python3 - "$tmp/report.json" "$tmp/landmarks.png" "$tmp/head/face.yaml" <<'PY'
+import json, re, sys
 r = json.load(open(sys.argv[1]))
+# broad_short has 800 vertices over about the default's area: its skin stiffnesses are
+# rescaled (docs/FACE_MODEL.md, "Skin stiffness per unit area"), and face.yaml says so.
+ratio, k = r["vertex_area_ratio"], r["skin_stiffness"]
+assert 0.5 < ratio < 0.65, ratio
+assert abs(k["anchor"] - 0.2 * ratio * ratio) < 1e-12 and k["bending"] == 0.95, k
+written = re.search(r"anchor: ([0-9.e-]+)", open(sys.argv[3]).read()).group(1)
+assert float(written) == k["anchor"], (written, k)
 assert r["problems"] == [], r["problems"]
 assert r["converged"] is True and r["loose_vertices"] == [], r
 names = [l["name"] for l in r["landmarks"]]

@@ -28,6 +28,9 @@
 //     One muscle of a head folder, its particles at rest and at the expression's steady state.
 //   face_convergence_probe mirror HEADDIR
 //     Each muscle's rest particles against its mirror partner's reflected in x = 0.
+//   face_convergence_probe skin HEADDIR EXPRESSION [frames]
+//     After a run to steady state, the skin vertices that still move over `frames` (6),
+//     and which muscle each vertex rides on (FACE_CORNERS=R: near the mouth corners).
 //   face_convergence_probe fixed [N] [seed] [passes] [tolerance_mm]
 //     Whether `passes`-pass steady states of dense inputs are the head solver's: how far its
 //     frames take them, and where it settles; where they alternate, which vertex and anchor.
@@ -36,7 +39,9 @@
 // FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
 // stretch|area scales them with the skin size or vertex area; in the random study
 // FACE_FREEZE=N freezes the muscles after N frames, FACE_NOTEETH=1 drops the contacts and
-// FACE_PASSES=N runs N skin iterations and muscle passes a frame.
+// FACE_PASSES=N runs N skin iterations and muscle passes a frame; in the resolution study
+// FACE_SCALE=density scales the skin as fit-head does, FACE_GLOBAL=G multiplies every skin
+// stiffness by G, and FACE_TOL / FACE_MAXFRAMES set the steady state's tolerance and limit.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -48,6 +53,7 @@
 #include "facectl/face/expression_library.hpp"
 #include "facectl/face/reduced_model_fit.hpp"
 #include "facectl/face/reduced_test_sets.hpp"
+#include "facectl/face/skin_density.hpp"
 #include "facectl/face/steady_state.hpp"
 
 using namespace facectl::face;
@@ -116,6 +122,25 @@ constexpr double kBaseVertices = 468;
 HeadSpec study_head_for(std::size_t vertices) {
   HeadSpec spec = study_head();
   const char* e = std::getenv("FACE_SCALE");
+  // FACE_SCALE=density: the fitted heads' rule (skin_density.hpp) with ratio n_base/n; the
+  // builder's own anchor scaling supplies one factor of the anchors' ratio².
+  // FACE_GLOBAL=G: every per-element skin stiffness times G (the same weights, smaller
+  // steps: how far Gauss–Seidel's order moves the fixed point).
+  if (const char* g = std::getenv("FACE_GLOBAL")) {
+    const double f = std::atof(g);
+    for (double* v : {&spec.skin.stretch, &spec.skin.area, &spec.skin.bending, &spec.skin.anchor})
+      *v *= f;
+    std::fprintf(stderr, "FACE_GLOBAL = %g\n", f);
+  }
+  if (e && vertices > 0 && std::string(e) == "density") {
+    const double r = kBaseVertices / static_cast<double>(vertices);
+    spec.skin = stiffness_for_vertex_area(spec.skin, r);
+    spec.skin.anchor /= r;
+    std::fprintf(
+        stderr, "%zu vertices: stretch %g area %g bending %g anchor %g (x%g in the builder)\n",
+        vertices, spec.skin.stretch, spec.skin.area, spec.skin.bending, spec.skin.anchor, r);
+    return spec;
+  }
   if (!e || vertices == 0 || std::string(e) != "stretch") return spec;
   spec.skin.stretch =
       std::min(1.0, spec.skin.stretch * static_cast<double>(vertices) / kBaseVertices);
@@ -158,6 +183,15 @@ SteadyStateOptions study_steady() {
     o.passes = {.skin = std::atoi(e), .muscle = std::atoi(e)};
     std::fprintf(stderr, "FACE_PASSES = %d\n", std::atoi(e));
   }
+  return o;
+}
+
+// FACE_TOL=MM and FACE_MAXFRAMES=N: the resolution study's steady-state tolerance and
+// frame limit (SteadyStateOptions defaults otherwise).
+SteadyStateOptions study_settle() {
+  SteadyStateOptions o;
+  if (const char* e = std::getenv("FACE_TOL")) o.tolerance_mm = std::atof(e);
+  if (const char* e = std::getenv("FACE_MAXFRAMES")) o.max_frames = std::atoi(e);
   return o;
 }
 
@@ -500,16 +534,18 @@ int resolution_study(const std::vector<std::size_t>& sizes) {
     const FaceModel m = study_model(v);
     const std::vector<int> cps = control_landmarks(m);
     FaceData d = make_face_data(m);
+    long frames_used = 0;
     res.emplace_back();
     for (const Expression& e : lib.expressions) {
       reset_face_data(m, d);
-      const SteadyStateResult r = run_to_steady_state(m, d, face_input(e), SteadyStateOptions{});
+      const SteadyStateResult r = run_to_steady_state(m, d, face_input(e), study_settle());
+      frames_used += r.frames;
       if (!r.converged)
         std::printf("%zu vertices, %s: unsettled, residual %.3f mm\n", m.skin.v.size(),
                     e.name.c_str(), r.residual_mm);
       res.back().push_back(displacements(m, d, cps));
     }
-    std::fprintf(stderr, "%zu vertices done\n", m.skin.v.size());
+    std::fprintf(stderr, "%zu vertices done, %ld frames\n", m.skin.v.size(), frames_used);
   }
   for (std::size_t k = 0; k + 1 < sizes.size(); ++k) {
     std::printf("\n%zu vs %zu vertices\n%-17s %8s %8s  %s\n", sizes[k], sizes[k + 1], "expression",
@@ -670,6 +706,23 @@ int dump(const std::string& path, int samples, int shard, int shards) {
   return 0;
 }
 
+// From rest to the steady state of library expression `expr` (3000 frames at most),
+// printing how it went; nullptr (and a message) when the library has no such expression.
+const Expression* settle_on(const FaceModel& m, const ExpressionLibrary& lib, const char* expr,
+                            FaceData& d) {
+  const Expression* e = lib.find(expr);
+  if (e == nullptr) {
+    std::fprintf(stderr, "no expression '%s' in the library\n", expr);
+    return nullptr;
+  }
+  reset_face_data(m, d);
+  SteadyStateOptions o;
+  o.max_frames = 3000;
+  const SteadyStateResult r = run_to_steady_state(m, d, face_input(*e), o);
+  std::printf("converged %d frames %d residual %.4f\n", r.converged, r.frames, r.residual_mm);
+  return e;
+}
+
 // One muscle's particles of head folder `dir`, at rest and at the steady state of a library
 // expression (up to 3000 frames), in mm: two fitted folders' muscles compared particle by
 // particle (docs/FACE_MODEL.md, "Bringing your own head").
@@ -678,17 +731,8 @@ int muscle_state(const char* dir, const char* expr, const char* name) {
   const FaceModel m = build_face_model(spec);
   const ExpressionLibrary lib =
       load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
-  const Expression* e = lib.find(expr);
-  if (e == nullptr) {
-    std::fprintf(stderr, "no expression '%s' in the library\n", expr);
-    return 2;
-  }
   FaceData d = make_face_data(m);
-  reset_face_data(m, d);
-  SteadyStateOptions o;
-  o.max_frames = 3000;
-  const SteadyStateResult r = run_to_steady_state(m, d, face_input(*e), o);
-  std::printf("converged %d frames %d residual %.4f\n", r.converged, r.frames, r.residual_mm);
+  if (settle_on(m, lib, expr, d) == nullptr) return 2;
   for (const Muscle& mu : m.muscles) {
     if (mu.name != name) continue;
     for (int k = 0; k < mu.particle_count(); ++k) {
@@ -697,6 +741,112 @@ int muscle_state(const char* dir, const char* expr, const char* name) {
       std::printf("%d %.2f %.2f %.2f -> %.2f %.2f %.2f\n", k, a.x(), a.y(), a.z(), b.x(), b.y(),
                   b.z());
     }
+  }
+  return 0;
+}
+
+// After a run to steady state of library expression `expr` on head folder `dir` (3000
+// frames at most): the mouth corners (fdp_8_3, fdp_8_4) over `frames` more frames, how
+// many skin vertices each muscle carries, with FACE_CORNERS=R every anchor within R mm of
+// a corner (its support and how far its target moved, x mirrored on the right), and the
+// ten vertices that moved most over those frames (rest and current position, influence,
+// support and target, nearest landmark).
+int moving_skin(const char* dir, const char* expr, int frames) {
+  const HeadSpec spec = load_head_spec(dir);
+  const FaceModel m = build_face_model(spec);
+  const ExpressionLibrary lib =
+      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
+  FaceData d = make_face_data(m);
+  const Expression* e = settle_on(m, lib, expr, d);
+  if (e == nullptr) return 2;
+  const std::size_t n = d.skin_x.size();
+  const Points start = d.skin_x;
+  std::vector<double> moved(n, 0.0);
+  const int corners[2] = {m.landmark_index("fdp_8_3"), m.landmark_index("fdp_8_4")};
+  auto landmark_at = [&](int l) {
+    Vec3 c = m.landmark_offset[static_cast<std::size_t>(l)];
+    const auto& vs = m.landmark_vertices[static_cast<std::size_t>(l)];
+    Vec3 mean = Vec3::Zero();
+    for (int v : vs) mean += d.skin_x.get(static_cast<std::size_t>(v));
+    return Vec3(c + mean / static_cast<double>(vs.size()));
+  };
+  for (int f = 0; f < frames; ++f) {
+    step_face(m, d, face_input(*e));
+    for (std::size_t i = 0; i < n; ++i)
+      moved[i] = std::max(moved[i], (d.skin_x.get(i) - start.get(i)).norm() * 1e3);
+    const Vec3 a = landmark_at(corners[0]) * 1e3, b = landmark_at(corners[1]) * 1e3;
+    std::printf("frame +%d corners %.2f %.2f %.2f | %.2f %.2f %.2f\n", f + 1, a.x(), a.y(), a.z(),
+                b.x(), b.y(), b.z());
+  }
+  {
+    std::vector<int> bound(m.muscles.size(), 0);
+    for (std::size_t j = 0; j < m.anchors.size(); ++j) {
+      const SurfacePoint& sp = m.anchor_support[j];
+      if (sp.layer != Layer::kMuscle) continue;
+      for (std::size_t k = 0; k < m.muscles.size(); ++k)
+        if (sp.i0 >= m.muscles[k].first &&
+            sp.i0 < m.muscles[k].first + m.muscles[k].particle_count())
+          ++bound[k];
+    }
+    for (std::size_t k = 0; k < m.muscles.size(); ++k)
+      std::printf("%s binds %d skin vertices\n", m.muscles[k].name.c_str(), bound[k]);
+  }
+  if (std::getenv("FACE_CORNERS")) {
+    const double radius = std::atof(std::getenv("FACE_CORNERS")) * 1e-3;
+    for (int side = 0; side < 2; ++side) {
+      Vec3 c = m.landmark_offset[static_cast<std::size_t>(corners[side])];
+      for (int v : m.landmark_vertices[static_cast<std::size_t>(corners[side])])
+        c += m.skin.v.get(static_cast<std::size_t>(v)) /
+             static_cast<double>(
+                 m.landmark_vertices[static_cast<std::size_t>(corners[side])].size());
+      for (std::size_t j = 0; j < m.anchors.size(); ++j) {
+        const std::size_t i = static_cast<std::size_t>(m.anchors.particle[j]);
+        const Vec3 rel = (m.skin.v.get(i) - c) * 1e3;
+        if (rel.norm() > radius * 1e3) continue;
+        const SurfacePoint& sp = m.anchor_support[j];
+        std::string on = sp.layer == Layer::kMuscle ? "?" : "skull";
+        if (sp.layer == Layer::kMuscle)
+          for (const Muscle& mu : m.muscles)
+            if (sp.i0 >= mu.first && sp.i0 < mu.first + mu.particle_count()) on = mu.name;
+        const Vec3 t = d.anchor_targets.get(j) * 1e3, rest = m.skin.v.get(i) * 1e3;
+        std::printf(
+            "side %d v%zu at %+.1f %+.1f %+.1f from corner, on %s, target moved %.1f %.1f %.1f\n",
+            side, i, side ? -rel.x() : rel.x(), rel.y(), rel.z(), on.c_str(),
+            (side ? -1 : 1) * (t.x() - rest.x()), t.y() - rest.y(), t.z() - rest.z());
+      }
+    }
+  }
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](auto i, auto j) { return moved[i] > moved[j]; });
+  for (std::size_t k = 0; k < 10 && k < n; ++k) {
+    const std::size_t i = order[k];
+    const Vec3 rest = m.skin.v.get(i) * 1e3, now = d.skin_x.get(i) * 1e3;
+    std::string nearest;
+    double best = 1e9;
+    for (std::size_t l = 0; l < m.landmark_names.size(); ++l)
+      for (int v : m.landmark_vertices[l]) {
+        const double dist = (m.skin.v.get(static_cast<std::size_t>(v)) - m.skin.v.get(i)).norm();
+        if (dist < best) best = dist, nearest = m.landmark_names[l];
+      }
+    int anchored = 0;
+    std::string support = "skull";
+    for (std::size_t j = 0; j < m.anchors.size(); ++j) {
+      if (m.anchors.particle[j] != static_cast<int>(i)) continue;
+      ++anchored;
+      const SurfacePoint& sp = m.anchor_support[j];
+      if (sp.layer == Layer::kMuscle)
+        for (const Muscle& mu : m.muscles)
+          if (sp.i0 >= mu.first && sp.i0 < mu.first + mu.particle_count()) support = mu.name;
+      const Vec3 t = d.anchor_targets.get(j) * 1e3;
+      support += " target " + std::to_string(t.x()) + " " + std::to_string(t.y()) + " " +
+                 std::to_string(t.z());
+    }
+    std::printf(
+        "v%zu moved %.3f mm rest %.1f %.1f %.1f now %.1f %.1f %.1f influence %.2f "
+        "anchors %d near %s (%.1f mm) on %s\n",
+        i, moved[i], rest.x(), rest.y(), rest.z(), now.x(), now.y(), now.z(), m.influence[i],
+        anchored, nearest.c_str(), best * 1e3, support.c_str());
   }
   return 0;
 }
@@ -834,6 +984,8 @@ int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "muscle" && argc > 4) return muscle_state(argv[2], argv[3], argv[4]);
   if (mode == "mirror" && argc > 2) return mirror_gaps(argv[2]);
+  if (mode == "skin" && argc > 3)
+    return moving_skin(argv[2], argv[3], argc > 4 ? std::atoi(argv[4]) : 6);
   if (mode == "fixed")
     return passes_fixed_points(argc > 2 ? std::atoi(argv[2]) : 40,
                                argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 1,
