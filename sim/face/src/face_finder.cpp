@@ -16,29 +16,13 @@ namespace {
 
 constexpr double kDegree = std::numbers::pi / 180;
 
-TriMesh turned_about_y(TriMesh m, double degrees) {
-  const double c = std::cos(degrees * kDegree), s = std::sin(degrees * kDegree);
-  for (std::size_t i = 0; i < m.v.size(); ++i) {
-    const Vec3 p = m.v.get(i);
-    m.v.set(i, Vec3(c * p.x() + s * p.z(), p.y(), -s * p.x() + c * p.z()));
-  }
-  return m;
-}
-
-std::vector<char> used_mask(const TriMesh& m) {
-  std::vector<char> used(m.v.size(), 0);
-  for (const Tri& t : m.tris)
-    for (int i : t) used[static_cast<std::size_t>(i)] = 1;
-  return used;
-}
-
-// The frontmost used vertex, and the used vertices' extent in x and y.
+// The frontmost used vertex, and the used vertices' extent in x and y. `used` is
+// used_vertices(m) (the same for every turn of a mesh).
 struct Front {
   Vec3 tip;
   double width = 0, height = 0;
 };
-Front front_of(const TriMesh& m) {
-  const std::vector<char> used = used_mask(m);
+Front front_of(const TriMesh& m, const std::vector<char>& used) {
   Front f;
   f.tip = Vec3::Constant(-std::numeric_limits<double>::infinity());
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -53,8 +37,7 @@ Front front_of(const TriMesh& m) {
 }
 
 // Width (x extent) of the used vertices level with the tip (within 5% of the height).
-double width_at_tip(const TriMesh& m, const Front& f) {
-  const std::vector<char> used = used_mask(m);
+double width_at_tip(const TriMesh& m, const std::vector<char>& used, const Front& f) {
   double lo = f.tip.x(), hi = f.tip.x();
   for (std::size_t i = 0; i < m.v.size(); ++i)
     if (used[i] && std::abs(m.v.y[i] - f.tip.y()) < 0.05 * f.height)
@@ -65,9 +48,8 @@ double width_at_tip(const TriMesh& m, const Front& f) {
 // How far the tip stands out of the surface beside it, over the width: level with it and
 // 15% of the width to either side, the surface is that much further back. A nose stands
 // out (0.18 on the default head); the back of a skull is round (under 0.05).
-double protrusion(const TriMesh& m) {
-  const Front f = front_of(m);
-  const std::vector<char> used = used_mask(m);
+double protrusion(const TriMesh& m, const std::vector<char>& used) {
+  const Front f = front_of(m, used);
   double beside = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < m.v.size(); ++i)
     if (used[i] && std::abs(m.v.y[i] - f.tip.y()) < 0.05 * f.height &&
@@ -110,9 +92,19 @@ TriMesh cut(const TriMesh& m, const std::vector<char>& keep) {
 
 }  // namespace
 
+TriMesh turned_about_y(TriMesh m, double degrees) {
+  const double c = std::cos(degrees * kDegree), s = std::sin(degrees * kDegree);
+  for (std::size_t i = 0; i < m.v.size(); ++i) {
+    const Vec3 p = m.v.get(i);
+    m.v.set(i, Vec3(c * p.x() + s * p.z(), p.y(), -s * p.x() + c * p.z()));
+  }
+  return m;
+}
+
 FoundFace find_face(const TriMesh& head, const TriMesh& source_face, const std::string& what) {
   FoundFace found;
   found.head_vertices = head.v.size();
+  const std::vector<char> head_used = used_vertices(head);
   // The facing axis: the most symmetric turn, 5 degrees apart, refined to 2.5 degrees.
   // Facing +z and facing -z are both symmetric (the plane passes through the nose or the
   // back of the skull); facing along x, the plane through an ear is not. The symmetric
@@ -130,8 +122,8 @@ FoundFace find_face(const TriMesh& head, const TriMesh& source_face, const std::
   // Front or back: the nose stands out, the back of the skull does not. The back is
   // measured at the opposite turn (front and back share the mirror plane).
   const double back = turn + 180;
-  double stands_out = protrusion(turned_about_y(head, turn));
-  if (const double b = protrusion(turned_about_y(head, back)); b > stands_out)
+  double stands_out = protrusion(turned_about_y(head, turn), head_used);
+  if (const double b = protrusion(turned_about_y(head, back), head_used); b > stands_out)
     turn = back, stands_out = b, asym = mirror_asymmetry(turned_about_y(head, back), 0);
   constexpr double kNose = 0.08;  // the default face 0.18; a round skull under 0.05
   if (!(stands_out >= kNose))
@@ -156,10 +148,10 @@ FoundFace find_face(const TriMesh& head, const TriMesh& source_face, const std::
   }
 
   // The source face's extent around its nose tip, scaled by the widths level with the tips.
-  const Front sf = front_of(source_face), hf = front_of(turned);
-  const double k = width_at_tip(turned, hf) / width_at_tip(source_face, sf);
+  const std::vector<char> source_used = used_vertices(source_face);
+  const Front sf = front_of(source_face, source_used), hf = front_of(turned, head_used);
+  const double k = width_at_tip(turned, head_used, hf) / width_at_tip(source_face, source_used, sf);
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  const std::vector<char> source_used = used_mask(source_face);
   for (std::size_t i = 0; i < source_face.v.size(); ++i)
     if (source_used[i]) {
       const Vec3 d = k * (source_face.v.get(i) - sf.tip);

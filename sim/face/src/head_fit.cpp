@@ -37,9 +37,7 @@ Box box_of(const Points& v) {
 
 // The vertices some triangle uses (used) or none does (!used), ascending.
 std::vector<int> vertices_by_use(const TriMesh& m, bool used) {
-  std::vector<char> in_face(m.v.size(), 0);
-  for (const Tri& t : m.tris)
-    for (int i : t) in_face[static_cast<std::size_t>(i)] = 1;
+  const std::vector<char> in_face = used_vertices(m);
   std::vector<int> out;
   for (std::size_t i = 0; i < in_face.size(); ++i)
     if ((in_face[i] != 0) == used) out.push_back(static_cast<int>(i));

@@ -8,6 +8,13 @@
 
 namespace facectl::face {
 
+std::vector<char> used_vertices(const TriMesh& m) {
+  std::vector<char> used(m.v.size(), 0);
+  for (const Tri& t : m.tris)
+    for (int i : t) used[static_cast<std::size_t>(i)] = 1;
+  return used;
+}
+
 std::vector<Edge> unique_edges(const std::vector<Tri>& tris) {
   std::vector<Edge> e;
   e.reserve(tris.size() * 3);

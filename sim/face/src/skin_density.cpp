@@ -7,12 +7,10 @@
 namespace facectl::face {
 
 double mean_vertex_area(const TriMesh& m) {
-  std::vector<char> used(m.v.size(), 0);
   double area = 0;
-  for (const Tri& t : m.tris) {
+  for (const Tri& t : m.tris)
     area += 0.5 * (m.v.get(t[1]) - m.v.get(t[0])).cross(m.v.get(t[2]) - m.v.get(t[0])).norm();
-    for (int i : t) used[static_cast<std::size_t>(i)] = 1;
-  }
+  const std::vector<char> used = used_vertices(m);
   const auto n = std::count(used.begin(), used.end(), 1);
   return n > 0 ? area / static_cast<double>(n) : 0.0;
 }

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <numbers>
 #include <string>
 #include <utility>
 
@@ -29,17 +28,7 @@ TriMesh cgal_head() {
   return read_obj(FACECTL_CONFIG_DIR "/../tests/data/heads/cgal_head/head.obj", 0.01);
 }
 
-// m turned about y by `degrees`, +z toward +x: the CGAL head, looking along -x, looks
-// along +z after a quarter turn (+90).
-TriMesh turned_about_y(TriMesh m, double degrees) {
-  const double a = degrees * std::numbers::pi / 180;
-  for (std::size_t i = 0; i < m.v.size(); ++i) {
-    const Vec3 p = m.v.get(i);
-    m.v.set(i, Vec3(std::cos(a) * p.x() + std::sin(a) * p.z(), p.y(),
-                    -std::sin(a) * p.x() + std::cos(a) * p.z()));
-  }
-  return m;
-}
+// The CGAL head looks along -x: turned_about_y (face_finder.hpp) by +90 it looks along +z.
 
 // What a user would cut in a mesh editor: the front of the head from the forehead to
 // below the chin (y 5.5 to 16.5 and z over 1.2 in the file's unit, the nose tip at y 11.1,

@@ -19,6 +19,9 @@ struct FoundFace {
   std::size_t kept_vertices = 0, head_vertices = 0;
 };
 
+// `m` turned by `degrees` about y, +z toward +x.
+TriMesh turned_about_y(TriMesh m, double degrees);
+
 // Turns `head` about y (y must be up) to look along +z. If that makes it a face
 // (check_face_region), it is returned whole; otherwise (a whole head) only the region that
 // `source_face` (a face looking along +z, e.g. the default mask) covers around its nose

@@ -26,6 +26,8 @@ struct EdgePair {
   int a, b, c, d;
 };
 
+// 1 for each vertex some triangle uses, 0 for a loose one (what OBJ exporters leave).
+std::vector<char> used_vertices(const TriMesh& m);
 std::vector<Edge> unique_edges(const std::vector<Tri>& tris);
 std::vector<EdgePair> interior_edge_pairs(const std::vector<Tri>& tris);
 // Boundary loops as ordered vertex lists (edges used by exactly one triangle).
