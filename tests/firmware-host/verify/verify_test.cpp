@@ -640,6 +640,29 @@ TEST(Verify, ATurnBackPastTheSlackFails) {
   EXPECT_EQ(f->message.find("slightly"), std::string::npos) << f->message;
 }
 
+// The same slack the other way: a servo mounted the other way round (the brow down for a
+// rising command) expected to fall, whose fit turns back up as slightly, is a warning that
+// says it rises.
+TEST(Verify, AFitsSlightTurnBackOnAFallingMappingIsAWarning) {
+  const auto rig = default_rig()
+                       .replace("expect_direction: { frontalis_outer_l: +1 }",
+                                "expect_direction: { frontalis_outer_l: -1 }")
+                       .replace("- { point: fdp_4_5, axis: [0, 1, 0], gain: 2.4 }",
+                                "- { point: fdp_4_5, axis: [0, -1, 0], gain: 2.4 }")
+                       .write();
+  const auto proof = verify::prove(load_rig(rig.path()));
+  EXPECT_EQ(find_failure(proof.findings, "direction"), nullptr);
+  const auto it = std::find_if(proof.findings.begin(), proof.findings.end(), [](const auto& f) {
+    return f.check == "direction" && f.subject == "brow_outer_l";
+  });
+  ASSERT_NE(it, proof.findings.end());
+  EXPECT_EQ(it->severity, verify::Finding::Severity::kWarn);
+  EXPECT_NE(it->message.find("expected to fall with frontalis_outer_l (expect_direction -1), "
+                             "but it rises slightly (by at most 0.1"),
+            std::string::npos)
+      << it->message;
+}
+
 // A coupled face limit over an eyelid and a brow muscle: the inner brow may not
 // rise fully with the lid closing (frontalis_inner_l + eyelid_closure_l <= 0.5).
 // The brow servo's proven range honours it: its top, where the frontalis pulls
