@@ -127,7 +127,8 @@ int run(const FitHeadArgs& a) {
       a.obj.c_str(), target.v.size(), target.tris.size(), a.from.c_str(), f.iterations,
       f.refined_pairs, f.last_change_mm, f.size_ratio);
   std::printf(
-      "skin area per vertex %.3f times the --from head's: skin stiffness stretch %.4g, bending "
+      "skin area per vertex for its size %.3f times the --from head's: skin stiffness stretch "
+      "%.4g, bending "
       "%.4g, area %.4g, anchor %.4g (docs/FACE_MODEL.md, \"Skin stiffness per unit area\")\n",
       f.vertex_area_ratio, f.spec.skin.stretch, f.spec.skin.bending, f.spec.skin.area,
       f.spec.skin.anchor);

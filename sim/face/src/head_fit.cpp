@@ -649,9 +649,19 @@ HeadFit fit_numbered(const HeadSpec& source, const TriMesh& source_skin, const T
   check_orientation(pos, fit.problems);
   carry_muscles(pos, fit.morph, fit.spec);
   scale_sizes(pos, fit.size_ratio, fit.spec);
-  // Step 8: the skin's stiffnesses, tuned on the source's vertex density, for the target's.
-  fit.vertex_area_ratio = mean_vertex_area(target) / mean_vertex_area(source_skin);
-  fit.spec.skin = stiffness_for_vertex_area(source.skin, fit.vertex_area_ratio);
+  // Step 8: the skin's stiffnesses, tuned on the source's vertex density, for the target's,
+  // both measured against their face's size (the model has no length scale of its own).
+  const double r =
+      mean_vertex_area(target) / (mean_vertex_area(source_skin) * fit.size_ratio * fit.size_ratio);
+  if (std::isfinite(r) && r > 0) {
+    fit.vertex_area_ratio = r;
+    fit.spec.skin = stiffness_for_vertex_area(source.skin, r);
+  } else {
+    fit.problems.push_back(
+        "the skin's area per vertex cannot be set against the --from skin's "
+        "(ratio " +
+        std::to_string(r) + "): its stiffnesses are copied unscaled");
+  }
   return fit;
 }
 

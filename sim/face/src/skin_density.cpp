@@ -1,7 +1,9 @@
 #include "facectl/face/skin_density.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace facectl::face {
@@ -16,18 +18,19 @@ double mean_vertex_area(const TriMesh& m) {
 }
 
 SkinStiffness stiffness_for_vertex_area(const SkinStiffness& k, double ratio) {
-  if (!(ratio > 0)) throw std::invalid_argument("stiffness_for_vertex_area: ratio must be > 0");
-  const double s = std::min(1.0, ratio);
+  if (!(ratio > 0 && std::isfinite(ratio)))
+    throw std::invalid_argument(
+        "stiffness_for_vertex_area: the ratio must be finite and > 0, not " +
+        std::to_string(ratio));
+  // The weights relative to stretch and area, then all four scaled so that the largest is
+  // the source's largest: PBD needs every k <= 1, and a fit there and back gives k again.
   SkinStiffness out = k;
-  out.stretch = k.stretch * s;
-  out.area = k.area * s;
-  out.bending = k.bending * (s / ratio);  // exactly k.bending when s = ratio
-  out.anchor = k.anchor * ratio * s;
-  // On a much coarser skin the anchors can still pass 1: lower all four together.
-  const double top = std::max({out.stretch, out.area, out.bending, out.anchor});
-  if (top > 1) {
-    for (double* v : {&out.stretch, &out.area, &out.bending, &out.anchor}) *v /= top;
-  }
+  out.bending = k.bending / ratio;
+  out.anchor = k.anchor * ratio;
+  const double was = std::max({k.stretch, k.area, k.bending, k.anchor});
+  const double now = std::max({out.stretch, out.area, out.bending, out.anchor});
+  if (now > 0)
+    for (double* v : {&out.stretch, &out.area, &out.bending, &out.anchor}) *v *= was / now;
   return out;
 }
 

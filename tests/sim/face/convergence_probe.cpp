@@ -37,11 +37,12 @@
 // Study knobs from the environment, for every mode: FACE_STRETCH, FACE_BENDING, FACE_AREA,
 // FACE_ANCHOR, FACE_DAMPING, FACE_MINAREA override the head's skin values, FACE_MVOLUME,
 // FACE_MBEND, FACE_MPOSITION its muscles' (sheet and sphincter alike); FACE_SCALE=
-// stretch|area scales them with the skin size or vertex area; in the random study
+// stretch|area|density|local scales them with the skin size or vertex area (see
+// study_head_for and study_model); in the random study
 // FACE_FREEZE=N freezes the muscles after N frames, FACE_NOTEETH=1 drops the contacts and
 // FACE_PASSES=N runs N skin iterations and muscle passes a frame; in the resolution study
-// FACE_SCALE=density scales the skin as fit-head does, FACE_GLOBAL=G multiplies every skin
-// stiffness by G, and FACE_TOL / FACE_MAXFRAMES set the steady state's tolerance and limit.
+// FACE_GLOBAL=G multiplies every skin stiffness by G, and FACE_TOL / FACE_MAXFRAMES set
+// the steady state's tolerance and frame limit.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -117,13 +118,14 @@ HeadSpec study_head() {
 // The default head's base skin size, the reference of the FACE_SCALE variants below.
 constexpr double kBaseVertices = 468;
 
-// FACE_SCALE=stretch: the skin stretch scaled by n/n_base (at most 1) on a finer skin, the
-// per-edge stiffness that keeps the edge network's stiffness per unit area.
+// The skin's stiffnesses for a variant of `vertices` (0: the base mesh). FACE_SCALE=stretch:
+// the skin stretch scaled by n/n_base (at most 1), the per-edge stiffness that keeps the
+// edge network's stiffness per unit area. FACE_SCALE=density (and local, with study_model's
+// anchors): the fitted heads' rule (skin_density.hpp) with ratio n_base/n; the builder's
+// own anchor scaling supplies one factor of the anchors' ratio².
 HeadSpec study_head_for(std::size_t vertices) {
   HeadSpec spec = study_head();
   const char* e = std::getenv("FACE_SCALE");
-  // FACE_SCALE=density: the fitted heads' rule (skin_density.hpp) with ratio n_base/n; the
-  // builder's own anchor scaling supplies one factor of the anchors' ratio².
   // FACE_GLOBAL=G: every per-element skin stiffness times G (the same weights, smaller
   // steps: how far Gauss–Seidel's order moves the fixed point).
   if (const char* g = std::getenv("FACE_GLOBAL")) {
@@ -132,7 +134,7 @@ HeadSpec study_head_for(std::size_t vertices) {
       *v *= f;
     std::fprintf(stderr, "FACE_GLOBAL = %g\n", f);
   }
-  if (e && vertices > 0 && std::string(e) == "density") {
+  if (e && vertices > 0 && (std::string(e) == "density" || std::string(e) == "local")) {
     const double r = kBaseVertices / static_cast<double>(vertices);
     spec.skin = stiffness_for_vertex_area(spec.skin, r);
     spec.skin.anchor /= r;
@@ -155,7 +157,8 @@ FaceModel study_model(std::size_t vertices) {
   const HeadSpec spec = study_head_for(vertices);
   FaceModel m = build_face_model(spec, vertices);
   const char* e = std::getenv("FACE_SCALE");
-  if (!e || std::string(e) != "area") return m;
+  // FACE_SCALE=local: density's stretch, area and bending, and area's anchors.
+  if (!e || (std::string(e) != "area" && std::string(e) != "local")) return m;
   std::vector<double> area(m.skin.v.size(), 0.0);
   double total = 0;
   for (const Tri& t : m.skin.tris) {
@@ -751,6 +754,36 @@ int muscle_state(const char* dir, const char* expr, const char* name) {
 // a corner (its support and how far its target moved, x mirrored on the right), and the
 // ten vertices that moved most over those frames (rest and current position, influence,
 // support and target, nearest landmark).
+// The muscle whose particles carry anchor j's support, or -1 (the skull).
+int anchor_muscle(const FaceModel& m, std::size_t j) {
+  const SurfacePoint& sp = m.anchor_support[j];
+  if (sp.layer != Layer::kMuscle) return -1;
+  for (std::size_t k = 0; k < m.muscles.size(); ++k)
+    if (sp.i0 >= m.muscles[k].first && sp.i0 < m.muscles[k].first + m.muscles[k].particle_count())
+      return static_cast<int>(k);
+  return -1;
+}
+
+// Every anchor within `radius` (m) of each mouth corner at rest: its support, and how far
+// its target has moved (x mirrored on the right, so both sides read alike).
+void print_corner_anchors(const FaceModel& m, const FaceData& d, const int corners[2],
+                          double radius) {
+  for (int side = 0; side < 2; ++side) {
+    const Vec3 c = landmark_position(m, m.skin.v, corners[side]);
+    for (std::size_t j = 0; j < m.anchors.size(); ++j) {
+      const std::size_t i = static_cast<std::size_t>(m.anchors.particle[j]);
+      const Vec3 rel = (m.skin.v.get(i) - c) * 1e3;
+      if (rel.norm() > radius * 1e3) continue;
+      const Vec3 t = d.anchor_targets.get(j) * 1e3, rest = m.skin.v.get(i) * 1e3;
+      const double mirror = side ? -1 : 1;
+      std::printf(
+          "side %d v%zu at %+.1f %+.1f %+.1f from corner, on %s, target moved %.1f %.1f %.1f\n",
+          side, i, mirror * rel.x(), rel.y(), rel.z(), anchor_support_name(m, j).c_str(),
+          mirror * (t.x() - rest.x()), t.y() - rest.y(), t.z() - rest.z());
+    }
+  }
+}
+
 int moving_skin(const char* dir, const char* expr, int frames) {
   const HeadSpec spec = load_head_spec(dir);
   const FaceModel m = build_face_model(spec);
@@ -763,59 +796,22 @@ int moving_skin(const char* dir, const char* expr, int frames) {
   const Points start = d.skin_x;
   std::vector<double> moved(n, 0.0);
   const int corners[2] = {m.landmark_index("fdp_8_3"), m.landmark_index("fdp_8_4")};
-  auto landmark_at = [&](int l) {
-    Vec3 c = m.landmark_offset[static_cast<std::size_t>(l)];
-    const auto& vs = m.landmark_vertices[static_cast<std::size_t>(l)];
-    Vec3 mean = Vec3::Zero();
-    for (int v : vs) mean += d.skin_x.get(static_cast<std::size_t>(v));
-    return Vec3(c + mean / static_cast<double>(vs.size()));
-  };
   for (int f = 0; f < frames; ++f) {
     step_face(m, d, face_input(*e));
     for (std::size_t i = 0; i < n; ++i)
       moved[i] = std::max(moved[i], (d.skin_x.get(i) - start.get(i)).norm() * 1e3);
-    const Vec3 a = landmark_at(corners[0]) * 1e3, b = landmark_at(corners[1]) * 1e3;
+    const Vec3 a = landmark_position(m, d.skin_x, corners[0]) * 1e3;
+    const Vec3 b = landmark_position(m, d.skin_x, corners[1]) * 1e3;
     std::printf("frame +%d corners %.2f %.2f %.2f | %.2f %.2f %.2f\n", f + 1, a.x(), a.y(), a.z(),
                 b.x(), b.y(), b.z());
   }
-  {
-    std::vector<int> bound(m.muscles.size(), 0);
-    for (std::size_t j = 0; j < m.anchors.size(); ++j) {
-      const SurfacePoint& sp = m.anchor_support[j];
-      if (sp.layer != Layer::kMuscle) continue;
-      for (std::size_t k = 0; k < m.muscles.size(); ++k)
-        if (sp.i0 >= m.muscles[k].first &&
-            sp.i0 < m.muscles[k].first + m.muscles[k].particle_count())
-          ++bound[k];
-    }
-    for (std::size_t k = 0; k < m.muscles.size(); ++k)
-      std::printf("%s binds %d skin vertices\n", m.muscles[k].name.c_str(), bound[k]);
-  }
-  if (std::getenv("FACE_CORNERS")) {
-    const double radius = std::atof(std::getenv("FACE_CORNERS")) * 1e-3;
-    for (int side = 0; side < 2; ++side) {
-      Vec3 c = m.landmark_offset[static_cast<std::size_t>(corners[side])];
-      for (int v : m.landmark_vertices[static_cast<std::size_t>(corners[side])])
-        c += m.skin.v.get(static_cast<std::size_t>(v)) /
-             static_cast<double>(
-                 m.landmark_vertices[static_cast<std::size_t>(corners[side])].size());
-      for (std::size_t j = 0; j < m.anchors.size(); ++j) {
-        const std::size_t i = static_cast<std::size_t>(m.anchors.particle[j]);
-        const Vec3 rel = (m.skin.v.get(i) - c) * 1e3;
-        if (rel.norm() > radius * 1e3) continue;
-        const SurfacePoint& sp = m.anchor_support[j];
-        std::string on = sp.layer == Layer::kMuscle ? "?" : "skull";
-        if (sp.layer == Layer::kMuscle)
-          for (const Muscle& mu : m.muscles)
-            if (sp.i0 >= mu.first && sp.i0 < mu.first + mu.particle_count()) on = mu.name;
-        const Vec3 t = d.anchor_targets.get(j) * 1e3, rest = m.skin.v.get(i) * 1e3;
-        std::printf(
-            "side %d v%zu at %+.1f %+.1f %+.1f from corner, on %s, target moved %.1f %.1f %.1f\n",
-            side, i, side ? -rel.x() : rel.x(), rel.y(), rel.z(), on.c_str(),
-            (side ? -1 : 1) * (t.x() - rest.x()), t.y() - rest.y(), t.z() - rest.z());
-      }
-    }
-  }
+  std::vector<int> bound(m.muscles.size(), 0);
+  for (std::size_t j = 0; j < m.anchors.size(); ++j)
+    if (const int k = anchor_muscle(m, j); k >= 0) ++bound[static_cast<std::size_t>(k)];
+  for (std::size_t k = 0; k < m.muscles.size(); ++k)
+    std::printf("%s binds %d skin vertices\n", m.muscles[k].name.c_str(), bound[k]);
+  if (const char* r = std::getenv("FACE_CORNERS"))
+    print_corner_anchors(m, d, corners, std::atof(r) * 1e-3);
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](auto i, auto j) { return moved[i] > moved[j]; });
@@ -829,24 +825,19 @@ int moving_skin(const char* dir, const char* expr, int frames) {
         const double dist = (m.skin.v.get(static_cast<std::size_t>(v)) - m.skin.v.get(i)).norm();
         if (dist < best) best = dist, nearest = m.landmark_names[l];
       }
-    int anchored = 0;
-    std::string support = "skull";
+    std::string support = "none";
     for (std::size_t j = 0; j < m.anchors.size(); ++j) {
       if (m.anchors.particle[j] != static_cast<int>(i)) continue;
-      ++anchored;
-      const SurfacePoint& sp = m.anchor_support[j];
-      if (sp.layer == Layer::kMuscle)
-        for (const Muscle& mu : m.muscles)
-          if (sp.i0 >= mu.first && sp.i0 < mu.first + mu.particle_count()) support = mu.name;
       const Vec3 t = d.anchor_targets.get(j) * 1e3;
-      support += " target " + std::to_string(t.x()) + " " + std::to_string(t.y()) + " " +
-                 std::to_string(t.z());
+      char where[96];
+      std::snprintf(where, sizeof where, " target %.1f %.1f %.1f", t.x(), t.y(), t.z());
+      support = anchor_support_name(m, j) + where;
     }
     std::printf(
-        "v%zu moved %.3f mm rest %.1f %.1f %.1f now %.1f %.1f %.1f influence %.2f "
-        "anchors %d near %s (%.1f mm) on %s\n",
+        "v%zu moved %.3f mm rest %.1f %.1f %.1f now %.1f %.1f %.1f influence %.2f near %s "
+        "(%.1f mm) on %s\n",
         i, moved[i], rest.x(), rest.y(), rest.z(), now.x(), now.y(), now.z(), m.influence[i],
-        anchored, nearest.c_str(), best * 1e3, support.c_str());
+        nearest.c_str(), best * 1e3, support.c_str());
   }
   return 0;
 }

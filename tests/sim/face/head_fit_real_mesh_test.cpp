@@ -5,7 +5,6 @@
 // to do, and it fits once turned and cut to the face.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -23,12 +22,11 @@ namespace {
 
 using testing::default_spec;
 
-// Read as centimetres: its unit is not recorded, and the fit is scale-free.
+// Read as centimetres: its unit is not recorded, and the fit is scale-free. It looks along
+// -x; turned_about_y (face_finder.hpp) by +90 it looks along +z.
 TriMesh cgal_head() {
   return read_obj(FACECTL_CONFIG_DIR "/../tests/data/heads/cgal_head/head.obj", 0.01);
 }
-
-// The CGAL head looks along -x: turned_about_y (face_finder.hpp) by +90 it looks along +z.
 
 // What a user would cut in a mesh editor: the front of the head from the forehead to
 // below the chin (y 5.5 to 16.5 and z over 1.2 in the file's unit, the nose tip at y 11.1,

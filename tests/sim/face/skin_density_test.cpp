@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <stdexcept>
 
 #include "default_head.hpp"
@@ -52,7 +53,25 @@ TEST(StiffnessForVertexArea, KeepsTheWeightsPerUnitArea) {
   EXPECT_EQ(same.stretch, k.stretch);
   EXPECT_EQ(same.bending, k.bending);
   EXPECT_EQ(same.anchor, k.anchor);
-  EXPECT_THROW(stiffness_for_vertex_area(k, 0.0), std::invalid_argument);
+  for (const double bad : {0.0, -1.0, std::numeric_limits<double>::infinity(),
+                           std::numeric_limits<double>::quiet_NaN()})
+    EXPECT_THROW(stiffness_for_vertex_area(k, bad), std::invalid_argument) << bad;
+}
+
+// On a denser skin (ratio < 1) bending, the largest, stays; the rest are lowered. A fit
+// there and back gives the stiffnesses back.
+TEST(StiffnessForVertexArea, DenserSkinKeepsBendingAndRoundTrips) {
+  const SkinStiffness k{.stretch = 0.15, .bending = 0.95, .area = 0.95, .anchor = 0.2};
+  const SkinStiffness s = stiffness_for_vertex_area(k, 0.4);
+  EXPECT_NEAR(s.stretch, 0.15 * 0.4, 1e-12);
+  EXPECT_NEAR(s.area, 0.95 * 0.4, 1e-12);
+  EXPECT_NEAR(s.bending, 0.95, 1e-12);
+  EXPECT_NEAR(s.anchor, 0.2 * 0.4 * 0.4, 1e-12);
+  const SkinStiffness back = stiffness_for_vertex_area(stiffness_for_vertex_area(k, 2.0), 0.5);
+  EXPECT_NEAR(back.stretch, k.stretch, 1e-12);
+  EXPECT_NEAR(back.area, k.area, 1e-12);
+  EXPECT_NEAR(back.bending, k.bending, 1e-12);
+  EXPECT_NEAR(back.anchor, k.anchor, 1e-12);
 }
 
 }  // namespace

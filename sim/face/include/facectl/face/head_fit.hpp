@@ -53,8 +53,8 @@ struct HeadFit {
   bool converged = false;
   std::vector<int> loose_vertices;  // target vertices used by no face: left out of the fit
   double size_ratio = 1;  // target / source face size (√ of width ratio × height ratio)
-  // target / source skin area per vertex; the spec's skin stiffnesses are rescaled by it
-  // (stiffness_for_vertex_area)
+  // target / source skin area per vertex, over size_ratio²: how much coarser the new mesh
+  // is for its size; the spec's skin stiffnesses are rescaled by it (skin_density.hpp)
   double vertex_area_ratio = 1;
   std::vector<PlacedLandmark> landmarks;
   std::vector<std::string> opening_notes;  // how each opening was found

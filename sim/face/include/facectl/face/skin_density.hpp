@@ -4,7 +4,9 @@
 // stretch and a triangle's area keep their weight at any L (as a membrane's energy per
 // unit area does), a hinge's bending weight falls as L² where the surface's does not, and
 // an anchor's weight stays where it should fall with its vertex's share of the area. So
-// stiffnesses tuned on one mesh hold on a denser or coarser one only once rescaled.
+// stiffnesses tuned on one mesh hold on a denser or coarser one only once rescaled. Every
+// weight scales alike when the whole head does (L² each), so only the density relative
+// to the face's size matters.
 #pragma once
 
 #include "facectl/face/head_spec.hpp"
@@ -15,12 +17,13 @@ namespace facectl::face {
 // Surface area over the vertices the triangles use (m² for a mesh in metres); 0 for none.
 double mean_vertex_area(const TriMesh& m);
 
-// The stiffnesses `k`, tuned on a skin whose mean vertex area is a0, for a skin whose
-// mean vertex area is ratio·a0 (ratio > 0): relative to stretch and area, bending scaled by
-// 1/ratio and the anchors by ratio. PBD keeps every k ≤ 1, so the larger side is held and
-// the others lowered: with s = min(1, ratio), stretch·s, area·s, bending·s/ratio and
-// anchor·ratio·s, all four divided by the largest if that passes 1 (a coarse skin's
-// anchors). Volume, damping and the no-inversion floor are not per element and stay.
+// The stiffnesses `k`, tuned on a skin whose mean vertex area is a0, for a skin of the same
+// size whose mean vertex area is ratio·a0 (finite, > 0; else std::invalid_argument):
+// relative to stretch and area, bending divided by ratio and the anchors multiplied by it;
+// then all four scaled together so that the largest is k's largest (PBD needs each ≤ 1).
+// For ratio < 1 and bending k's largest: stretch, area ×ratio, bending kept, anchor ×ratio².
+// The skin's volume (one constraint over the whole skin, projected fully: a hard
+// constraint), damping and the no-inversion floor are left as they are.
 SkinStiffness stiffness_for_vertex_area(const SkinStiffness& k, double ratio);
 
 }  // namespace facectl::face
