@@ -6,6 +6,8 @@
 //   face_convergence_probe resolution V1 V2 ...
 //     Every library expression at steady state on each skin size: control-point
 //     differences between consecutive sizes (RMS, max, and each expression's worst point).
+//   face_convergence_probe depth MM1 MM2 ...
+//     The same across the offset skull's soft-tissue depths (face.yaml's 8 mm), base mesh.
 //   face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]
 //     One held input (cp=C: corrugator and procerus at C alone): skin and muscle motion
 //     every `stride` frames (20).
@@ -47,6 +49,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -527,14 +530,18 @@ int passes_study(int skin, int muscle) {
   return 0;
 }
 
-int resolution_study(const std::vector<std::size_t>& sizes) {
+// Every library expression at steady state on each model build(k), k < labels.size():
+// control-point differences between consecutive models (RMS, max, and each expression's
+// worst point). The displacements are from each model's own rest.
+int library_study(const std::vector<std::string>& labels,
+                  const std::function<FaceModel(std::size_t)>& build) {
   const HeadSpec spec = study_head();
   const ExpressionLibrary lib =
       load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
-  // result[size][expression][point]
+  // result[model][expression][point]
   std::vector<std::vector<std::vector<Vec3>>> res;
-  for (std::size_t v : sizes) {
-    const FaceModel m = study_model(v);
+  for (std::size_t k = 0; k < labels.size(); ++k) {
+    const FaceModel m = build(k);
     const std::vector<int> cps = control_landmarks(m);
     FaceData d = make_face_data(m);
     long frames_used = 0;
@@ -544,15 +551,15 @@ int resolution_study(const std::vector<std::size_t>& sizes) {
       const SteadyStateResult r = run_to_steady_state(m, d, face_input(e), study_settle());
       frames_used += r.frames;
       if (!r.converged)
-        std::printf("%zu vertices, %s: unsettled, residual %.3f mm\n", m.skin.v.size(),
-                    e.name.c_str(), r.residual_mm);
+        std::printf("%s, %s: unsettled, residual %.3f mm\n", labels[k].c_str(), e.name.c_str(),
+                    r.residual_mm);
       res.back().push_back(displacements(m, d, cps));
     }
-    std::fprintf(stderr, "%zu vertices done, %ld frames\n", m.skin.v.size(), frames_used);
+    std::fprintf(stderr, "%s done, %ld frames\n", labels[k].c_str(), frames_used);
   }
-  for (std::size_t k = 0; k + 1 < sizes.size(); ++k) {
-    std::printf("\n%zu vs %zu vertices\n%-17s %8s %8s  %s\n", sizes[k], sizes[k + 1], "expression",
-                "RMS mm", "max mm", "worst point");
+  for (std::size_t k = 0; k + 1 < labels.size(); ++k) {
+    std::printf("\n%s vs %s\n%-17s %8s %8s  %s\n", labels[k].c_str(), labels[k + 1].c_str(),
+                "expression", "RMS mm", "max mm", "worst point");
     double all_sq = 0, all_max = 0;
     int all_n = 0;
     for (std::size_t e = 0; e < lib.expressions.size(); ++e) {
@@ -573,6 +580,28 @@ int resolution_study(const std::vector<std::size_t>& sizes) {
     std::printf("%-17s %8.2f %8.2f\n", "all", std::sqrt(all_sq / all_n), all_max);
   }
   return 0;
+}
+
+int resolution_study(const std::vector<std::size_t>& sizes) {
+  std::vector<std::string> labels;
+  for (std::size_t v : sizes) labels.push_back(std::to_string(v) + " vertices");
+  return library_study(labels, [&](std::size_t k) { return study_model(sizes[k]); });
+}
+
+// The same across soft-tissue depths (the offset skull's one parameter; the muscles rest on
+// the skull, so they move with it), on the base mesh.
+int depth_study(const std::vector<double>& depths_mm) {
+  std::vector<std::string> labels;
+  for (double d : depths_mm) {
+    char label[48];
+    std::snprintf(label, sizeof label, "%g mm tissue", d);
+    labels.emplace_back(label);
+  }
+  return library_study(labels, [&](std::size_t k) {
+    HeadSpec spec = study_head();
+    spec.tissue_depth = depths_mm[k] * 1e-3;
+    return build_face_model(spec);
+  });
 }
 
 // One held input: a library expression, or "cp=C" for the corrugator and procerus at C
@@ -1012,11 +1041,17 @@ int main(int argc, char** argv) {
     for (int i = 2; i < argc; ++i) sizes.push_back(static_cast<std::size_t>(std::atoi(argv[i])));
     return resolution_study(sizes);
   }
+  if (mode == "depth" && argc > 2) {
+    std::vector<double> depths;
+    for (int i = 2; i < argc; ++i) depths.push_back(std::atof(argv[i]));
+    return depth_study(depths);
+  }
   std::fprintf(stderr,
                "usage: face_convergence_probe random [N] [seed] [vertices]\n"
                "       face_convergence_probe muscles [N] [seed] [frames]\n"
                "       face_convergence_probe mdetail [N] [seed] [frames]\n"
                "       face_convergence_probe resolution V1 V2 ...   (0 = the base mesh)\n"
+               "       face_convergence_probe depth MM1 MM2 ...   (skull tissue depths)\n"
                "       face_convergence_probe passes SKIN MUSCLE   (the library's settled states)\n"
                "       face_convergence_probe single [C]   (each muscle alone at C)\n"
                "       face_convergence_probe trace EXPRESSION|cp=C [frames] [stride] [noteeth]\n"
