@@ -32,7 +32,9 @@
 //     Each muscle's rest particles against its mirror partner's reflected in x = 0.
 //   face_convergence_probe skin HEADDIR EXPRESSION [frames]
 //     After a run to steady state, the skin vertices that still move over `frames` (6),
-//     and which muscle each vertex rides on (FACE_CORNERS=R: near the mouth corners).
+//     and which muscle each vertex rides on (FACE_CORNERS=R: near the mouth corners;
+//     FACE_NEAR=LANDMARK:R near another landmark); FACE_POINTS=A,B prints those landmarks'
+//     displacements. FACE_LIBRARY=FILE replaces the shipped library in every mode.
 //   face_convergence_probe fixed [N] [seed] [passes] [tolerance_mm]
 //     Whether `passes`-pass steady states of dense inputs are the head solver's: how far its
 //     frames take them, and where it settles; where they alternate, which vertex and anchor.
@@ -190,6 +192,12 @@ SteadyStateOptions study_steady() {
     std::fprintf(stderr, "FACE_PASSES = %d\n", std::atoi(e));
   }
   return o;
+}
+
+// The expression library: FACE_LIBRARY=FILE, else the shipped one.
+std::string library_path() {
+  const char* e = std::getenv("FACE_LIBRARY");
+  return e ? e : FACECTL_CONFIG_DIR "/expressions/library.yaml";
 }
 
 // FACE_TOL=MM and FACE_MAXFRAMES=N: the resolution study's steady-state tolerance and
@@ -536,8 +544,7 @@ int passes_study(int skin, int muscle) {
 int library_study(const std::vector<std::string>& labels,
                   const std::function<FaceModel(std::size_t)>& build) {
   const HeadSpec spec = study_head();
-  const ExpressionLibrary lib =
-      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
+  const ExpressionLibrary lib = load_expression_library(library_path(), spec);
   // result[model][expression][point]
   std::vector<std::vector<std::vector<Vec3>>> res;
   for (std::size_t k = 0; k < labels.size(); ++k) {
@@ -610,8 +617,7 @@ int depth_study(const std::vector<double>& depths_mm) {
 int trace(const std::string& what, int frames, int stride, bool teeth) {
   const HeadSpec spec = study_head();
   const FaceModel m = build_face_model(spec);
-  const ExpressionLibrary lib =
-      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
+  const ExpressionLibrary lib = load_expression_library(library_path(), spec);
   std::vector<double> cs(spec.commanded.size(), 0.0);
   FaceInput in;
   if (what.rfind("cp=", 0) == 0) {
@@ -705,8 +711,7 @@ int sensitivity(int n, unsigned seed, double eps) {
 int dump(const std::string& path, int samples, int shard, int shards) {
   const HeadSpec spec = study_head();
   const FaceModel m = build_face_model(spec);
-  const ExpressionLibrary lib =
-      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
+  const ExpressionLibrary lib = load_expression_library(library_path(), spec);
   const std::vector<int> cps = control_landmarks(m);
   const ReduceOptions ro;
   std::vector<NamedSampleSet> sets = {
@@ -761,8 +766,7 @@ const Expression* settle_on(const FaceModel& m, const ExpressionLibrary& lib, co
 int muscle_state(const char* dir, const char* expr, const char* name) {
   const HeadSpec spec = load_head_spec(dir);
   const FaceModel m = build_face_model(spec);
-  const ExpressionLibrary lib =
-      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
+  const ExpressionLibrary lib = load_expression_library(library_path(), spec);
   FaceData d = make_face_data(m);
   if (settle_on(m, lib, expr, d) == nullptr) return 2;
   for (const Muscle& mu : m.muscles) {
@@ -816,8 +820,7 @@ void print_corner_anchors(const FaceModel& m, const FaceData& d, const int corne
 int moving_skin(const char* dir, const char* expr, int frames) {
   const HeadSpec spec = load_head_spec(dir);
   const FaceModel m = build_face_model(spec);
-  const ExpressionLibrary lib =
-      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", spec);
+  const ExpressionLibrary lib = load_expression_library(library_path(), spec);
   FaceData d = make_face_data(m);
   const Expression* e = settle_on(m, lib, expr, d);
   if (e == nullptr) return 2;
@@ -841,6 +844,29 @@ int moving_skin(const char* dir, const char* expr, int frames) {
     std::printf("%s binds %d skin vertices\n", m.muscles[k].name.c_str(), bound[k]);
   if (const char* r = std::getenv("FACE_CORNERS"))
     print_corner_anchors(m, d, corners, std::atof(r) * 1e-3);
+  // FACE_NEAR=fdp_2_10:12: the anchors within 12 mm of that landmark, as for the corners.
+  if (const char* near = std::getenv("FACE_NEAR")) {
+    const std::string arg = near;
+    const std::size_t colon = arg.find(':');
+    const int l = m.landmark_index(arg.substr(0, colon));
+    const int both[2] = {l, l};
+    if (l >= 0 && colon != std::string::npos)
+      print_corner_anchors(m, d, both, std::atof(arg.c_str() + colon + 1) * 1e-3);
+  }
+  // FACE_POINTS=fdp_8_2,fdp_2_10: those landmarks' displacements from rest, mm.
+  if (const char* names = std::getenv("FACE_POINTS")) {
+    std::string list = names;
+    for (std::size_t at = 0; at <= list.size();) {
+      const std::size_t end = std::min(list.find(',', at), list.size());
+      const std::string name = list.substr(at, end - at);
+      at = end + 1;
+      if (const int l = m.landmark_index(name); l >= 0) {
+        const Vec3 u =
+            1e3 * (landmark_position(m, d.skin_x, l) - landmark_position(m, m.skin.v, l));
+        std::printf("%s moved %+.2f %+.2f %+.2f mm\n", name.c_str(), u.x(), u.y(), u.z());
+      }
+    }
+  }
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](auto i, auto j) { return moved[i] > moved[j]; });
