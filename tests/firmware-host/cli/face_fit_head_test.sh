@@ -125,7 +125,7 @@ assert r["problems"] == [] and abs(abs(f["turn_degrees"]) - 20) <= 2.5, r
 assert f["cut"] is False and f["kept_vertices"] == f["head_vertices"], f
 PY
 # A dense mesh (the default skin split to 5000 vertices, 10.7 times as many) gets its
-# stiffnesses scaled and a note that it will settle slowly; broad_short (1.7 times) no note.
+# stiffnesses scaled and a note that it will settle slowly; broad_short (1.75 times) no note.
 "$facectl" face export-obj --resolution 5000 --frames 1 --out "$tmp/dense.obj" > /dev/null
 "$facectl" face fit-head --obj "$tmp/dense.obj" --units m --out "$tmp/dense" > "$tmp/dense.out"
 grep -q "^note: 11 times the --from head's vertices for its size; its skin settles slowly" \

@@ -79,13 +79,21 @@ double largest(const Points& a, const Points& b, std::size_t& at) {
   return 1e3 * w;
 }
 
-// What skin vertex v's anchor rests on: a muscle's name, or "skull" (the jaw included).
+// The muscle whose particles carry anchor j's support, or -1 (the skull).
+int anchor_muscle(const FaceModel& m, std::size_t j) {
+  const SurfacePoint& sp = m.anchor_support[j];
+  if (sp.layer != Layer::kMuscle) return -1;
+  for (std::size_t k = 0; k < m.muscles.size(); ++k)
+    if (sp.i0 >= m.muscles[k].first && sp.i0 < m.muscles[k].first + m.muscles[k].particle_count())
+      return static_cast<int>(k);
+  return -1;
+}
+
+// What skin vertex v's anchor rests on (anchor v: one per vertex, in order): a muscle's
+// name, or "skull" (the jaw included).
 std::string anchor_support_name(const FaceModel& m, std::size_t v) {
-  const SurfacePoint& sp = m.anchor_support[v];
-  if (sp.layer == Layer::kSkull) return "skull";
-  for (const Muscle& mu : m.muscles)
-    if (sp.i0 >= mu.first && sp.i0 < mu.first + mu.particle_count()) return mu.name;
-  return "?";
+  const int k = anchor_muscle(m, v);
+  return k < 0 ? "skull" : m.muscles[static_cast<std::size_t>(k)].name;
 }
 
 std::vector<Vec3> displacements(const FaceModel& m, const FaceData& d,
@@ -505,8 +513,7 @@ int single_study(double c) {
 // iterations with `muscle` muscle passes a frame (the same fixed points if both settle).
 int passes_study(int skin, int muscle) {
   const HeadSpec base = study_head();
-  const ExpressionLibrary lib =
-      load_expression_library(FACECTL_CONFIG_DIR "/expressions/library.yaml", base);
+  const ExpressionLibrary lib = load_expression_library(library_path(), base);
   std::vector<std::vector<Vec3>> res[2];
   const FaceModel m = build_face_model(base, 0);
   for (int k = 0; k < 2; ++k) {
@@ -781,28 +788,13 @@ int muscle_state(const char* dir, const char* expr, const char* name) {
   return 0;
 }
 
-// After a run to steady state of library expression `expr` on head folder `dir` (3000
-// frames at most): the mouth corners (fdp_8_3, fdp_8_4) over `frames` more frames, how
-// many skin vertices each muscle carries, with FACE_CORNERS=R every anchor within R mm of
-// a corner (its support and how far its target moved, x mirrored on the right), and the
-// ten vertices that moved most over those frames (rest and current position, influence,
-// support and target, nearest landmark).
-// The muscle whose particles carry anchor j's support, or -1 (the skull).
-int anchor_muscle(const FaceModel& m, std::size_t j) {
-  const SurfacePoint& sp = m.anchor_support[j];
-  if (sp.layer != Layer::kMuscle) return -1;
-  for (std::size_t k = 0; k < m.muscles.size(); ++k)
-    if (sp.i0 >= m.muscles[k].first && sp.i0 < m.muscles[k].first + m.muscles[k].particle_count())
-      return static_cast<int>(k);
-  return -1;
-}
-
-// Every anchor within `radius` (m) of each mouth corner at rest: its support, and how far
-// its target has moved (x mirrored on the right, so both sides read alike).
-void print_corner_anchors(const FaceModel& m, const FaceData& d, const int corners[2],
-                          double radius) {
-  for (int side = 0; side < 2; ++side) {
-    const Vec3 c = landmark_position(m, m.skin.v, corners[side]);
+// Every anchor within `radius` (m) of each of `landmarks` at rest: its support, and how far
+// its target has moved (x mirrored for the second landmark, the right mouth corner, so the
+// two corners read alike).
+void print_anchors_near(const FaceModel& m, const FaceData& d, const std::vector<int>& landmarks,
+                        double radius) {
+  for (std::size_t side = 0; side < landmarks.size(); ++side) {
+    const Vec3 c = landmark_position(m, m.skin.v, landmarks[side]);
     for (std::size_t j = 0; j < m.anchors.size(); ++j) {
       const std::size_t i = static_cast<std::size_t>(m.anchors.particle[j]);
       const Vec3 rel = (m.skin.v.get(i) - c) * 1e3;
@@ -810,13 +802,19 @@ void print_corner_anchors(const FaceModel& m, const FaceData& d, const int corne
       const Vec3 t = d.anchor_targets.get(j) * 1e3, rest = m.skin.v.get(i) * 1e3;
       const double mirror = side ? -1 : 1;
       std::printf(
-          "side %d v%zu at %+.1f %+.1f %+.1f from corner, on %s, target moved %.1f %.1f %.1f\n",
-          side, i, mirror * rel.x(), rel.y(), rel.z(), anchor_support_name(m, j).c_str(),
+          "side %zu v%zu at %+.1f %+.1f %+.1f from it, on %s, target moved %.1f %.1f %.1f\n", side,
+          i, mirror * rel.x(), rel.y(), rel.z(), anchor_support_name(m, j).c_str(),
           mirror * (t.x() - rest.x()), t.y() - rest.y(), t.z() - rest.z());
     }
   }
 }
 
+// After a run to steady state of library expression `expr` on head folder `dir` (3000
+// frames at most): the mouth corners (fdp_8_3, fdp_8_4) over `frames` more frames, how
+// many skin vertices each muscle carries, with FACE_CORNERS=R every anchor within R mm of
+// a corner (its support and how far its target moved, x mirrored on the right), and the
+// ten vertices that moved most over those frames (rest and current position, influence,
+// support and target, nearest landmark). FACE_NEAR and FACE_POINTS: see the file's head.
 int moving_skin(const char* dir, const char* expr, int frames) {
   const HeadSpec spec = load_head_spec(dir);
   const FaceModel m = build_face_model(spec);
@@ -843,15 +841,14 @@ int moving_skin(const char* dir, const char* expr, int frames) {
   for (std::size_t k = 0; k < m.muscles.size(); ++k)
     std::printf("%s binds %d skin vertices\n", m.muscles[k].name.c_str(), bound[k]);
   if (const char* r = std::getenv("FACE_CORNERS"))
-    print_corner_anchors(m, d, corners, std::atof(r) * 1e-3);
+    print_anchors_near(m, d, {corners[0], corners[1]}, std::atof(r) * 1e-3);
   // FACE_NEAR=fdp_2_10:12: the anchors within 12 mm of that landmark, as for the corners.
   if (const char* near = std::getenv("FACE_NEAR")) {
     const std::string arg = near;
     const std::size_t colon = arg.find(':');
     const int l = m.landmark_index(arg.substr(0, colon));
-    const int both[2] = {l, l};
     if (l >= 0 && colon != std::string::npos)
-      print_corner_anchors(m, d, both, std::atof(arg.c_str() + colon + 1) * 1e-3);
+      print_anchors_near(m, d, {l}, std::atof(arg.c_str() + colon + 1) * 1e-3);
   }
   // FACE_POINTS=fdp_8_2,fdp_2_10: those landmarks' displacements from rest, mm.
   if (const char* names = std::getenv("FACE_POINTS")) {
