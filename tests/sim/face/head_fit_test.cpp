@@ -154,9 +154,8 @@ TEST_P(HeadFitOnTestHead, WrittenFolderBuildsAndMovesAsExpected) {
   RecordProperty("jaw_open_chin_mm", std::to_string(jaw * 1e3));
   // Both corners rise, and well together. Not always evenly: grid_narrow's rise 4.4 and
   // 8.6 mm here (4.5 and 8.9 settled), its corner vertices riding on different muscles on
-  // the two sides, and a
-  // muscle's shape can jump with its corners (docs/FACE_MODEL.md, "Bringing your own head"
-  // and Known issues, "Muscle shapes jump").
+  // the two sides, and a muscle's shape can jump with its corners (docs/FACE_MODEL.md,
+  // "Bringing your own head" and Known issues, "Muscle shapes jump").
   EXPECT_GT(joy_l, 0.2e-3);
   EXPECT_GT(joy_r, 0.2e-3);
   EXPECT_GT(joy_l + joy_r, 4e-3);
